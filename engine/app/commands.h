@@ -1,0 +1,11 @@
+// The subcommands of the vct program. Each returns the process exit code; errors are thrown
+// (vct::UsageError → 2, vct::Error → 1) and printed as one line by main().
+#pragma once
+
+namespace vct {
+
+int runRenderCommand(int argc, char** argv, int first);
+int runDemoCommand(int argc, char** argv, int first);
+int runScenesCommand(int argc, char** argv, int first);
+
+}  // namespace vct

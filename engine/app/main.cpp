@@ -1,0 +1,57 @@
+// vct: real-time global illumination by voxel cone tracing. Entry point: dispatches the subcommand and turns
+// every error into one line on stderr and a non-zero exit (2: bad usage, 1: anything else).
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "app/commands.h"
+#include "core/error.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: vct COMMAND [options]\n"
+    "Voxel cone tracing global illumination on glTF scenes (Vulkan).\n\n"
+    "commands:\n"
+    "  render   render frames headless; write final.png, final.exr, timings.json\n"
+    "  demo     open a window and show the frame live (WASD + mouse, Esc quits)\n"
+    "  scenes   list the built-in scenes\n\n"
+    "Run 'vct COMMAND --help' for a command's options.\n";
+
+// Messages are one line whatever their source (tinygltf, the driver, ...).
+std::string oneLine(std::string text) {
+    for (char& c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+int dispatch(int argc, char** argv) {
+    if (argc < 2) {
+        std::fputs(kUsage, stderr);
+        return 2;
+    }
+    const std::string command = argv[1];
+    if (command == "--help" || command == "-h" || command == "help") {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    if (command == "render") return vct::runRenderCommand(argc, argv, 2);
+    if (command == "demo") return vct::runDemoCommand(argc, argv, 2);
+    if (command == "scenes") return vct::runScenesCommand(argc, argv, 2);
+    throw vct::UsageError("unknown command '" + command + "' (see vct --help)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return dispatch(argc, argv);
+    } catch (const vct::UsageError& e) {
+        std::fprintf(stderr, "vct: error: %s\n", oneLine(e.what()).c_str());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "vct: error: %s\n", oneLine(e.what()).c_str());
+        return 1;
+    }
+}

@@ -1,0 +1,41 @@
+// What both `render` and `demo` set up: the Vulkan context, the scene and the renderer, from common flags.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "vk/context.h"
+
+namespace vct {
+
+struct SessionOptions {
+    std::string scene = "cornell";
+    RenderSettings settings;
+    vk::ContextOptions context;
+};
+
+// Reads --scene, --size, --exposure, --device and --validate.
+SessionOptions sessionOptions(const ParsedArgs& args);
+
+class Session {
+public:
+    explicit Session(const SessionOptions& options);
+    ~Session();
+    vk::Context& context() { return *context_; }
+    const Scene& scene() const { return scene_; }
+    Renderer& renderer() { return *renderer_; }
+
+private:
+    Scene scene_;
+    std::unique_ptr<vk::Context> context_;
+    std::unique_ptr<Renderer> renderer_;
+};
+
+// Throws when --validate was given and the validation layer reported anything.
+void checkValidation(const SessionOptions& options);
+
+}  // namespace vct

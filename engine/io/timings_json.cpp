@@ -1,0 +1,44 @@
+#include "io/timings_json.h"
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace vct {
+
+void writeTimingsJson(const std::filesystem::path& path, const TimingReport& report) {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const vk::PassTiming& pass : report.passes)
+        passes.push_back({{"name", pass.name}, {"median_ms", pass.medianMs}, {"p95_ms", pass.p95Ms},
+                          {"min_ms", pass.minMs}});
+    nlohmann::json json = {{"device", report.device},
+                           {"size", {report.width, report.height}},
+                           {"frames", report.frames},
+                           {"warmup", report.warmup},
+                           {"passes", passes},
+                           {"frame_median_ms", report.frame.medianMs}};
+    std::ofstream file(path);
+    if (!file) throw Error("cannot write '" + path.string() + "'");
+    file << json.dump(2) << "\n";
+    if (!file) throw Error("cannot write '" + path.string() + "'");
+}
+
+std::string formatTimingTable(const TimingReport& report) {
+    std::string table;
+    char line[160];
+    std::snprintf(line, sizeof(line), "%-12s %10s %10s %10s\n", "pass", "median ms", "p95 ms", "min ms");
+    table += line;
+    for (const vk::PassTiming& pass : report.passes) {
+        std::snprintf(line, sizeof(line), "%-12s %10.3f %10.3f %10.3f\n", pass.name.c_str(), pass.medianMs,
+                      pass.p95Ms, pass.minMs);
+        table += line;
+    }
+    std::snprintf(line, sizeof(line), "%-12s %10.3f %10.3f %10.3f\n", "frame", report.frame.medianMs,
+                  report.frame.p95Ms, report.frame.minMs);
+    table += line;
+    return table;
+}
+
+}  // namespace vct

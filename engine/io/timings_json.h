@@ -1,0 +1,24 @@
+// timings.json: per-pass GPU timings (median / p95 / min over the frames after the warm-up).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "vk/timer.h"
+
+namespace vct {
+
+struct TimingReport {
+    std::string device;
+    uint32_t width = 0, height = 0;
+    uint32_t frames = 0, warmup = 0;
+    std::vector<vk::PassTiming> passes;
+    vk::PassTiming frame;
+};
+
+void writeTimingsJson(const std::filesystem::path& path, const TimingReport& report);
+// A fixed-width table for the terminal.
+std::string formatTimingTable(const TimingReport& report);
+
+}  // namespace vct

@@ -1,0 +1,21 @@
+// direct: full-resolution direct light (GGX + height-correlated Smith + Schlick, DESIGN §3.1) from every
+// punctual light, the main light shadow-mapped, plus emission and the constant ambient term.
+#pragma once
+
+#include "render/pass.h"
+#include "vk/pipeline.h"
+
+namespace vct {
+
+class DirectPass : public Pass {
+public:
+    explicit DirectPass(const vk::Context& context);
+    const char* name() const override { return "direct"; }
+    std::vector<ImageUse> uses(FrameTargets& targets) override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    vk::Pipeline pipeline_;
+};
+
+}  // namespace vct

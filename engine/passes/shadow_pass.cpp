@@ -1,0 +1,47 @@
+#include "passes/shadow_pass.h"
+
+#include "render/scene_draw.h"
+
+namespace vct {
+
+ShadowPass::ShadowPass(const vk::Context& context) {
+    vk::Pipeline::GraphicsDesc desc;
+    desc.vertexShader = "shadow.vert";
+    desc.depthFormat = FrameTargets::kDepthFormat;
+    desc.bindings = sceneDrawBindings();
+    desc.pushConstantSize = sizeof(gpu::DrawPushConstants);
+    desc.depthBias = true;
+    desc.positionOnly = true;
+    pipeline_ = vk::Pipeline::graphics(context, desc);
+}
+
+std::vector<ImageUse> ShadowPass::uses(FrameTargets& targets) {
+    return {{&targets.shadowMap, vk::ImageAccess::DepthAttachment}};
+}
+
+void ShadowPass::execute(const FrameContext& frame) {
+    const vk::Image& shadowMap = frame.targets.shadowMap;
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = shadowMap.view();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, {shadowMap.width(), shadowMap.height()}};
+    rendering.layerCount = 1;
+    rendering.pDepthAttachment = &depth;
+    vkCmdBeginRendering(frame.cmd, &rendering);
+    // With no shadow-casting light the map stays cleared (lit everywhere) and nothing is drawn.
+    if (frame.scene.shadowLightIndex() >= 0) {
+        VkViewport viewport{0, 0, float(shadowMap.width()), float(shadowMap.height()), 0.0f, 1.0f};
+        VkRect2D scissor{{0, 0}, {shadowMap.width(), shadowMap.height()}};
+        vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
+        vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
+        vkCmdSetDepthBias(frame.cmd, frame.settings.shadowDepthBias, 0.0f, frame.settings.shadowSlopeBias);
+        drawScene(frame, pipeline_);
+    }
+    vkCmdEndRendering(frame.cmd);
+}
+
+}  // namespace vct

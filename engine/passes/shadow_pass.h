@@ -1,0 +1,20 @@
+// shadow: light-space depth of the main (shadow-casting) light, for the direct and (later) inject passes.
+#pragma once
+
+#include "render/pass.h"
+#include "vk/pipeline.h"
+
+namespace vct {
+
+class ShadowPass : public Pass {
+public:
+    explicit ShadowPass(const vk::Context& context);
+    const char* name() const override { return "shadow"; }
+    std::vector<ImageUse> uses(FrameTargets& targets) override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    vk::Pipeline pipeline_;
+};
+
+}  // namespace vct

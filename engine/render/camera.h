@@ -1,0 +1,24 @@
+// The camera a frame is seen from: a view matrix and a perspective lens.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace vct {
+
+struct CameraView {
+    glm::mat4 view{1.0f};  // world → camera (camera looks along -Z)
+    float yfov = 0.8f;
+    float znear = 0.05f;
+    float zfar = 100.0f;
+
+    glm::vec3 position() const;
+    // Vulkan clip space: depth 0..1, y pointing down in the image.
+    glm::mat4 projection(float aspect) const;
+};
+
+// The scene's first camera at time t (the loader guarantees one exists).
+CameraView sceneCamera(const Scene& scene, float timeSeconds);
+
+}  // namespace vct

@@ -1,0 +1,34 @@
+// The images one frame renders into, sized from the output size (and the shadow map's own size).
+#pragma once
+
+#include "vk/context.h"
+#include "vk/image.h"
+
+namespace vct {
+
+struct FrameTargets {
+    static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+    static constexpr VkFormat kNormalRoughnessFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+    static constexpr VkFormat kBaseColorMetallicFormat = VK_FORMAT_R8G8B8A8_UNORM;
+    static constexpr VkFormat kEmissiveOcclusionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+    static constexpr VkFormat kMotionFormat = VK_FORMAT_R16G16_SFLOAT;
+    static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+    static constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+    static constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
+
+    vk::Image shadowMap;          // light-space depth of the main light
+    vk::Image depth;              // camera depth (0 near, 1 far / background)
+    vk::Image normalRoughness;    // world shading normal (xyz), perceptual roughness (w)
+    vk::Image baseColorMetallic;  // base colour (rgb), metallic (a)
+    vk::Image emissiveOcclusion;  // emitted radiance (rgb), ambient occlusion (a)
+    vk::Image motion;             // screen-space motion in UV units: uv_previous = uv - motion
+    vk::Image direct;             // direct light + emission (linear HDR)
+    vk::Image hdr;                // final linear HDR (what final.exr holds)
+    vk::Image ldr;                // final tone-mapped sRGB (what final.png holds and the window shows)
+
+    uint32_t width = 0, height = 0;
+
+    void create(const vk::Context& context, uint32_t width, uint32_t height, uint32_t shadowMapSize);
+};
+
+}  // namespace vct

@@ -1,0 +1,237 @@
+#include "render/gpu_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <cstring>
+
+#include "vk/check.h"
+
+namespace vct {
+
+namespace {
+
+VkSamplerAddressMode addressMode(TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        case TextureWrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+        default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    }
+}
+
+Texture solidTexture(TextureKind kind, uint8_t r, uint8_t g, uint8_t b, uint8_t a) {
+    Texture texture;
+    texture.kind = kind;
+    texture.width = texture.height = 1;
+    texture.mips = {{r, g, b, a}};
+    return texture;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const vk::Context& context, const Scene& scene) : context_(context), scene_(scene) {
+    vertices_ = vk::Buffer::withData(context, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
+                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    indices_ = vk::Buffer::withData(context, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),
+                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    std::vector<gpu::GpuMaterial> materials;
+    for (const Material& m : scene.materials) {
+        gpu::GpuMaterial g{};
+        g.baseColorFactor = m.baseColorFactor;
+        g.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
+        g.metallicRoughnessCutoffAo = glm::vec4(m.metallicFactor, m.roughnessFactor, m.alphaCutoff, m.occlusionStrength);
+        // Blend is drawn as opaque (no transparency pass); mask keeps its cut-out.
+        g.flags = glm::uvec4(m.alphaMode == AlphaMode::Mask ? VCT_ALPHA_MASK : VCT_ALPHA_OPAQUE, 0, 0, 0);
+        materials.push_back(g);
+    }
+    materials_ = vk::Buffer::withData(context, materials.data(), materials.size() * sizeof(gpu::GpuMaterial),
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    instances_ = scene.instances(0.0f);
+    bounds_ = scene.bounds();
+    instanceBuffer_ = vk::Buffer(context, std::max<size_t>(1, instances_.size()) * sizeof(gpu::GpuInstance),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::HostVisible);
+    size_t lightNodes = 0;
+    for (const Node& node : scene.nodes) lightNodes += node.light >= 0 ? 1 : 0;
+    lightBuffer_ = vk::Buffer(context, std::max<size_t>(1, lightNodes) * sizeof(gpu::GpuLight),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::HostVisible);
+    uploadTextures();
+    update(0.0f, true);
+}
+
+GpuScene::~GpuScene() {
+    for (auto& [key, sampler] : samplers_) vkDestroySampler(context_.device(), sampler, nullptr);
+}
+
+VkSampler GpuScene::samplerFor(TextureWrap s, TextureWrap t) {
+    auto key = std::make_pair(int(s), int(t));
+    if (auto it = samplers_.find(key); it != samplers_.end()) return it->second;
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = VK_FILTER_LINEAR;
+    info.minFilter = VK_FILTER_LINEAR;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    info.addressModeU = addressMode(s);
+    info.addressModeV = addressMode(t);
+    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    info.maxLod = VK_LOD_CLAMP_NONE;
+    VkPhysicalDeviceFeatures features;
+    vkGetPhysicalDeviceFeatures(context_.physicalDevice(), &features);
+    info.anisotropyEnable = features.samplerAnisotropy;
+    info.maxAnisotropy = std::min(8.0f, context_.properties().limits.maxSamplerAnisotropy);
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(context_.device(), &info, nullptr, &sampler));
+    samplers_[key] = sampler;
+    return sampler;
+}
+
+vk::Image GpuScene::uploadTexture(const Texture& texture) {
+    const uint32_t levels = uint32_t(texture.mips.size());
+    vk::ImageDesc desc;
+    desc.width = texture.width;
+    desc.height = texture.height;
+    desc.mipLevels = levels;
+    desc.format = texture.kind == TextureKind::Color ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    vk::Image image(context_, desc);
+
+    size_t total = 0;
+    for (const auto& mip : texture.mips) total += mip.size();
+    vk::Buffer staging(context_, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::HostVisible);
+    std::vector<VkBufferImageCopy> regions;
+    size_t offset = 0;
+    for (uint32_t level = 0; level < levels; ++level) {
+        std::memcpy(static_cast<uint8_t*>(staging.mapped()) + offset, texture.mips[level].data(),
+                    texture.mips[level].size());
+        VkBufferImageCopy region{};
+        region.bufferOffset = offset;
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+        region.imageExtent = {std::max(1u, texture.width >> level), std::max(1u, texture.height >> level), 1};
+        regions.push_back(region);
+        offset += texture.mips[level].size();
+    }
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        image.use(cmd, vk::ImageAccess::TransferDst);
+        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               uint32_t(regions.size()), regions.data());
+        image.use(cmd, vk::ImageAccess::Sampled);
+    });
+    return image;
+}
+
+void GpuScene::uploadTextures() {
+    for (const Texture& texture : scene_.textures) {
+        textures_.push_back(uploadTexture(texture));
+        textureSamplers_.push_back(samplerFor(texture.wrapS, texture.wrapT));
+    }
+    defaultWhite_ = uploadTexture(solidTexture(TextureKind::Linear, 255, 255, 255, 255));
+    defaultNormal_ = uploadTexture(solidTexture(TextureKind::Normal, 128, 128, 255, 255));
+    defaultBlack_ = uploadTexture(solidTexture(TextureKind::Linear, 0, 0, 0, 255));
+    defaultSampler_ = samplerFor(TextureWrap::Repeat, TextureWrap::Repeat);
+}
+
+namespace {
+int textureIndex(const Material& material, GpuScene::Slot slot) {
+    switch (slot) {
+        case GpuScene::Slot::BaseColor: return material.baseColorTexture;
+        case GpuScene::Slot::MetallicRoughness: return material.metallicRoughnessTexture;
+        case GpuScene::Slot::Normal: return material.normalTexture;
+        case GpuScene::Slot::Emissive: return material.emissiveTexture;
+        case GpuScene::Slot::Occlusion: return material.occlusionTexture;
+    }
+    return -1;
+}
+}  // namespace
+
+VkImageView GpuScene::textureView(const Material& material, Slot slot) const {
+    const int index = textureIndex(material, slot);
+    if (index >= 0) return textures_[size_t(index)].view();
+    // Neutral defaults: the factors alone decide (white multiplies by 1; emissive texture defaults to 1 too,
+    // since glTF's emissive = factor × texture).
+    return slot == Slot::Normal ? defaultNormal_.view() : defaultWhite_.view();
+}
+
+VkSampler GpuScene::textureSampler(const Material& material, Slot slot) const {
+    const int index = textureIndex(material, slot);
+    return index >= 0 ? textureSamplers_[size_t(index)] : defaultSampler_;
+}
+
+void GpuScene::update(float timeSeconds, bool cut) {
+    const std::vector<glm::mat4> world = scene_.evaluate(timeSeconds);
+    std::vector<Instance> next = scene_.instances(timeSeconds);
+    if (cut || previousWorld_.size() != next.size()) {
+        previousWorld_.clear();
+        for (const Instance& instance : next) previousWorld_.push_back(instance.world);
+    }
+    auto* gpuInstances = static_cast<gpu::GpuInstance*>(instanceBuffer_.mapped());
+    for (size_t i = 0; i < next.size(); ++i) {
+        gpuInstances[i].world = next[i].world;
+        gpuInstances[i].prevWorld = previousWorld_[i];
+        gpuInstances[i].normalMatrix = glm::transpose(glm::inverse(next[i].world));
+        previousWorld_[i] = next[i].world;
+    }
+    instances_ = std::move(next);
+
+    lights_.clear();
+    for (size_t n = 0; n < scene_.nodes.size(); ++n) {
+        if (scene_.nodes[n].light < 0) continue;
+        const Light& light = scene_.lights[size_t(scene_.nodes[n].light)];
+        gpu::GpuLight g{};
+        const glm::vec3 position = glm::vec3(world[n][3]);
+        const glm::vec3 direction = glm::normalize(glm::vec3(world[n] * glm::vec4(0, 0, -1, 0)));
+        int type = light.type == LightType::Directional ? VCT_LIGHT_DIRECTIONAL
+                   : light.type == LightType::Point     ? VCT_LIGHT_POINT
+                                                        : VCT_LIGHT_SPOT;
+        g.positionRange = glm::vec4(position, light.range);
+        g.directionType = glm::vec4(direction, float(type));
+        g.colorIntensity = glm::vec4(light.color * light.intensity, 0.0f);
+        // KHR_lights_punctual angular attenuation, precomputed as scale and offset on cos(angle).
+        const float cosOuter = std::cos(light.outerConeAngle);
+        const float cosInner = std::cos(light.innerConeAngle);
+        const float scale = 1.0f / std::max(0.001f, cosInner - cosOuter);
+        g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
+        lights_.push_back(g);
+    }
+    fitShadow();
+    if (!lights_.empty()) std::memcpy(lightBuffer_.mapped(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight));
+}
+
+void GpuScene::fitShadow() {
+    shadowLight_ = -1;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        const int type = int(lights_[i].directionType.w);
+        if (type == VCT_LIGHT_DIRECTIONAL || type == VCT_LIGHT_SPOT) {
+            shadowLight_ = int(i);
+            break;
+        }
+    }
+    if (shadowLight_ < 0) return;
+    const gpu::GpuLight& light = lights_[size_t(shadowLight_)];
+    const glm::vec3 direction = glm::vec3(light.directionType);
+    const glm::vec3 center = 0.5f * (bounds_.min + bounds_.max);
+    const float radius = std::max(1e-3f, 0.5f * glm::length(bounds_.max - bounds_.min));
+    // Any up vector not parallel to the light direction.
+    const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    if (int(light.directionType.w) == VCT_LIGHT_DIRECTIONAL) {
+        // Orthographic box around the bounding sphere of the scene.
+        const glm::vec3 eye = center - direction * (2.0f * radius);
+        const glm::mat4 view = glm::lookAt(eye, center, up);
+        const glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
+        lightViewProj_ = proj * view;
+        shadowTexelWorld_ = 2.0f * radius / float(VCT_SHADOW_MAP_SIZE);
+    } else {
+        // Perspective over the spot's cone (clamped so the projection stays well conditioned).
+        const glm::vec3 eye = glm::vec3(light.positionRange);
+        const float cosOuter = -light.spotScaleOffset.y / light.spotScaleOffset.x;
+        const float outer = std::acos(std::clamp(cosOuter, -1.0f, 1.0f));
+        const float fov = std::clamp(2.0f * outer + 0.1f, 0.2f, 2.8f);
+        const float farPlane = glm::length(eye - center) + radius;
+        const float nearPlane = std::max(1e-3f, farPlane * 1e-3f);
+        lightViewProj_ = glm::perspective(fov, 1.0f, nearPlane, farPlane) * glm::lookAt(eye, eye + direction, up);
+        // Texel size at the scene's centre distance.
+        shadowTexelWorld_ = 2.0f * std::tan(0.5f * fov) * glm::length(eye - center) / float(VCT_SHADOW_MAP_SIZE);
+    }
+}
+
+}  // namespace vct

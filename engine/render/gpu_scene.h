@@ -1,0 +1,69 @@
+// The scene as the GPU sees it: geometry, textures (with their mip chains), materials and lights uploaded
+// once; per frame only the instance transforms (current and previous) are written.
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include "lib/shared.h"
+#include "scene/scene.h"
+#include "vk/buffer.h"
+#include "vk/image.h"
+
+namespace vct {
+
+class GpuScene {
+public:
+    GpuScene(const vk::Context& context, const Scene& scene);
+    ~GpuScene();
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+
+    const Scene& scene() const { return scene_; }
+    VkBuffer vertexBuffer() const { return vertices_.handle(); }
+    VkBuffer indexBuffer() const { return indices_.handle(); }
+    VkBuffer materialBuffer() const { return materials_.handle(); }
+    VkBuffer instanceBuffer() const { return instanceBuffer_.handle(); }
+    VkBuffer lightBuffer() const { return lightBuffer_.handle(); }
+
+    // Writes this frame's instances (world and previous-world matrices) and lights at time t.
+    // The first call (or one after a cut) uses the current transforms as the previous ones.
+    void update(float timeSeconds, bool cut);
+    const std::vector<Instance>& instances() const { return instances_; }
+    uint32_t lightCount() const { return uint32_t(lights_.size()); }
+    const std::vector<gpu::GpuLight>& lights() const { return lights_; }
+    // The main light: the first directional or spot light, which casts the shadow map; -1 when none.
+    int shadowLightIndex() const { return shadowLight_; }
+    // World → the main light's clip space, fitted to the scene bounds; and the world size of one shadow texel.
+    const glm::mat4& lightViewProj() const { return lightViewProj_; }
+    float shadowTexelWorldSize() const { return shadowTexelWorld_; }
+
+    // The image view for a texture slot; a neutral 1x1 default when the material has none.
+    enum class Slot { BaseColor, MetallicRoughness, Normal, Emissive, Occlusion };
+    VkImageView textureView(const Material& material, Slot slot) const;
+    VkSampler textureSampler(const Material& material, Slot slot) const;
+
+private:
+    void uploadTextures();
+    vk::Image uploadTexture(const Texture& texture);
+    VkSampler samplerFor(TextureWrap s, TextureWrap t);
+
+    const vk::Context& context_;
+    const Scene& scene_;
+    vk::Buffer vertices_, indices_, materials_, instanceBuffer_, lightBuffer_;
+    std::vector<vk::Image> textures_;
+    std::vector<VkSampler> textureSamplers_;  // parallel to textures_
+    vk::Image defaultWhite_, defaultNormal_, defaultBlack_;
+    VkSampler defaultSampler_ = VK_NULL_HANDLE;
+    std::map<std::pair<int, int>, VkSampler> samplers_;
+    std::vector<Instance> instances_;
+    std::vector<glm::mat4> previousWorld_;  // per instance
+    std::vector<gpu::GpuLight> lights_;
+    int shadowLight_ = -1;
+    glm::mat4 lightViewProj_{1.0f};
+    float shadowTexelWorld_ = 0.0f;
+    Aabb bounds_;
+    void fitShadow();
+};
+
+}  // namespace vct

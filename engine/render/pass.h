@@ -1,0 +1,49 @@
+// What every pass sees: a Pass declares the images it reads and writes (the runner turns those into barriers)
+// and records its work in execute(). The runner (Renderer) times each pass with a GPU timestamp scope.
+#pragma once
+
+#include <vector>
+
+#include "render/frame_targets.h"
+#include "render/gpu_scene.h"
+#include "render/settings.h"
+#include "vk/context.h"
+#include "vk/image.h"
+
+namespace vct {
+
+// Samplers shared by the screen-space passes.
+struct Samplers {
+    VkSampler linearClamp = VK_NULL_HANDLE;
+    VkSampler nearestClamp = VK_NULL_HANDLE;
+    VkSampler shadowCompare = VK_NULL_HANDLE;  // depth comparison (PCF) for the shadow map
+};
+
+struct FrameContext {
+    const vk::Context& context;
+    VkCommandBuffer cmd;
+    const GpuScene& scene;
+    FrameTargets& targets;
+    VkBuffer frameUniforms;
+    const RenderSettings& settings;
+    const Samplers& samplers;
+};
+
+struct ImageUse {
+    vk::Image* image;
+    vk::ImageAccess access;
+};
+
+class Pass {
+public:
+    virtual ~Pass() = default;
+    virtual const char* name() const = 0;
+    // The images this pass reads and writes this frame, and how.
+    virtual std::vector<ImageUse> uses(FrameTargets& targets) = 0;
+    virtual void execute(const FrameContext& frame) = 0;
+};
+
+// Dispatch size for a full-image compute pass in VCT_TILE_SIZE tiles.
+inline uint32_t tileCount(uint32_t pixels) { return (pixels + VCT_TILE_SIZE - 1) / VCT_TILE_SIZE; }
+
+}  // namespace vct

@@ -1,0 +1,208 @@
+#include "render/renderer.h"
+
+#include <cstring>
+
+#include <glm/gtc/packing.hpp>
+
+#include "passes/composite_pass.h"
+#include "passes/direct_pass.h"
+#include "passes/gbuffer_pass.h"
+#include "passes/shadow_pass.h"
+#include "vk/check.h"
+
+namespace vct {
+
+Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings)
+    : context_(context),
+      settings_(settings),
+      gpuScene_(context, scene),
+      frameUniforms_(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                     vk::MemoryUsage::HostVisible),
+      timer_(context) {
+    const VkPhysicalDeviceLimits& limits = context.properties().limits;
+    if (settings.width > limits.maxImageDimension2D || settings.height > limits.maxImageDimension2D)
+        throw UsageError("size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                         " exceeds the device's maximum image dimension " +
+                         std::to_string(limits.maxImageDimension2D));
+    targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE);
+    createSamplers();
+    // The frame, in order (DESIGN §2).
+    passes_.push_back(std::make_unique<ShadowPass>(context));
+    passes_.push_back(std::make_unique<GBufferPass>(context));
+    passes_.push_back(std::make_unique<DirectPass>(context));
+    passes_.push_back(std::make_unique<CompositePass>(context));
+
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = context.commandPool();
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VK_CHECK(vkAllocateCommandBuffers(context.device(), &alloc, &cmd_));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence_));
+}
+
+Renderer::~Renderer() {
+    vkDeviceWaitIdle(context_.device());
+    vkDestroyFence(context_.device(), fence_, nullptr);
+    vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &cmd_);
+    for (VkSampler s : {samplers_.linearClamp, samplers_.nearestClamp, samplers_.shadowCompare})
+        vkDestroySampler(context_.device(), s, nullptr);
+}
+
+void Renderer::createSamplers() {
+    auto make = [&](VkFilter filter, bool compare) {
+        VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        info.magFilter = filter;
+        info.minFilter = filter;
+        info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+        info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        info.compareEnable = compare;
+        info.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+        info.maxLod = VK_LOD_CLAMP_NONE;
+        VkSampler sampler;
+        VK_CHECK(vkCreateSampler(context_.device(), &info, nullptr, &sampler));
+        return sampler;
+    };
+    samplers_.linearClamp = make(VK_FILTER_LINEAR, false);
+    samplers_.nearestClamp = make(VK_FILTER_NEAREST, false);
+    samplers_.shadowCompare = make(VK_FILTER_LINEAR, true);
+}
+
+void Renderer::resize(uint32_t width, uint32_t height) {
+    vkDeviceWaitIdle(context_.device());
+    settings_.width = width;
+    settings_.height = height;
+    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE);
+    hasPrevious_ = false;
+}
+
+void Renderer::writeFrameUniforms(const FrameInput& input) {
+    gpu::FrameUniforms u{};
+    const float aspect = float(settings_.width) / float(settings_.height);
+    u.view = input.camera.view;
+    u.proj = input.camera.projection(aspect);
+    u.viewProj = u.proj * u.view;
+    u.invViewProj = glm::inverse(u.viewProj);
+    u.prevViewProj = (input.cut || !hasPrevious_) ? u.viewProj : previousViewProj_;
+    u.lightViewProj = gpuScene_.lightViewProj();
+    u.cameraPosition = glm::vec4(input.camera.position(), 1.0f);
+    u.imageSize = glm::vec4(settings_.width, settings_.height, 1.0f / float(settings_.width),
+                            1.0f / float(settings_.height));
+    u.ambient = glm::vec4(settings_.ambient, settings_.exposure);
+    u.shadowParams = glm::vec4(gpuScene_.shadowTexelWorldSize(), 1.0f / float(VCT_SHADOW_MAP_SIZE),
+                               float(gpuScene_.lightCount()), float(gpuScene_.shadowLightIndex()));
+    std::memcpy(frameUniforms_.mapped(), &u, sizeof(u));
+    previousViewProj_ = u.viewProj;
+    hasPrevious_ = true;
+}
+
+void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
+    gpuScene_.update(input.timeSeconds, input.cut || !hasPrevious_);
+    writeFrameUniforms(input);
+
+    VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
+    timer_.beginFrame(cmd_);
+    FrameContext frame{context_, cmd_, gpuScene_, targets_, frameUniforms_.handle(), settings_, samplers_};
+    for (const auto& pass : passes_) {
+        timer_.beginScope(cmd_, pass->name());
+        for (const ImageUse& use : pass->uses(targets_)) use.image->use(cmd_, use.access);
+        pass->execute(frame);
+        timer_.endScope(cmd_);
+    }
+    if (submit.afterPasses) submit.afterPasses(cmd_);
+    VK_CHECK(vkEndCommandBuffer(cmd_));
+
+    VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    info.commandBufferCount = 1;
+    info.pCommandBuffers = &cmd_;
+    if (submit.wait) {
+        info.waitSemaphoreCount = 1;
+        info.pWaitSemaphores = &submit.wait;
+        info.pWaitDstStageMask = &submit.waitStage;
+    }
+    if (submit.signal) {
+        info.signalSemaphoreCount = 1;
+        info.pSignalSemaphores = &submit.signal;
+    }
+    VK_CHECK(vkResetFences(context_.device(), 1, &fence_));
+    VK_CHECK(vkQueueSubmit(context_.queue(), 1, &info, fence_));
+    VK_CHECK(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+    timer_.collect(input.recordTimings);
+}
+
+namespace {
+
+// How the texels of a readable format are laid out: channel count and component type.
+struct TexelLayout {
+    uint32_t channels;
+    enum { Float32, Float16, Unorm8 } type;
+};
+
+TexelLayout texelLayout(VkFormat format) {
+    switch (format) {
+        case VK_FORMAT_R32G32B32A32_SFLOAT: return {4, TexelLayout::Float32};
+        case VK_FORMAT_R32_SFLOAT:
+        case VK_FORMAT_D32_SFLOAT: return {1, TexelLayout::Float32};
+        case VK_FORMAT_R16G16B16A16_SFLOAT: return {4, TexelLayout::Float16};
+        case VK_FORMAT_R16G16_SFLOAT: return {2, TexelLayout::Float16};
+        case VK_FORMAT_R8G8B8A8_UNORM: return {4, TexelLayout::Unorm8};
+        default: throw Error("readback of this image format is not supported");
+    }
+}
+
+}  // namespace
+
+vk::Buffer Renderer::copyToHost(vk::Image& image) {
+    vk::Buffer staging(context_, VkDeviceSize(image.width()) * image.height() * vk::bytesPerPixel(image.format()),
+                       VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::HostVisible);
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        // Put the image back the way the passes left it, so the next frame's barriers stay right.
+        const vk::ImageAccess previous = image.lastAccess();
+        image.use(cmd, vk::ImageAccess::TransferSrc);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {image.aspect(), 0, 0, 1};
+        region.imageExtent = {image.width(), image.height(), 1};
+        vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
+                               &region);
+        if (previous != vk::ImageAccess::Undefined) image.use(cmd, previous);
+    });
+    return staging;
+}
+
+std::vector<float> Renderer::readFloatImage(vk::Image& image) {
+    const TexelLayout layout = texelLayout(image.format());
+    vk::Buffer staging = copyToHost(image);
+    const auto* src = static_cast<const uint8_t*>(staging.mapped());
+    const size_t pixels = size_t(image.width()) * image.height();
+    // Missing channels read as 0, alpha as 1.
+    std::vector<float> rgba(pixels * 4, 0.0f);
+    for (size_t i = 0; i < pixels; ++i) {
+        rgba[i * 4 + 3] = 1.0f;
+        for (uint32_t c = 0; c < layout.channels; ++c) {
+            const size_t index = i * layout.channels + c;
+            float value = 0.0f;
+            if (layout.type == TexelLayout::Float32) {
+                std::memcpy(&value, src + index * 4, 4);
+            } else if (layout.type == TexelLayout::Float16) {
+                uint16_t bits;
+                std::memcpy(&bits, src + index * 2, 2);
+                value = glm::unpackHalf1x16(bits);
+            } else {
+                value = float(src[index]) / 255.0f;
+            }
+            rgba[i * 4 + c] = value;
+        }
+    }
+    return rgba;
+}
+
+std::vector<uint8_t> Renderer::readLdr() {
+    vk::Buffer staging = copyToHost(targets_.ldr);
+    const auto* src = static_cast<const uint8_t*>(staging.mapped());
+    return std::vector<uint8_t>(src, src + size_t(targets_.width) * targets_.height * 4);
+}
+
+}  // namespace vct

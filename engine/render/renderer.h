@@ -1,0 +1,73 @@
+// Runs one frame: updates the scene's per-frame data, then runs the passes in order, each inside a GPU
+// timestamp scope and after the barriers its declared image uses call for.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/frame_targets.h"
+#include "render/gpu_scene.h"
+#include "render/pass.h"
+#include "render/settings.h"
+#include "vk/buffer.h"
+#include "vk/timer.h"
+
+namespace vct {
+
+struct FrameInput {
+    CameraView camera;
+    float timeSeconds = 0.0f;
+    bool cut = false;            // no valid previous frame (first frame, camera jump): no motion history
+    bool recordTimings = false;  // keep this frame's pass timings in the statistics (after warm-up)
+};
+
+// Optional extra work after the passes (the window's blit to the swapchain) and its synchronisation.
+struct FrameSubmit {
+    std::function<void(VkCommandBuffer)> afterPasses;
+    VkSemaphore wait = VK_NULL_HANDLE;
+    VkPipelineStageFlags waitStage = 0;
+    VkSemaphore signal = VK_NULL_HANDLE;
+};
+
+class Renderer {
+public:
+    Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Records, submits and waits for one frame; then reads its timestamps.
+    void render(const FrameInput& input, const FrameSubmit& submit = {});
+    void resize(uint32_t width, uint32_t height);
+
+    FrameTargets& targets() { return targets_; }
+    const vk::GpuTimer& timer() const { return timer_; }
+    const RenderSettings& settings() const { return settings_; }
+    const GpuScene& gpuScene() const { return gpuScene_; }
+
+    // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones).
+    std::vector<float> readFloatImage(vk::Image& image);
+    std::vector<uint8_t> readLdr();
+
+private:
+    vk::Buffer copyToHost(vk::Image& image);
+    void writeFrameUniforms(const FrameInput& input);
+    void createSamplers();
+
+    const vk::Context& context_;
+    RenderSettings settings_;
+    GpuScene gpuScene_;
+    FrameTargets targets_;
+    Samplers samplers_;
+    vk::Buffer frameUniforms_;
+    vk::GpuTimer timer_;
+    std::vector<std::unique_ptr<Pass>> passes_;
+    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    glm::mat4 previousViewProj_{1.0f};
+    bool hasPrevious_ = false;
+};
+
+}  // namespace vct

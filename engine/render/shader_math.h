@@ -1,0 +1,9 @@
+// The shaders' shared math (shaders/lib/*.glsl), compiled as C++ for the CPU tests and CPU-side tables.
+#pragma once
+
+#include "lib/cpp_glsl.h"
+
+namespace vct::glsl {
+using namespace glm;
+#include "lib/brdf.glsl"
+}  // namespace vct::glsl

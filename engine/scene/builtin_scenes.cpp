@@ -1,0 +1,287 @@
+#include "scene/builtin_scenes.h"
+
+#include "core/error.h"
+#include "scene/gltf_loader.h"
+#include "scene/procedural_textures.h"
+#include "scene/tangents.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <filesystem>
+
+namespace vct {
+
+namespace {
+
+// Geometry for one primitive before it is appended to the scene.
+struct Geometry {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+};
+
+// Quad with corners o, o+u, o+u+v, o+v, facing cross(u, v) (counter-clockwise seen from that side, the
+// glTF front face). UVs run u: 0..uvScale.x along `u` and v: uvScale.y..0 along `v`, so an image appears
+// upright when `v` points up (glTF's v grows downwards in the image).
+void addQuad(Geometry& g, glm::vec3 o, glm::vec3 u, glm::vec3 v, glm::vec2 uvScale = glm::vec2(1.0f)) {
+    auto base = static_cast<uint32_t>(g.vertices.size());
+    glm::vec3 n = glm::normalize(glm::cross(u, v));
+    const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (const glm::vec2& c : corners) {
+        Vertex vert;
+        vert.position = o + c.x * u + c.y * v;
+        vert.normal = n;
+        vert.uv = glm::vec2(c.x, 1.0f - c.y) * uvScale;
+        g.vertices.push_back(vert);
+    }
+    g.indices.insert(g.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+}
+
+// Axis-aligned box centred at the origin with outward faces (half extents h).
+Geometry box(glm::vec3 h) {
+    Geometry g;
+    glm::vec3 X(2 * h.x, 0, 0), Y(0, 2 * h.y, 0), Z(0, 0, 2 * h.z);
+    addQuad(g, {h.x, -h.y, h.z}, -Z, Y);    // +X
+    addQuad(g, {-h.x, -h.y, -h.z}, Z, Y);   // -X
+    addQuad(g, {-h.x, -h.y, h.z}, X, Y);    // +Z
+    addQuad(g, {h.x, -h.y, -h.z}, -X, Y);   // -Z
+    addQuad(g, {-h.x, h.y, h.z}, X, -Z);    // +Y
+    addQuad(g, {-h.x, -h.y, -h.z}, X, Z);   // -Y
+    return g;
+}
+
+// UV sphere centred at the origin: u follows longitude, v latitude (v = 0 at the north pole, +Y).
+Geometry sphere(float radius, uint32_t segments, uint32_t rings) {
+    Geometry g;
+    for (uint32_t i = 0; i <= rings; ++i) {
+        float theta = glm::pi<float>() * float(i) / float(rings);
+        for (uint32_t j = 0; j <= segments; ++j) {
+            float phi = glm::two_pi<float>() * float(j) / float(segments);
+            Vertex v;
+            v.normal = glm::vec3(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
+            v.position = radius * v.normal;
+            v.uv = glm::vec2(float(j) / float(segments), float(i) / float(rings));
+            g.vertices.push_back(v);
+        }
+    }
+    for (uint32_t i = 0; i < rings; ++i) {
+        for (uint32_t j = 0; j < segments; ++j) {
+            uint32_t a = i * (segments + 1) + j, b = a + segments + 1;  // a: this ring, b: the ring below
+            g.indices.insert(g.indices.end(), {a, b, b + 1, a, b + 1, a + 1});
+        }
+    }
+    return g;
+}
+
+// Appends meshes, materials and nodes to a Scene, generating tangents for every primitive.
+class SceneBuilder {
+public:
+    explicit SceneBuilder(const std::string& name) { scene.name = name; }
+
+    uint32_t material(const Material& m) {
+        scene.materials.push_back(m);
+        return uint32_t(scene.materials.size() - 1);
+    }
+    int texture(Texture t) {
+        scene.textures.push_back(std::move(t));
+        return int(scene.textures.size() - 1);
+    }
+    // A mesh of one or more (geometry, material) primitives.
+    int mesh(const std::string& name, std::vector<std::pair<Geometry, uint32_t>> parts) {
+        Mesh m;
+        m.name = name;
+        for (auto& [g, mat] : parts) {
+            generateTangents(g.vertices, g.indices);
+            Primitive p;
+            p.firstIndex = uint32_t(scene.indices.size());
+            p.indexCount = uint32_t(g.indices.size());
+            p.vertexOffset = int32_t(scene.vertices.size());
+            p.vertexCount = uint32_t(g.vertices.size());
+            p.material = mat;
+            for (const Vertex& v : g.vertices) p.bounds.extend(v.position);
+            scene.vertices.insert(scene.vertices.end(), g.vertices.begin(), g.vertices.end());
+            scene.indices.insert(scene.indices.end(), g.indices.begin(), g.indices.end());
+            m.primitives.push_back(uint32_t(scene.primitives.size()));
+            scene.primitives.push_back(p);
+        }
+        scene.meshes.push_back(std::move(m));
+        return int(scene.meshes.size() - 1);
+    }
+    // A root node.
+    int node(Node n) {
+        scene.nodes.push_back(std::move(n));
+        scene.roots.push_back(int(scene.nodes.size() - 1));
+        return int(scene.nodes.size() - 1);
+    }
+    int cameraNode(const std::string& name, glm::vec3 position, glm::vec3 target, float yfovDegrees, float zfar) {
+        Camera cam;
+        cam.name = name;
+        cam.yfov = glm::radians(yfovDegrees);
+        cam.znear = 0.05f;
+        cam.zfar = zfar;
+        scene.cameras.push_back(cam);
+        Node n;
+        n.name = name;
+        n.translation = position;
+        n.rotation = glm::quatLookAtRH(glm::normalize(target - position), glm::vec3(0, 1, 0));  // -Z looks at target
+        n.camera = int(scene.cameras.size() - 1);
+        return node(n);
+    }
+    int lightNode(const Light& light, glm::vec3 position, glm::quat rotation) {
+        scene.lights.push_back(light);
+        Node n;
+        n.name = light.name;
+        n.translation = position;
+        n.rotation = rotation;
+        n.light = int(scene.lights.size() - 1);
+        return node(n);
+    }
+
+    Scene scene;
+};
+
+Material makeMaterial(const std::string& name, glm::vec3 baseColor, float metallic, float roughness) {
+    Material m;
+    m.name = name;
+    m.baseColorFactor = glm::vec4(baseColor, 1.0f);
+    m.metallicFactor = metallic;
+    m.roughnessFactor = roughness;
+    return m;
+}
+
+// A 4 m (x) × 3 m (y) × 4 m (z) closed room, floor at y = 0, centred on x = z = 0; see the description.
+Scene cornell() {
+    SceneBuilder b("cornell");
+    const glm::vec3 white(0.725f, 0.71f, 0.68f), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
+
+    Material floor = makeMaterial("floor", glm::vec3(0.75f), 1.0f, 1.0f);  // factors scale the stripe texture
+    floor.metallicRoughnessTexture = b.texture(makeRoughnessStripes("floor roughness stripes", 256, 8, 0.05f, 0.8f, 0.0f));
+    Material back = makeMaterial("back wall", white, 0.0f, 0.35f);
+    back.normalTexture = b.texture(makeBumpNormalMap("back wall bumps", 512, 8, 0.8f));
+    uint32_t floorMat = b.material(floor), backMat = b.material(back);
+    uint32_t whiteMat = b.material(makeMaterial("white", white, 0.0f, 0.9f));
+    uint32_t redMat = b.material(makeMaterial("red", red, 0.0f, 0.9f));
+    uint32_t greenMat = b.material(makeMaterial("green", green, 0.0f, 0.9f));
+
+    // Walls face inwards: the camera is inside, and single-sided quads keep back-face culling useful.
+    const float W = 4.0f, H = 3.0f, D = 4.0f, x0 = -W / 2, x1 = W / 2, z0 = -D / 2, z1 = D / 2;
+    Geometry floorG, ceilingG, backG, frontG, leftG, rightG;
+    addQuad(floorG, {x0, 0, z1}, {W, 0, 0}, {0, 0, -D});           // stripes vary along x
+    addQuad(ceilingG, {x0, H, z0}, {W, 0, 0}, {0, 0, D});
+    addQuad(backG, {x0, 0, z0}, {W, 0, 0}, {0, H, 0}, {4.0f, 3.0f});  // 2048 × 1536 texels: 2 mm each
+    addQuad(frontG, {x1, 0, z1}, {-W, 0, 0}, {0, H, 0});
+    addQuad(leftG, {x0, 0, z1}, {0, 0, -D}, {0, H, 0});
+    addQuad(rightG, {x1, 0, z0}, {0, 0, D}, {0, H, 0});
+    Node room;
+    room.name = "room";
+    room.mesh = b.mesh("room", {{floorG, floorMat}, {ceilingG, whiteMat}, {backG, backMat}, {frontG, whiteMat},
+                                {leftG, redMat}, {rightG, greenMat}});
+    b.node(room);
+
+    Node ball;
+    ball.name = "gold sphere";
+    ball.translation = glm::vec3(-1.0f, 0.5f, -0.8f);
+    ball.mesh = b.mesh("sphere", {{sphere(0.5f, 64, 32), b.material(makeMaterial("gold", {1.0f, 0.766f, 0.336f}, 1.0f, 0.2f))}});
+    b.node(ball);
+
+    Node tall;
+    tall.name = "tall box";
+    tall.translation = glm::vec3(0.9f, 0.9f, -0.9f);
+    tall.rotation = glm::angleAxis(glm::radians(20.0f), glm::vec3(0, 1, 0));
+    tall.mesh = b.mesh("tall box", {{box({0.4f, 0.9f, 0.4f}), whiteMat}});
+    b.node(tall);
+
+    // A small cube circling in front of the objects (radius 0.7 m around (0, 0.35, 0.4), one turn in 4 s,
+    // counter-clockwise seen from above) while spinning about +Y once per loop.
+    Node cube;
+    cube.name = "moving cube";
+    cube.mesh = b.mesh("cube", {{box(glm::vec3(0.15f)), b.material(makeMaterial("blue", {0.2f, 0.4f, 0.9f}, 0.0f, 0.5f))}});
+    int cubeNode = b.node(cube);
+    AnimationChannel move{cubeNode, AnimationPath::Translation, Interpolation::Linear, {}, {}};
+    const int keys = 32;  // 11.25° segments: the linear path stays within 1.4 cm of the circle
+    for (int k = 0; k <= keys; ++k) {
+        float t = 4.0f * float(k) / keys, a = glm::two_pi<float>() * float(k) / keys;
+        move.times.push_back(t);
+        move.values.emplace_back(0.7f * std::cos(a), 0.35f, 0.4f - 0.7f * std::sin(a), 0.0f);
+    }
+    AnimationChannel spin{cubeNode, AnimationPath::Rotation, Interpolation::Linear, {}, {}};
+    for (int k = 0; k <= 4; ++k) {  // quarter turns; slerp fills in between
+        glm::quat q = glm::angleAxis(glm::half_pi<float>() * float(k), glm::vec3(0, 1, 0));
+        spin.times.push_back(float(k));
+        spin.values.emplace_back(q.x, q.y, q.z, q.w);
+    }
+    b.scene.animations.push_back(Animation{"cube orbit", {move, spin}, 4.0f});
+
+    // Spot light 10 cm under the ceiling, 0.5 m towards the back, pointing straight down. 40 cd gives
+    // E = 40 / 2.9² ≈ 4.8 lux on the floor below it, i.e. radiance ≈ 0.75·4.8/π ≈ 1.1 from the floor:
+    // well exposed at exposure 1 with Reinhard/ACES, with the walls' lower halves lit at grazing angles
+    // (which shows the back wall's bumps) and the rest lit indirectly.
+    Light spot;
+    spot.name = "spot light";
+    spot.type = LightType::Spot;
+    spot.color = glm::vec3(1.0f, 0.96f, 0.9f);
+    spot.intensity = 40.0f;
+    spot.innerConeAngle = 0.6f;
+    spot.outerConeAngle = 0.9f;
+    b.lightNode(spot, {0.0f, 2.9f, -0.5f}, glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0)));
+
+    b.cameraNode("camera", {0.0f, 1.5f, 1.85f}, {0.0f, 1.2f, -2.0f}, 50.0f, 20.0f);
+    b.scene.validate();
+    return std::move(b.scene);
+}
+
+// A 10 m × 10 m silver plane (y = 0) with a 512² bump normal map repeated once per metre (2 mm texels,
+// 8-texel period), lit by a directional light placed so its mirror highlight is in the middle of the view.
+Scene plane() {
+    SceneBuilder b("plane");
+    Material m = makeMaterial("bumpy silver", glm::vec3(0.95f), 1.0f, 0.15f);
+    m.normalTexture = b.texture(makeBumpNormalMap("plane bumps", 512, 8, 0.8f));
+    Geometry g;
+    addQuad(g, {-5.0f, 0.0f, 5.0f}, {10.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -10.0f}, glm::vec2(10.0f));
+    Node n;
+    n.name = "plane";
+    n.mesh = b.mesh("plane", {{g, b.material(m)}});
+    b.node(n);
+
+    const glm::vec3 eye(0.0f, 1.5f, 3.0f);
+    b.cameraNode("camera", eye, glm::vec3(0.0f), 45.0f, 50.0f);
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    sun.intensity = 3.0f;
+    // The light travels along the mirror image of the view ray through the origin: (0, -1.5, 3).
+    glm::vec3 dir = glm::normalize(glm::vec3(0.0f, -eye.y, eye.z));
+    b.lightNode(sun, -dir * 5.0f, glm::quatLookAtRH(dir, glm::vec3(0, 1, 0)));
+    b.scene.validate();
+    return std::move(b.scene);
+}
+
+}  // namespace
+
+std::vector<std::string> builtinSceneNames() { return {"cornell", "plane"}; }
+
+std::string builtinSceneDescription(const std::string& name) {
+    if (name == "cornell")
+        return "4x3x4 m closed room: red/green side walls, glossy floor with 8 roughness stripes (0.05-0.8), "
+               "bump-normal-mapped back wall, gold sphere, tall white box, a blue cube circling the floor "
+               "(4 s loop), one 40 cd spot light under the ceiling";
+    if (name == "plane")
+        return "10x10 m silver plane (roughness 0.15) with a fine bump normal map, a directional light and an "
+               "oblique camera on its highlight (normal-map filtering tests)";
+    return "";
+}
+
+std::optional<Scene> makeBuiltinScene(const std::string& name) {
+    if (name == "cornell") return cornell();
+    if (name == "plane") return plane();
+    return std::nullopt;
+}
+
+Scene loadScene(const std::string& nameOrPath) {
+    if (auto scene = makeBuiltinScene(nameOrPath)) return std::move(*scene);
+    std::error_code ec;
+    if (!std::filesystem::exists(nameOrPath, ec))
+        throw Error("unknown scene '" + nameOrPath + "' (not a built-in scene and no such file)");
+    return loadGltf(nameOrPath);
+}
+
+}  // namespace vct

@@ -1,0 +1,505 @@
+#include "scene/gltf_loader.h"
+
+#include "core/error.h"
+#include "scene/tangents.h"
+
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+namespace vct {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& message) { throw Error(message); }
+
+// tinygltf reports several problems separated by newlines; our errors are one line.
+std::string oneLine(const std::string& text) {
+    std::string out;
+    bool pendingBreak = false;
+    for (char c : text) {
+        if (c == '\n' || c == '\r') {
+            pendingBreak = !out.empty();
+        } else {
+            if (pendingBreak) out += "; ";
+            pendingBreak = false;
+            out += c;
+        }
+    }
+    return out;
+}
+
+// One accessor converted to doubles (exact for every glTF component type, uint32 indices included),
+// `components` values per element, with normalized integers mapped to [0,1] / [-1,1] as glTF says.
+struct AccessorData {
+    size_t count = 0;
+    int components = 0;
+    std::vector<double> values;
+    double at(size_t element, int c) const { return values[element * size_t(components) + size_t(c)]; }
+};
+
+double readComponent(const unsigned char* p, int type, bool normalized) {
+    auto load = [p](auto v) {
+        std::memcpy(&v, p, sizeof(v));  // buffers need not be aligned for the host
+        return v;
+    };
+    switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: { double v = load(int8_t{}); return normalized ? std::max(v / 127.0, -1.0) : v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { double v = load(uint8_t{}); return normalized ? v / 255.0 : v; }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: { double v = load(int16_t{}); return normalized ? std::max(v / 32767.0, -1.0) : v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { double v = load(uint16_t{}); return normalized ? v / 65535.0 : v; }
+        case TINYGLTF_COMPONENT_TYPE_INT: return load(int32_t{});
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load(uint32_t{});
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return load(float{});
+        default: return load(double{});  // TINYGLTF_COMPONENT_TYPE_DOUBLE (not glTF 2.0, but harmless)
+    }
+}
+
+// Pointer to `count` elements of `elementSize` bytes, `stride` apart, in a buffer view, range-checked so a
+// truncated .bin or a bad offset is an error instead of a read past the end.
+const unsigned char* viewData(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count,
+                              size_t elementSize, size_t& stride, const std::string& what) {
+    if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size()) fail(what + " has no valid bufferView");
+    const tinygltf::BufferView& view = model.bufferViews[size_t(viewIndex)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size()) fail(what + ": bufferView has no valid buffer");
+    const tinygltf::Buffer& buffer = model.buffers[size_t(view.buffer)];
+    if (stride == 0) stride = view.byteStride ? view.byteStride : elementSize;
+    size_t needed = count == 0 ? 0 : offset + stride * (count - 1) + elementSize;
+    if (view.byteOffset + view.byteLength > buffer.data.size() || needed > view.byteLength)
+        fail(what + " reads past the end of buffer " + std::to_string(view.buffer) + " (" +
+             std::to_string(buffer.data.size()) + " bytes; truncated or missing .bin file?)");
+    return buffer.data.data() + view.byteOffset + offset;
+}
+
+AccessorData readAccessor(const tinygltf::Model& model, int index, const std::string& what) {
+    if (index < 0 || size_t(index) >= model.accessors.size()) fail(what + ": accessor index out of range");
+    const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+    std::string name = what + " (accessor " + std::to_string(index) + ")";
+    int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
+    int components = tinygltf::GetNumComponentsInType(uint32_t(acc.type));
+    if (componentSize <= 0 || components <= 0) fail(name + " has an unknown component type or type");
+    AccessorData data;
+    data.count = acc.count;
+    data.components = components;
+    data.values.assign(acc.count * size_t(components), 0.0);  // no bufferView: zeros (then sparse values)
+    size_t elementSize = size_t(componentSize) * size_t(components);
+    if (acc.bufferView >= 0) {
+        size_t stride = 0;
+        const unsigned char* p = viewData(model, acc.bufferView, acc.byteOffset, acc.count, elementSize, stride, name);
+        for (size_t i = 0; i < acc.count; ++i)
+            for (int c = 0; c < components; ++c)
+                data.values[i * size_t(components) + size_t(c)] =
+                    readComponent(p + i * stride + size_t(c * componentSize), acc.componentType, acc.normalized);
+    }
+    if (acc.sparse.isSparse) {
+        size_t n = size_t(std::max(acc.sparse.count, 0));
+        int indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.sparse.indices.componentType));
+        if (indexSize <= 0) fail(name + ": sparse indices have an unknown component type");
+        size_t indexStride = size_t(indexSize), valueStride = elementSize;
+        const unsigned char* ip = viewData(model, acc.sparse.indices.bufferView, size_t(acc.sparse.indices.byteOffset),
+                                           n, size_t(indexSize), indexStride, name + " sparse indices");
+        const unsigned char* vp = viewData(model, acc.sparse.values.bufferView, size_t(acc.sparse.values.byteOffset),
+                                           n, elementSize, valueStride, name + " sparse values");
+        for (size_t s = 0; s < n; ++s) {
+            auto target = size_t(readComponent(ip + s * indexStride, acc.sparse.indices.componentType, false));
+            if (target >= acc.count) fail(name + ": sparse index " + std::to_string(target) + " is out of range");
+            for (int c = 0; c < components; ++c)
+                data.values[target * size_t(components) + size_t(c)] =
+                    readComponent(vp + s * valueStride + size_t(c * componentSize), acc.componentType, acc.normalized);
+        }
+    }
+    return data;
+}
+
+TextureWrap wrapMode(int mode) {
+    if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::ClampToEdge;
+    if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::MirroredRepeat;
+    return TextureWrap::Repeat;
+}
+
+// Number in an extension object, e.g. extensions["KHR_materials_emissive_strength"]["emissiveStrength"].
+std::optional<double> extensionNumber(const tinygltf::ExtensionMap& extensions, const std::string& extension,
+                                      const std::string& key) {
+    auto it = extensions.find(extension);
+    if (it == extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return std::nullopt;
+    const tinygltf::Value& v = it->second.Get(key);
+    return v.IsNumber() ? std::optional<double>(v.GetNumberAsDouble()) : std::nullopt;
+}
+
+class GltfImporter {
+public:
+    explicit GltfImporter(const tinygltf::Model& model) : model_(model) {}
+
+    Scene run() {
+        if (model_.skins.size() > 0) note("skins are not supported: rendering the bind pose");
+        for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(material(i));
+        for (size_t i = 0; i < model_.meshes.size(); ++i) mesh(i);
+        if (scene_.materials.empty()) scene_.materials.emplace_back();  // spec default material
+        for (const tinygltf::Camera& cam : model_.cameras) camera(cam);
+        for (const tinygltf::Light& light : model_.lights) punctualLight(light);
+        nodes();
+        for (const tinygltf::Animation& anim : model_.animations) animation(anim);
+        return std::move(scene_);
+    }
+
+private:
+    void note(const std::string& text) {
+        if (std::find(scene_.notes.begin(), scene_.notes.end(), text) == scene_.notes.end())
+            scene_.notes.push_back(text);
+    }
+
+    // Scene texture for a glTF texture in one role; a texture used as colour and as data is duplicated,
+    // because the two need different formats (sRGB vs UNORM) and different mip filtering.
+    int texture(int gltfIndex, int texCoord, TextureKind kind) {
+        if (gltfIndex < 0) return -1;
+        if (size_t(gltfIndex) >= model_.textures.size()) fail("texture index " + std::to_string(gltfIndex) + " is out of range");
+        if (texCoord != 0) note("only TEXCOORD_0 is supported: textures using other UV sets use TEXCOORD_0");
+        auto key = std::make_pair(gltfIndex, kind);
+        if (auto it = textureCache_.find(key); it != textureCache_.end()) return it->second;
+        const tinygltf::Texture& src = model_.textures[size_t(gltfIndex)];
+        if (src.source < 0 || size_t(src.source) >= model_.images.size())
+            fail("texture " + std::to_string(gltfIndex) + " has no image (image extensions such as KTX2/WebP are not supported)");
+        const tinygltf::Image& image = model_.images[size_t(src.source)];
+        std::string imageName = !image.uri.empty() ? image.uri : !image.name.empty() ? image.name
+                                                                  : "image " + std::to_string(src.source);
+        if (image.image.empty() || image.width <= 0 || image.height <= 0)
+            fail("texture image '" + imageName + "' is missing or could not be decoded");
+        Texture tex;
+        tex.name = imageName;
+        tex.kind = kind;
+        if (src.sampler >= 0 && size_t(src.sampler) < model_.samplers.size()) {
+            tex.wrapS = wrapMode(model_.samplers[size_t(src.sampler)].wrapS);
+            tex.wrapT = wrapMode(model_.samplers[size_t(src.sampler)].wrapT);
+        }
+        tex.width = uint32_t(image.width);
+        tex.height = uint32_t(image.height);
+        tex.mips.push_back(toRgba8(image, imageName));
+        buildMipChain(tex);
+        scene_.textures.push_back(std::move(tex));
+        int index = int(scene_.textures.size()) - 1;
+        textureCache_[key] = index;
+        return index;
+    }
+
+    // Any 1-4 channel, 8- or 16-bit decoded image to RGBA8 (grey replicates, missing alpha is opaque).
+    static std::vector<uint8_t> toRgba8(const tinygltf::Image& image, const std::string& name) {
+        int channels = image.component, bytes = image.bits / 8;
+        size_t pixels = size_t(image.width) * size_t(image.height);
+        if (channels < 1 || channels > 4 || (bytes != 1 && bytes != 2))
+            fail("texture image '" + name + "' has an unsupported pixel format (" + std::to_string(channels) +
+                 " channels, " + std::to_string(image.bits) + " bits)");
+        if (image.image.size() < pixels * size_t(channels * bytes)) fail("texture image '" + name + "' is truncated");
+        auto channel = [&](size_t pixel, int c) -> uint8_t {
+            const unsigned char* p = image.image.data() + (pixel * size_t(channels) + size_t(c)) * size_t(bytes);
+            if (bytes == 1) return p[0];
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            return uint8_t((uint32_t(v) * 255u + 32767u) / 65535u);
+        };
+        std::vector<uint8_t> out(pixels * 4);
+        for (size_t i = 0; i < pixels; ++i) {
+            uint8_t* o = &out[i * 4];
+            if (channels <= 2) {
+                o[0] = o[1] = o[2] = channel(i, 0);
+                o[3] = channels == 2 ? channel(i, 1) : 255;
+            } else {
+                for (int c = 0; c < 3; ++c) o[c] = channel(i, c);
+                o[3] = channels == 4 ? channel(i, 3) : 255;
+            }
+        }
+        return out;
+    }
+
+    Material material(size_t index) {
+        const tinygltf::Material& src = model_.materials[index];
+        const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+        Material m;
+        m.name = src.name.empty() ? "material " + std::to_string(index) : src.name;
+        if (pbr.baseColorFactor.size() == 4) m.baseColorFactor = glm::make_vec4(pbr.baseColorFactor.data());
+        m.metallicFactor = float(pbr.metallicFactor);
+        m.roughnessFactor = float(pbr.roughnessFactor);
+        if (src.emissiveFactor.size() == 3) m.emissiveFactor = glm::make_vec3(src.emissiveFactor.data());
+        if (auto strength = extensionNumber(src.extensions, "KHR_materials_emissive_strength", "emissiveStrength"))
+            m.emissiveFactor *= float(*strength);
+        m.normalScale = float(src.normalTexture.scale);
+        m.occlusionStrength = float(src.occlusionTexture.strength);
+        m.alphaCutoff = float(src.alphaCutoff);
+        m.alphaMode = src.alphaMode == "MASK" ? AlphaMode::Mask : src.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+        m.doubleSided = src.doubleSided;
+        m.baseColorTexture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, TextureKind::Color);
+        m.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                             TextureKind::Linear);
+        m.normalTexture = texture(src.normalTexture.index, src.normalTexture.texCoord, TextureKind::Normal);
+        m.emissiveTexture = texture(src.emissiveTexture.index, src.emissiveTexture.texCoord, TextureKind::Color);
+        m.occlusionTexture = texture(src.occlusionTexture.index, src.occlusionTexture.texCoord, TextureKind::Linear);
+        return m;
+    }
+
+    // Material 0..n-1 are the file's; primitives without one share a spec-default material appended once.
+    uint32_t defaultMaterial() {
+        if (defaultMaterial_ < 0) {
+            Material m;
+            m.name = "default";
+            scene_.materials.push_back(m);
+            defaultMaterial_ = int(scene_.materials.size()) - 1;
+        }
+        return uint32_t(defaultMaterial_);
+    }
+
+    // Triangle-list indices for a primitive of any triangle mode.
+    static std::vector<uint32_t> triangles(const std::vector<uint32_t>& in, int mode, const std::string& where) {
+        if (mode == TINYGLTF_MODE_TRIANGLES) return in;
+        std::vector<uint32_t> out;
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            for (size_t i = 0; i + 2 < in.size(); ++i) {  // every other triangle is flipped to keep the winding
+                bool odd = i & 1;
+                out.insert(out.end(), {in[i], in[odd ? i + 2 : i + 1], in[odd ? i + 1 : i + 2]});
+            }
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            for (size_t i = 1; i + 1 < in.size(); ++i) out.insert(out.end(), {in[i], in[i + 1], in[0]});
+        } else {
+            fail(where + ": unsupported primitive mode " + std::to_string(mode) + " (only triangles, strips and fans)");
+        }
+        return out;
+    }
+
+    void mesh(size_t meshIndex) {
+        const tinygltf::Mesh& src = model_.meshes[meshIndex];
+        Mesh out;
+        out.name = src.name.empty() ? "mesh " + std::to_string(meshIndex) : src.name;
+        for (size_t p = 0; p < src.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = src.primitives[p];
+            std::string where = "mesh '" + out.name + "' primitive " + std::to_string(p);
+            if (!prim.targets.empty()) note("morph targets are not supported: rendering the base shape");
+            auto attribute = [&](const char* name) {
+                auto it = prim.attributes.find(name);
+                return it == prim.attributes.end() ? -1 : it->second;
+            };
+            if (attribute("POSITION") < 0) fail(where + " has no POSITION attribute");
+            AccessorData pos = readAccessor(model_, attribute("POSITION"), where + " POSITION");
+            if (pos.components < 3) fail(where + " POSITION is not a vec3");
+            std::vector<Vertex> verts(pos.count);
+            for (size_t i = 0; i < pos.count; ++i) verts[i].position = glm::vec3(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2));
+            auto readInto = [&](const char* name, int minComponents, auto store) {
+                if (attribute(name) < 0) return false;
+                AccessorData a = readAccessor(model_, attribute(name), where + " " + name);
+                if (a.count != pos.count || a.components < minComponents)
+                    fail(where + " " + name + " has " + std::to_string(a.count) + " elements of " +
+                         std::to_string(a.components) + " components, expected " + std::to_string(pos.count));
+                for (size_t i = 0; i < a.count; ++i) store(verts[i], a, i);
+                return true;
+            };
+            bool hasNormals = readInto("NORMAL", 3, [](Vertex& v, const AccessorData& a, size_t i) {
+                v.normal = glm::vec3(a.at(i, 0), a.at(i, 1), a.at(i, 2));
+            });
+            readInto("TEXCOORD_0", 2, [](Vertex& v, const AccessorData& a, size_t i) { v.uv = glm::vec2(a.at(i, 0), a.at(i, 1)); });
+            bool hasTangents = readInto("TANGENT", 4, [](Vertex& v, const AccessorData& a, size_t i) {
+                // glTF tangents are unit xyz with w = ±1; quantised data may be slightly off, so snap w.
+                v.tangent = glm::vec4(a.at(i, 0), a.at(i, 1), a.at(i, 2), a.at(i, 3) < 0.0 ? -1.0 : 1.0);
+            });
+
+            std::vector<uint32_t> idx;
+            if (prim.indices >= 0) {
+                AccessorData a = readAccessor(model_, prim.indices, where + " indices");
+                for (double v : a.values) idx.push_back(uint32_t(v));
+            } else {
+                for (size_t i = 0; i < pos.count; ++i) idx.push_back(uint32_t(i));
+            }
+            idx = triangles(idx, prim.mode, where);
+            idx.resize(idx.size() - idx.size() % 3);
+            for (size_t i = 0; i < idx.size(); ++i)
+                if (idx[i] >= verts.size())
+                    fail(where + ": index " + std::to_string(i) + " (= " + std::to_string(idx[i]) + ") is out of range (" +
+                         std::to_string(verts.size()) + " vertices)");
+
+            if (!hasNormals) {
+                makeFlatNormals(verts, idx);
+                hasTangents = false;  // the file's tangents belonged to the welded vertices
+            }
+            if (!hasTangents) generateTangents(verts, idx);
+
+            Primitive out_prim;
+            out_prim.firstIndex = uint32_t(scene_.indices.size());
+            out_prim.indexCount = uint32_t(idx.size());
+            out_prim.vertexOffset = int32_t(scene_.vertices.size());
+            out_prim.vertexCount = uint32_t(verts.size());
+            if (prim.material >= 0 && size_t(prim.material) >= model_.materials.size())
+                fail(where + ": material " + std::to_string(prim.material) + " is out of range");
+            out_prim.material = prim.material >= 0 ? uint32_t(prim.material) : defaultMaterial();
+            for (const Vertex& v : verts) out_prim.bounds.extend(v.position);
+            scene_.vertices.insert(scene_.vertices.end(), verts.begin(), verts.end());
+            scene_.indices.insert(scene_.indices.end(), idx.begin(), idx.end());
+            out.primitives.push_back(uint32_t(scene_.primitives.size()));
+            scene_.primitives.push_back(out_prim);
+        }
+        scene_.meshes.push_back(std::move(out));
+    }
+
+    void camera(const tinygltf::Camera& src) {
+        Camera cam;
+        cam.name = src.name;
+        if (src.type == "orthographic") {
+            note("orthographic cameras are approximated by a 45 degree perspective camera");
+            cam.yfov = 0.785398f;
+            cam.znear = std::max(float(src.orthographic.znear), 0.01f);
+            cam.zfar = std::max(float(src.orthographic.zfar), cam.znear * 2.0f);
+        } else {
+            cam.yfov = src.perspective.yfov > 0.0 ? float(src.perspective.yfov) : 0.8f;
+            cam.znear = src.perspective.znear > 0.0 ? float(src.perspective.znear) : 0.05f;
+            cam.zfar = float(src.perspective.zfar);  // 0 (infinite) is made finite once the bounds are known
+            cam.aspectRatio = float(src.perspective.aspectRatio);
+        }
+        scene_.cameras.push_back(cam);
+    }
+
+    void punctualLight(const tinygltf::Light& src) {
+        Light light;
+        light.name = src.name;
+        light.type = src.type == "spot" ? LightType::Spot : src.type == "point" ? LightType::Point : LightType::Directional;
+        if (src.color.size() == 3) light.color = glm::make_vec3(src.color.data());
+        light.intensity = float(src.intensity);
+        light.range = float(src.range);
+        light.innerConeAngle = float(src.spot.innerConeAngle);
+        light.outerConeAngle = float(src.spot.outerConeAngle);
+        scene_.lights.push_back(light);
+    }
+
+    void nodes() {
+        size_t count = model_.nodes.size();
+        scene_.nodes.resize(count);
+        for (size_t i = 0; i < count; ++i) {
+            const tinygltf::Node& src = model_.nodes[i];
+            Node& node = scene_.nodes[i];
+            node.name = src.name.empty() ? "node " + std::to_string(i) : src.name;
+            if (src.matrix.size() == 16) {
+                node.matrix = glm::mat4(glm::make_mat4(src.matrix.data()));  // both column-major
+            } else {
+                if (src.translation.size() == 3) node.translation = glm::make_vec3(src.translation.data());
+                if (src.rotation.size() == 4)
+                    node.rotation = glm::normalize(glm::quat(float(src.rotation[3]), float(src.rotation[0]),
+                                                             float(src.rotation[1]), float(src.rotation[2])));
+                if (src.scale.size() == 3) node.scale = glm::make_vec3(src.scale.data());
+            }
+            auto check = [&](int index, size_t size, const char* what) {
+                if (index >= 0 && size_t(index) >= size)
+                    fail("node '" + node.name + "': " + what + " index " + std::to_string(index) + " is out of range");
+                return index;
+            };
+            node.mesh = check(src.mesh, scene_.meshes.size(), "mesh");
+            node.camera = check(src.camera, scene_.cameras.size(), "camera");
+            if (auto light = extensionNumber(src.extensions, "KHR_lights_punctual", "light"))
+                node.light = check(int(*light), scene_.lights.size(), "light");
+            for (int c : src.children) {
+                check(c, count, "child");
+                if (c < 0 || scene_.nodes[size_t(c)].parent >= 0 || size_t(c) == i)
+                    fail("node '" + node.name + "': child " + std::to_string(c) + " is invalid or has two parents");
+                scene_.nodes[size_t(c)].parent = int(i);
+                node.children.push_back(c);
+            }
+        }
+        int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (size_t(sceneIndex) < model_.scenes.size()) {
+            for (int n : model_.scenes[size_t(sceneIndex)].nodes)
+                if (n >= 0 && size_t(n) < count) scene_.roots.push_back(n);
+        } else {
+            for (size_t i = 0; i < count; ++i)
+                if (scene_.nodes[i].parent < 0) scene_.roots.push_back(int(i));
+        }
+    }
+
+    void animation(const tinygltf::Animation& src) {
+        Animation anim;
+        anim.name = src.name;
+        for (const tinygltf::AnimationChannel& ch : src.channels) {
+            if (ch.target_path == "weights") {
+                note("morph target weight animation is not supported: ignored");
+                continue;
+            }
+            if (ch.target_node < 0 || size_t(ch.target_node) >= scene_.nodes.size() || ch.sampler < 0 ||
+                size_t(ch.sampler) >= src.samplers.size())
+                fail("animation '" + src.name + "': channel has an invalid node or sampler");
+            if (scene_.nodes[size_t(ch.target_node)].matrix) {
+                note("animation channels on nodes with a matrix are ignored (glTF forbids them)");
+                continue;
+            }
+            const tinygltf::AnimationSampler& sampler = src.samplers[size_t(ch.sampler)];
+            AnimationChannel out;
+            out.node = ch.target_node;
+            out.path = ch.target_path == "rotation" ? AnimationPath::Rotation
+                       : ch.target_path == "scale"  ? AnimationPath::Scale
+                                                    : AnimationPath::Translation;
+            out.interpolation = sampler.interpolation == "STEP"          ? Interpolation::Step
+                                : sampler.interpolation == "CUBICSPLINE" ? Interpolation::CubicSpline
+                                                                         : Interpolation::Linear;
+            std::string where = "animation '" + src.name + "' channel " + ch.target_path;
+            AccessorData in = readAccessor(model_, sampler.input, where + " input");
+            AccessorData values = readAccessor(model_, sampler.output, where + " output");
+            int wanted = out.path == AnimationPath::Rotation ? 4 : 3;
+            size_t perKey = out.interpolation == Interpolation::CubicSpline ? 3 : 1;
+            if (in.count == 0 || values.components != wanted || values.count != in.count * perKey)
+                fail(where + ": " + std::to_string(values.count) + " output values do not match " +
+                     std::to_string(in.count) + " key times");
+            for (size_t k = 0; k < in.count; ++k) {
+                double t = in.at(k, 0);
+                if (!std::isfinite(t) || (k > 0 && t < out.times.back())) fail(where + ": key times are not increasing");
+                out.times.push_back(float(t));
+            }
+            for (size_t k = 0; k < values.count; ++k) {
+                glm::vec4 v(values.at(k, 0), values.at(k, 1), values.at(k, 2), wanted == 4 ? values.at(k, 3) : 0.0);
+                if (!std::isfinite(v.x + v.y + v.z + v.w)) fail(where + ": key value " + std::to_string(k) + " is not finite");
+                out.values.push_back(v);
+            }
+            anim.duration = std::max(anim.duration, out.times.back());
+            anim.channels.push_back(std::move(out));
+        }
+        if (!anim.channels.empty()) scene_.animations.push_back(std::move(anim));
+    }
+
+    const tinygltf::Model& model_;
+    Scene scene_;
+    std::map<std::pair<int, TextureKind>, int> textureCache_;
+    int defaultMaterial_ = -1;
+};
+
+}  // namespace
+
+Scene loadGltf(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
+    if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": not a regular file");
+
+    // .glb starts with the magic "glTF"; decide by content so a misnamed file still loads.
+    char magic[4] = {};
+    std::ifstream(path, std::ios::binary).read(magic, 4);
+    bool binary = std::memcmp(magic, "glTF", 4) == 0;
+
+    tinygltf::TinyGLTF gltf;
+    tinygltf::Model model;
+    std::string err, warn;
+    bool ok = binary ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
+                     : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
+    if (!ok) throw Error(path + ": " + (err.empty() ? std::string("not a valid glTF file") : oneLine(err)));
+
+    try {
+        Scene scene = GltfImporter(model).run();
+        scene.name = std::filesystem::path(path).stem().string();
+        // Check the data before anything derives a camera or light from it (NaN bounds would spread).
+        scene.validate();
+        Aabb box = scene.bounds();
+        float extent = box.empty() ? 10.0f : glm::length(box.max - box.min);
+        for (Camera& cam : scene.cameras)
+            if (!(cam.zfar > cam.znear)) cam.zfar = std::max(100.0f * cam.znear, 10.0f * extent);
+        scene.addDefaultsIfMissing();
+        return scene;
+    } catch (const Error& e) {
+        throw Error(path + ": " + oneLine(e.what()));
+    }
+}
+
+}  // namespace vct

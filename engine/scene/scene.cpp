@@ -1,0 +1,355 @@
+// Scene evaluation (animation, instances, bounds), default camera/light, validation and mip chains.
+#include "scene/scene.h"
+
+#include "core/error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace vct {
+
+Aabb Aabb::transformed(const glm::mat4& m) const {
+    Aabb out;
+    if (empty()) return out;
+    for (int i = 0; i < 8; ++i) {
+        glm::vec3 corner((i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z);
+        out.extend(glm::vec3(m * glm::vec4(corner, 1.0f)));
+    }
+    return out;
+}
+
+glm::mat4 Node::localMatrix() const {
+    if (matrix) return *matrix;
+    return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) *
+           glm::scale(glm::mat4(1.0f), scale);
+}
+
+namespace {
+
+glm::quat toQuat(const glm::vec4& xyzw) { return glm::quat(xyzw.w, xyzw.x, xyzw.y, xyzw.z); }
+
+// glTF stores unit quaternions, but interpolated or quantised ones drift; a zero one becomes identity.
+glm::quat normalizedQuat(const glm::quat& q) {
+    float len = glm::length(q);
+    return len > 1e-12f && std::isfinite(len) ? q / len : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+}
+
+// Samples a channel at time t (already wrapped into the animation's range). Returns vec3 in xyz for
+// T/S and a quaternion as x,y,z,w for R. Times before the first key clamp to it, after the last to the last.
+glm::vec4 sampleChannel(const AnimationChannel& ch, float t) {
+    const auto& times = ch.times;
+    bool cubic = ch.interpolation == Interpolation::CubicSpline;
+    auto value = [&](size_t key) { return ch.values[cubic ? key * 3 + 1 : key]; };
+    if (times.size() == 1 || t <= times.front()) return value(0);
+    if (t >= times.back()) return value(times.size() - 1);
+    // First key strictly after t; the segment is [k, k+1].
+    size_t k1 = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+    size_t k = k1 - 1;
+    float dt = times[k1] - times[k];
+    float u = dt > 0.0f ? (t - times[k]) / dt : 0.0f;
+    bool rotation = ch.path == AnimationPath::Rotation;
+    switch (ch.interpolation) {
+        case Interpolation::Step:
+            return value(k);
+        case Interpolation::Linear:
+            if (rotation) {
+                glm::quat q = glm::slerp(normalizedQuat(toQuat(value(k))), normalizedQuat(toQuat(value(k1))), u);
+                return glm::vec4(q.x, q.y, q.z, q.w);
+            }
+            return glm::mix(value(k), value(k1), u);
+        case Interpolation::CubicSpline: {
+            // Hermite spline with glTF's (in-tangent, value, out-tangent) triples; tangents scale with dt.
+            float u2 = u * u, u3 = u2 * u;
+            glm::vec4 p0 = ch.values[k * 3 + 1], m0 = ch.values[k * 3 + 2] * dt;
+            glm::vec4 p1 = ch.values[k1 * 3 + 1], m1 = ch.values[k1 * 3 + 0] * dt;
+            return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1;
+        }
+    }
+    return value(k);
+}
+
+// Nodes in an order where every parent precedes its children; each node at most once, so a
+// malformed hierarchy (cycle, shared child) cannot loop forever.
+std::vector<int> topologicalOrder(const std::vector<Node>& nodes, const std::vector<int>& starts) {
+    std::vector<int> order;
+    std::vector<char> seen(nodes.size(), 0);
+    std::vector<int> stack(starts.rbegin(), starts.rend());
+    while (!stack.empty()) {
+        int n = stack.back();
+        stack.pop_back();
+        if (n < 0 || static_cast<size_t>(n) >= nodes.size() || seen[static_cast<size_t>(n)]) continue;
+        seen[static_cast<size_t>(n)] = 1;
+        order.push_back(n);
+        const auto& children = nodes[static_cast<size_t>(n)].children;
+        stack.insert(stack.end(), children.rbegin(), children.rend());
+    }
+    return order;
+}
+
+std::vector<int> parentlessNodes(const std::vector<Node>& nodes) {
+    std::vector<int> out;
+    for (size_t i = 0; i < nodes.size(); ++i)
+        if (nodes[i].parent < 0) out.push_back(static_cast<int>(i));
+    return out;
+}
+
+// Rotation whose local -Z points along `dir` (cameras and lights look down -Z).
+glm::quat lookRotation(const glm::vec3& dir) {
+    glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+    return glm::quatLookAtRH(glm::normalize(dir), up);
+}
+
+}  // namespace
+
+std::vector<glm::mat4> Scene::evaluate(float timeSeconds) const {
+    std::vector<Node> posed = nodes;
+    for (const Animation& anim : animations) {
+        // Loop: every animation wraps over its own duration (negative times wrap too).
+        float t = anim.duration > 0.0f ? std::fmod(timeSeconds, anim.duration) : 0.0f;
+        if (t < 0.0f) t += anim.duration;
+        for (const AnimationChannel& ch : anim.channels) {
+            if (ch.node < 0 || static_cast<size_t>(ch.node) >= posed.size() || ch.times.empty()) continue;
+            size_t needed = ch.times.size() * (ch.interpolation == Interpolation::CubicSpline ? 3 : 1);
+            if (ch.values.size() < needed) continue;
+            Node& node = posed[static_cast<size_t>(ch.node)];
+            glm::vec4 v = sampleChannel(ch, t);
+            switch (ch.path) {
+                case AnimationPath::Translation: node.translation = glm::vec3(v); break;
+                case AnimationPath::Rotation: node.rotation = normalizedQuat(toQuat(v)); break;
+                case AnimationPath::Scale: node.scale = glm::vec3(v); break;
+            }
+        }
+    }
+    std::vector<glm::mat4> world(nodes.size(), glm::mat4(1.0f));
+    for (int n : topologicalOrder(posed, parentlessNodes(posed))) {
+        const Node& node = posed[static_cast<size_t>(n)];
+        glm::mat4 local = node.localMatrix();
+        world[static_cast<size_t>(n)] = node.parent >= 0 ? world[static_cast<size_t>(node.parent)] * local : local;
+    }
+    return world;
+}
+
+std::vector<bool> Scene::animatedNodes() const {
+    std::vector<bool> animated(nodes.size(), false);
+    for (const Animation& anim : animations)
+        for (const AnimationChannel& ch : anim.channels)
+            if (ch.node >= 0 && static_cast<size_t>(ch.node) < nodes.size()) animated[static_cast<size_t>(ch.node)] = true;
+    for (int n : topologicalOrder(nodes, parentlessNodes(nodes))) {
+        int p = nodes[static_cast<size_t>(n)].parent;
+        if (p >= 0 && animated[static_cast<size_t>(p)]) animated[static_cast<size_t>(n)] = true;
+    }
+    return animated;
+}
+
+std::vector<Instance> Scene::instances(float timeSeconds) const {
+    std::vector<glm::mat4> world = evaluate(timeSeconds);
+    std::vector<bool> animated = animatedNodes();
+    std::vector<Instance> out;
+    for (int n : topologicalOrder(nodes, roots)) {
+        const Node& node = nodes[static_cast<size_t>(n)];
+        if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= meshes.size()) continue;
+        out.push_back(Instance{n, node.mesh, world[static_cast<size_t>(n)], animated[static_cast<size_t>(n)]});
+    }
+    return out;
+}
+
+Aabb Scene::bounds() const {
+    Aabb box;
+    for (const Instance& inst : instances(0.0f))
+        for (uint32_t p : meshes[static_cast<size_t>(inst.mesh)].primitives)
+            if (p < primitives.size()) box.extend(primitives[p].bounds.transformed(inst.world));
+    return box;
+}
+
+void Scene::addDefaultsIfMissing() {
+    bool hasCamera = false, hasLight = false;
+    for (int n : topologicalOrder(nodes, roots)) {
+        const Node& node = nodes[static_cast<size_t>(n)];
+        hasCamera |= node.camera >= 0 && static_cast<size_t>(node.camera) < cameras.size();
+        hasLight |= node.light >= 0 && static_cast<size_t>(node.light) < lights.size();
+    }
+    Aabb box = bounds();
+    if (box.empty()) box = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
+    glm::vec3 centre = 0.5f * (box.min + box.max);
+    float radius = std::max(0.5f * glm::length(box.max - box.min), 1e-3f);
+
+    if (!hasCamera) {
+        Camera cam;
+        cam.name = "default camera";
+        cam.yfov = glm::radians(45.0f);
+        // Far enough that the bounding sphere fits the vertical field of view, with a margin.
+        float distance = 1.1f * radius / std::sin(0.5f * cam.yfov);
+        cam.znear = std::max(1e-3f, 0.01f * radius);
+        cam.zfar = 4.0f * (distance + radius);
+        glm::vec3 fromCentre = glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));  // front, a little above
+        Node node;
+        node.name = "default camera";
+        node.translation = centre + fromCentre * distance;
+        node.rotation = lookRotation(-fromCentre);
+        node.camera = static_cast<int>(cameras.size());
+        cameras.push_back(cam);
+        roots.push_back(static_cast<int>(nodes.size()));
+        nodes.push_back(node);
+        notes.push_back("scene has no camera: added a default camera looking at the scene bounds");
+    }
+    if (!hasLight) {
+        Light light;
+        light.name = "default light";
+        light.type = LightType::Directional;
+        light.intensity = 3.0f;  // lux; a dim overcast-sky level that exposure 1 shows well
+        glm::vec3 dir = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.6f));  // from above, front, slightly right
+        Node node;
+        node.name = "default light";
+        node.translation = centre - dir * (2.0f * radius);  // position is irrelevant for a directional light
+        node.rotation = lookRotation(dir);
+        node.light = static_cast<int>(lights.size());
+        lights.push_back(light);
+        roots.push_back(static_cast<int>(nodes.size()));
+        nodes.push_back(node);
+        notes.push_back("scene has no light: added a default directional light");
+    }
+}
+
+namespace {
+
+bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isfinite(v.w); }
+
+}  // namespace
+
+void Scene::validate() const {
+    auto fail = [](const std::string& what) { throw Error(what); };
+    auto quoted = [](const std::string& s, size_t i) { return "'" + (s.empty() ? "#" + std::to_string(i) : s) + "'"; };
+
+    for (size_t t = 0; t < textures.size(); ++t) {
+        const Texture& tex = textures[t];
+        size_t expected = size_t(tex.width) * tex.height * 4;
+        if (tex.width == 0 || tex.height == 0 || tex.mips.empty() || tex.mips[0].size() != expected)
+            fail("texture " + quoted(tex.name, t) + ": image data does not match its size " +
+                 std::to_string(tex.width) + "x" + std::to_string(tex.height));
+    }
+    for (size_t m = 0; m < materials.size(); ++m) {
+        const Material& mat = materials[m];
+        for (int tex : {mat.baseColorTexture, mat.metallicRoughnessTexture, mat.normalTexture, mat.emissiveTexture,
+                        mat.occlusionTexture})
+            if (tex < -1 || tex >= static_cast<int>(textures.size()))
+                fail("material " + quoted(mat.name, m) + ": texture index " + std::to_string(tex) + " is out of range");
+        if (!finite(mat.baseColorFactor) || !finite(mat.emissiveFactor) || !std::isfinite(mat.metallicFactor) ||
+            !std::isfinite(mat.roughnessFactor))
+            fail("material " + quoted(mat.name, m) + ": a factor is not finite");
+    }
+    for (size_t me = 0; me < meshes.size(); ++me) {
+        const Mesh& mesh = meshes[me];
+        for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+            std::string where = "mesh " + quoted(mesh.name, me) + " primitive " + std::to_string(pi) + ": ";
+            if (mesh.primitives[pi] >= primitives.size()) fail(where + "primitive index is out of range");
+            const Primitive& prim = primitives[mesh.primitives[pi]];
+            if (prim.material >= materials.size())
+                fail(where + "material " + std::to_string(prim.material) + " is out of range (" +
+                     std::to_string(materials.size()) + " materials)");
+            if (size_t(prim.firstIndex) + prim.indexCount > indices.size())
+                fail(where + "index range is past the end of the index buffer");
+            if (prim.vertexOffset < 0 || size_t(prim.vertexOffset) + prim.vertexCount > vertices.size())
+                fail(where + "vertex range is past the end of the vertex buffer");
+            if (prim.indexCount % 3 != 0) fail(where + "index count is not a multiple of 3");
+            for (uint32_t i = 0; i < prim.indexCount; ++i) {
+                uint32_t index = indices[prim.firstIndex + i];
+                if (index >= prim.vertexCount)
+                    fail(where + "index " + std::to_string(i) + " (= " + std::to_string(index) +
+                         ") is out of range (" + std::to_string(prim.vertexCount) + " vertices)");
+            }
+            for (uint32_t v = 0; v < prim.vertexCount; ++v) {
+                const Vertex& vert = vertices[size_t(prim.vertexOffset) + v];
+                const char* bad = !finite(vert.position) ? "position"
+                                  : !finite(vert.normal) ? "normal"
+                                  : !finite(vert.uv)     ? "texture coordinate"
+                                  : !finite(vert.tangent) ? "tangent"
+                                                          : nullptr;
+                if (bad) fail(where + "vertex " + std::to_string(v) + " has a non-finite " + bad);
+            }
+        }
+    }
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        const Node& node = nodes[n];
+        std::string where = "node " + quoted(node.name, n) + ": ";
+        if (node.mesh >= static_cast<int>(meshes.size())) fail(where + "mesh index is out of range");
+        if (node.camera >= static_cast<int>(cameras.size())) fail(where + "camera index is out of range");
+        if (node.light >= static_cast<int>(lights.size())) fail(where + "light index is out of range");
+        for (int c : node.children)
+            if (c < 0 || c >= static_cast<int>(nodes.size())) fail(where + "child index is out of range");
+        bool finiteTransform = finite(node.translation) && finite(node.scale) &&
+                               finite(glm::vec4(node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w));
+        if (node.matrix)
+            for (int c = 0; c < 4; ++c) finiteTransform = finiteTransform && finite((*node.matrix)[c]);
+        if (!finiteTransform)
+            fail(where + "transform is not finite");
+    }
+    if (instances(0.0f).empty()) fail("scene " + quoted(name, 0) + " has no mesh instances: nothing to draw");
+}
+
+namespace {
+
+// sRGB transfer functions (IEC 61966-2-1), used so Color mips average light, not encoded values.
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+float linearToSrgb(float c) {
+    c = std::clamp(c, 0.0f, 1.0f);
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+void buildMipChain(Texture& texture) {
+    if (texture.mips.empty() || texture.width == 0 || texture.height == 0) return;
+    texture.mips.resize(1);
+    bool srgb = texture.kind == TextureKind::Color;
+
+    // Work in float from level 0 to the last level so rounding does not accumulate level after level.
+    std::array<float, 256> decode{};
+    for (int i = 0; i < 256; ++i) decode[static_cast<size_t>(i)] = srgb ? srgbToLinear(i / 255.0f) : i / 255.0f;
+    uint32_t w = texture.width, h = texture.height;
+    std::vector<float> level(size_t(w) * h * 4);
+    const std::vector<uint8_t>& base = texture.mips[0];
+    for (size_t i = 0; i < level.size(); ++i)
+        level[i] = (i % 4 == 3) ? base[i] / 255.0f : decode[base[i]];  // alpha is always linear
+
+    while (w > 1 || h > 1) {
+        uint32_t nw = std::max(1u, w / 2), nh = std::max(1u, h / 2);
+        std::vector<float> next(size_t(nw) * nh * 4, 0.0f);
+        // Box filter: texel x of the new level covers source texels 2x and 2x+1; for an odd source size
+        // the last one also takes the leftover texel, so every source texel contributes.
+        auto span = [](uint32_t x, uint32_t src, uint32_t dst, uint32_t& first, uint32_t& count) {
+            first = std::min(2 * x, src - 1);
+            count = src == 1 ? 1 : (x == dst - 1 && (src & 1) ? 3 : 2);
+        };
+        for (uint32_t y = 0; y < nh; ++y) {
+            uint32_t y0, ny;
+            span(y, h, nh, y0, ny);
+            for (uint32_t x = 0; x < nw; ++x) {
+                uint32_t x0, nx;
+                span(x, w, nw, x0, nx);
+                float* out = &next[(size_t(y) * nw + x) * 4];
+                for (uint32_t sy = y0; sy < y0 + ny; ++sy)
+                    for (uint32_t sx = x0; sx < x0 + nx; ++sx)
+                        for (int c = 0; c < 4; ++c) out[c] += level[(size_t(sy) * w + sx) * 4 + size_t(c)];
+                for (int c = 0; c < 4; ++c) out[c] /= float(nx * ny);
+            }
+        }
+        // Normal maps: averaging the encoded values equals averaging the decoded normals (the encoding is
+        // affine), and we deliberately do not renormalise: |N̄| < 1 is what Toksvig's roughness needs.
+        std::vector<uint8_t> bytes(next.size());
+        for (size_t i = 0; i < next.size(); ++i) {
+            float v = (srgb && i % 4 != 3) ? linearToSrgb(next[i]) : std::clamp(next[i], 0.0f, 1.0f);
+            bytes[i] = static_cast<uint8_t>(std::lround(v * 255.0f));
+        }
+        texture.mips.push_back(std::move(bytes));
+        level = std::move(next);
+        w = nw;
+        h = nh;
+    }
+}
+
+}  // namespace vct

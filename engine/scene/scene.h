@@ -1,0 +1,194 @@
+// The CPU-side scene: what a glTF file (or a built-in scene made in code) holds, in one flat form that the
+// renderer uploads once. Per frame only the node transforms change (rigid TRS animation).
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vct {
+
+// Interleaved vertex as uploaded to the GPU (48 bytes). tangent.w is the bitangent sign (glTF convention:
+// bitangent = cross(normal, tangent.xyz) * tangent.w).
+struct Vertex {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+    glm::vec2 uv{0.0f};
+    glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};
+};
+static_assert(sizeof(Vertex) == 48);
+
+struct Aabb {
+    glm::vec3 min{std::numeric_limits<float>::max()};
+    glm::vec3 max{-std::numeric_limits<float>::max()};
+    bool empty() const { return min.x > max.x; }
+    void extend(const glm::vec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    void extend(const Aabb& b) {
+        if (!b.empty()) {
+            extend(b.min);
+            extend(b.max);
+        }
+    }
+    Aabb transformed(const glm::mat4& m) const;  // bounds of the 8 transformed corners
+};
+
+// How a texture's texels are to be interpreted; decides the GPU format and how mips are averaged.
+enum class TextureKind { Color /*sRGB*/, Linear, Normal };
+
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+
+// RGBA8 texture with its whole mip chain made at load (level 0 first). Normal-map mips average the
+// decoded normals without renormalising, so a mip's |N̄| < 1 records how much the normals disagreed.
+struct Texture {
+    std::string name;
+    TextureKind kind = TextureKind::Color;
+    TextureWrap wrapS = TextureWrap::Repeat;
+    TextureWrap wrapT = TextureWrap::Repeat;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<std::vector<uint8_t>> mips;  // mips[l] has max(1, w>>l) * max(1, h>>l) * 4 bytes
+};
+
+// Builds mips[1..] from mips[0] (2x2 box filter; in linear space for Color textures).
+void buildMipChain(Texture& texture);
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// glTF metallic-roughness material. Texture indices are into Scene::textures, -1 when absent.
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    float metallicFactor = 1.0f;
+    float roughnessFactor = 1.0f;  // perceptual roughness; α = roughness²
+    glm::vec3 emissiveFactor{0.0f};
+    float normalScale = 1.0f;
+    float occlusionStrength = 1.0f;
+    float alphaCutoff = 0.5f;
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    bool doubleSided = false;
+    int baseColorTexture = -1;
+    int metallicRoughnessTexture = -1;  // G = roughness, B = metallic (glTF)
+    int normalTexture = -1;
+    int emissiveTexture = -1;
+    int occlusionTexture = -1;  // R = occlusion
+};
+
+// A drawable range of Scene::indices / Scene::vertices. Indices are relative to vertexOffset.
+struct Primitive {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    int32_t vertexOffset = 0;
+    uint32_t vertexCount = 0;
+    uint32_t material = 0;  // index into Scene::materials (a default material is always present)
+    Aabb bounds;            // object space
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<uint32_t> primitives;  // indices into Scene::primitives
+};
+
+enum class LightType { Directional, Point, Spot };
+
+// KHR_lights_punctual. Lights shine along the node's local -Z. Intensity in the glTF units
+// (lux for directional, candela for point/spot).
+struct Light {
+    std::string name;
+    LightType type = LightType::Directional;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float range = 0.0f;  // 0 = infinite
+    float innerConeAngle = 0.0f;
+    float outerConeAngle = 0.7853982f;
+};
+
+// Perspective camera; looks along the node's local -Z. aspectRatio 0 = use the image's.
+struct Camera {
+    std::string name;
+    float yfov = 0.8f;
+    float znear = 0.05f;
+    float zfar = 100.0f;  // 0 = infinite in glTF; the loader replaces it with a finite value
+    float aspectRatio = 0.0f;
+};
+
+struct Node {
+    std::string name;
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
+    glm::vec3 scale{1.0f};
+    std::optional<glm::mat4> matrix;  // when set, replaces TRS (and cannot be animated)
+    int parent = -1;
+    std::vector<int> children;
+    int mesh = -1;
+    int camera = -1;
+    int light = -1;
+    glm::mat4 localMatrix() const;
+};
+
+enum class AnimationPath { Translation, Rotation, Scale };
+enum class Interpolation { Linear, Step, CubicSpline };
+
+struct AnimationChannel {
+    int node = -1;
+    AnimationPath path = AnimationPath::Translation;
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<float> times;
+    // vec3 (T, S) or vec4 quaternion x,y,z,w (R) per key; for CubicSpline 3 values per key
+    // (in-tangent, value, out-tangent), as in glTF.
+    std::vector<glm::vec4> values;
+};
+
+struct Animation {
+    std::string name;
+    std::vector<AnimationChannel> channels;
+    float duration = 0.0f;  // max key time; playback loops
+};
+
+// One mesh placed in the world for one frame.
+struct Instance {
+    int node = -1;
+    int mesh = -1;
+    glm::mat4 world{1.0f};
+    bool moving = false;  // transform animated (the node or an ancestor has a channel)
+};
+
+struct Scene {
+    std::string name;
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    std::vector<Primitive> primitives;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Light> lights;
+    std::vector<Camera> cameras;
+    std::vector<Node> nodes;
+    std::vector<int> roots;
+    std::vector<Animation> animations;
+    std::vector<std::string> notes;  // things the loader changed or added, printed once ("no light: added ...")
+
+    // Node poses at time t (seconds; animations loop). Returns world matrices, one per node.
+    std::vector<glm::mat4> evaluate(float timeSeconds) const;
+    // Mesh instances with their world matrices at time t; `moving` marks animated ones.
+    std::vector<Instance> instances(float timeSeconds) const;
+    // World-space bounds of all instances at t = 0 (static pose).
+    Aabb bounds() const;
+    // Nodes whose world transform is driven by an animation (the node or any ancestor).
+    std::vector<bool> animatedNodes() const;
+
+    // Adds a camera looking at the scene bounds and/or a directional light when the scene has none,
+    // and records a note for each.
+    void addDefaultsIfMissing();
+    // Throws vct::Error naming the first problem: non-finite vertex data, out-of-range indices, ...
+    void validate() const;
+};
+
+}  // namespace vct

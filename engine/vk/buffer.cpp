@@ -1,0 +1,65 @@
+#include "vk/buffer.h"
+
+#include <cstring>
+#include <utility>
+
+#include "vk/check.h"
+
+namespace vct::vk {
+
+Buffer::Buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory)
+    : device_(context.device()), size_(size) {
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = size;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VK_CHECK(vkCreateBuffer(device_, &info, nullptr, &buffer_));
+
+    VkMemoryRequirements requirements;
+    vkGetBufferMemoryRequirements(device_, buffer_, &requirements);
+    VkMemoryPropertyFlags flags = memory == MemoryUsage::HostVisible
+                                      ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                      : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = requirements.size;
+    alloc.memoryTypeIndex = context.memoryType(requirements.memoryTypeBits, flags);
+    VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+    VK_CHECK(vkBindBufferMemory(device_, buffer_, memory_, 0));
+    if (memory == MemoryUsage::HostVisible) VK_CHECK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+}
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept {
+    if (this != &other) {
+        reset();
+        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+        buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+        size_ = std::exchange(other.size_, 0);
+        mapped_ = std::exchange(other.mapped_, nullptr);
+    }
+    return *this;
+}
+
+void Buffer::reset() {
+    if (!device_) return;
+    if (buffer_) vkDestroyBuffer(device_, buffer_, nullptr);
+    if (memory_) vkFreeMemory(device_, memory_, nullptr);
+    buffer_ = VK_NULL_HANDLE;
+    memory_ = VK_NULL_HANDLE;
+    mapped_ = nullptr;
+    device_ = VK_NULL_HANDLE;
+}
+
+Buffer Buffer::withData(const Context& context, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
+    size = size ? size : 4;  // zero-sized buffers are invalid; keep a placeholder
+    Buffer staging(context, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::HostVisible);
+    if (data) std::memcpy(staging.mapped(), data, size);
+    Buffer buffer(context, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::DeviceLocal);
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+        VkBufferCopy region{0, 0, size};
+        vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
+    });
+    return buffer;
+}
+
+}  // namespace vct::vk

@@ -1,0 +1,220 @@
+#include "vk/pipeline.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <utility>
+
+#include "scene/scene.h"
+#include "vk/check.h"
+
+namespace vct::vk {
+
+VkShaderModule loadShaderModule(const Context& context, const std::string& name) {
+    const char* overrideDir = std::getenv("VCT_SHADER_DIR");
+    const std::string dir = overrideDir ? overrideDir : VCT_SHADER_DIR;
+    const std::string path = dir + "/" + name + ".spv";
+    std::ifstream file(path, std::ios::binary | std::ios::ate);
+    if (!file) throw Error("shader '" + path + "' not found (build the vct_shaders target)");
+    const auto size = static_cast<size_t>(file.tellg());
+    if (size == 0 || size % 4 != 0) throw Error("shader '" + path + "' is not SPIR-V");
+    std::vector<uint32_t> code(size / 4);
+    file.seekg(0);
+    file.read(reinterpret_cast<char*>(code.data()), std::streamsize(size));
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = size;
+    info.pCode = code.data();
+    VkShaderModule module;
+    VK_CHECK(vkCreateShaderModule(context.device(), &info, nullptr, &module));
+    return module;
+}
+
+Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
+    if (this != &other) {
+        reset();
+        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+        setLayout_ = std::exchange(other.setLayout_, VK_NULL_HANDLE);
+        layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
+        pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
+        bindPoint_ = other.bindPoint_;
+        pushStages_ = other.pushStages_;
+    }
+    return *this;
+}
+
+void Pipeline::reset() {
+    if (!device_) return;
+    if (pipeline_) vkDestroyPipeline(device_, pipeline_, nullptr);
+    if (layout_) vkDestroyPipelineLayout(device_, layout_, nullptr);
+    if (setLayout_) vkDestroyDescriptorSetLayout(device_, setLayout_, nullptr);
+    pipeline_ = VK_NULL_HANDLE;
+    layout_ = VK_NULL_HANDLE;
+    setLayout_ = VK_NULL_HANDLE;
+    device_ = VK_NULL_HANDLE;
+}
+
+void Pipeline::createLayout(const Context& context, const std::vector<Binding>& bindings, uint32_t pushConstantSize,
+                            VkShaderStageFlags pushStages) {
+    device_ = context.device();
+    std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
+    for (const Binding& b : bindings) layoutBindings.push_back({b.binding, b.type, 1, b.stages, nullptr});
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+    setInfo.bindingCount = uint32_t(layoutBindings.size());
+    setInfo.pBindings = layoutBindings.data();
+    VK_CHECK(vkCreateDescriptorSetLayout(device_, &setInfo, nullptr, &setLayout_));
+
+    pushStages_ = pushConstantSize ? pushStages : 0;
+    VkPushConstantRange range{pushStages, 0, pushConstantSize};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout_;
+    layoutInfo.pushConstantRangeCount = pushConstantSize ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &range;
+    VK_CHECK(vkCreatePipelineLayout(device_, &layoutInfo, nullptr, &layout_));
+}
+
+Pipeline Pipeline::compute(const Context& context, const std::string& shader, const std::vector<Binding>& bindings,
+                           uint32_t pushConstantSize) {
+    Pipeline pipeline;
+    pipeline.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+    pipeline.createLayout(context, bindings, pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT);
+    VkShaderModule module = loadShaderModule(context, shader);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.layout = pipeline.layout_;
+    VkResult result = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline.pipeline_);
+    vkDestroyShaderModule(context.device(), module, nullptr);
+    VK_CHECK(result);
+    return pipeline;
+}
+
+Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
+    Pipeline pipeline;
+    pipeline.bindPoint_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    pipeline.createLayout(context, desc.bindings, desc.pushConstantSize,
+                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
+
+    std::vector<VkShaderModule> modules;
+    std::vector<VkPipelineShaderStageCreateInfo> stages;
+    auto addStage = [&](VkShaderStageFlagBits stage, const std::string& name) {
+        modules.push_back(loadShaderModule(context, name));
+        VkPipelineShaderStageCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        info.stage = stage;
+        info.module = modules.back();
+        info.pName = "main";
+        stages.push_back(info);
+    };
+    addStage(VK_SHADER_STAGE_VERTEX_BIT, desc.vertexShader);
+    if (!desc.fragmentShader.empty()) addStage(VK_SHADER_STAGE_FRAGMENT_BIT, desc.fragmentShader);
+
+    VkVertexInputBindingDescription vertexBinding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    VkVertexInputAttributeDescription attributes[] = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+        {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
+    };
+    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    if (desc.vertexInput) {
+        vertexInput.vertexBindingDescriptionCount = 1;
+        vertexInput.pVertexBindingDescriptions = &vertexBinding;
+        vertexInput.vertexAttributeDescriptionCount = desc.positionOnly ? 1 : 4;
+        vertexInput.pVertexAttributeDescriptions = attributes;
+    }
+    VkPipelineInputAssemblyStateCreateInfo inputAssembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    inputAssembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = VK_CULL_MODE_NONE;
+    // glTF front faces are counter-clockwise; the projection's y flip (Vulkan clip space) keeps them so.
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.depthBiasEnable = desc.depthBias;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = desc.depthFormat != VK_FORMAT_UNDEFINED;
+    depth.depthWriteEnable = depth.depthTestEnable;
+    depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+    std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(desc.colorFormats.size());
+    for (auto& attachment : blendAttachments) attachment.colorWriteMask = 0xF;
+    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = uint32_t(blendAttachments.size());
+    blend.pAttachments = blendAttachments.data();
+    std::vector<VkDynamicState> dynamicStates = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                                 VK_DYNAMIC_STATE_CULL_MODE};
+    if (desc.depthBias) dynamicStates.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamic.dynamicStateCount = uint32_t(dynamicStates.size());
+    dynamic.pDynamicStates = dynamicStates.data();
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = uint32_t(desc.colorFormats.size());
+    rendering.pColorAttachmentFormats = desc.colorFormats.data();
+    rendering.depthAttachmentFormat = desc.depthFormat;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.pNext = &rendering;
+    info.stageCount = uint32_t(stages.size());
+    info.pStages = stages.data();
+    info.pVertexInputState = &vertexInput;
+    info.pInputAssemblyState = &inputAssembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.pDynamicState = &dynamic;
+    info.layout = pipeline.layout_;
+    VkResult result =
+        vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline.pipeline_);
+    for (VkShaderModule module : modules) vkDestroyShaderModule(context.device(), module, nullptr);
+    VK_CHECK(result);
+    return pipeline;
+}
+
+VkWriteDescriptorSet& DescriptorWriter::next(uint32_t binding, VkDescriptorType type) {
+    if (writeCount_ == kMax) throw Error("DescriptorWriter: too many bindings");
+    VkWriteDescriptorSet& write = writes_[writeCount_++];
+    write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = type;
+    return write;
+}
+
+DescriptorWriter& DescriptorWriter::sampled(uint32_t binding, VkImageView view, VkSampler sampler,
+                                            VkImageLayout layout) {
+    images_[imageCount_] = {sampler, view, layout};
+    next(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER).pImageInfo = &images_[imageCount_++];
+    return *this;
+}
+
+DescriptorWriter& DescriptorWriter::storage(uint32_t binding, VkImageView view) {
+    images_[imageCount_] = {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
+    next(binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &images_[imageCount_++];
+    return *this;
+}
+
+DescriptorWriter& DescriptorWriter::uniform(uint32_t binding, VkBuffer buffer, VkDeviceSize size) {
+    buffers_[bufferCount_] = {buffer, 0, size};
+    next(binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER).pBufferInfo = &buffers_[bufferCount_++];
+    return *this;
+}
+
+DescriptorWriter& DescriptorWriter::storageBuffer(uint32_t binding, VkBuffer buffer, VkDeviceSize size) {
+    buffers_[bufferCount_] = {buffer, 0, size};
+    next(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER).pBufferInfo = &buffers_[bufferCount_++];
+    return *this;
+}
+
+void DescriptorWriter::push(const Context& context, VkCommandBuffer cmd, const Pipeline& pipeline) {
+    context.cmdPushDescriptorSet(cmd, pipeline.bindPoint(), pipeline.layout(), 0, uint32_t(writeCount_), writes_);
+}
+
+}  // namespace vct::vk

@@ -1,0 +1,96 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// direct: one thread per pixel; sums every punctual light (the main one shadowed), emission and ambient.
+#include "lib/shared.h"
+#include "lib/constants.glsl"
+#include "lib/brdf.glsl"
+#include "lib/gbuffer_read.glsl"
+
+layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
+
+layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = VCT_DIRECT_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = VCT_DIRECT_BINDING_DEPTH) uniform sampler2D depthTexture;
+layout(set = 0, binding = VCT_DIRECT_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = VCT_DIRECT_BINDING_BASE_COLOR_METALLIC) uniform sampler2D baseColorMetallicTexture;
+layout(set = 0, binding = VCT_DIRECT_BINDING_EMISSIVE_OCCLUSION) uniform sampler2D emissiveOcclusionTexture;
+layout(set = 0, binding = VCT_DIRECT_BINDING_SHADOW_MAP) uniform sampler2DShadow shadowMap;
+layout(set = 0, binding = VCT_DIRECT_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+
+// 3x3 PCF on the main light's shadow map; the position is pushed along the normal by a texel or so,
+// which removes acne on surfaces at grazing light angles without detaching shadows.
+float shadowVisibility(vec3 worldPosition, vec3 normal) {
+    const vec3 offsetPosition = worldPosition + normal * frame.shadowParams.x * 1.5;
+    const vec4 clip = frame.lightViewProj * vec4(offsetPosition, 1.0);
+    if (clip.w <= 0.0) return 1.0;
+    const vec3 ndc = clip.xyz / clip.w;
+    const vec2 uv = ndc.xy * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z >= 1.0) return 1.0;
+    float visible = 0.0;
+    for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x)
+            visible += texture(shadowMap, vec3(uv + vec2(x, y) * frame.shadowParams.y, ndc.z));
+    return visible / 9.0;
+}
+
+// Radiance arriving from light `light` at p, and the direction towards it (KHR_lights_punctual).
+vec3 incidentLight(GpuLight light, vec3 p, out vec3 towardsLight) {
+    const int type = int(light.directionType.w);
+    if (type == VCT_LIGHT_DIRECTIONAL) {
+        towardsLight = -light.directionType.xyz;
+        return light.colorIntensity.rgb;
+    }
+    const vec3 delta = light.positionRange.xyz - p;
+    const float distance2 = max(dot(delta, delta), 1e-8);
+    towardsLight = delta * inversesqrt(distance2);
+    float attenuation = 1.0 / distance2;
+    const float range = light.positionRange.w;
+    if (range > 0.0) {
+        // glTF's recommended smooth window to zero at the range.
+        const float ratio = sqrt(distance2) / range;
+        attenuation *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+    }
+    if (type == VCT_LIGHT_SPOT) {
+        const float cd = dot(light.directionType.xyz, -towardsLight);
+        const float spot = clamp(cd * light.spotScaleOffset.x + light.spotScaleOffset.y, 0.0, 1.0);
+        attenuation *= spot * spot;
+    }
+    return light.colorIntensity.rgb * attenuation;
+}
+
+void main() {
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    const ivec2 size = ivec2(frame.imageSize.xy);
+    if (any(greaterThanEqual(pixel, size))) return;
+
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const float depth = texelFetch(depthTexture, pixel, 0).r;
+    if (isBackground(depth)) {
+        imageStore(outputImage, pixel, vec4(frame.ambient.rgb, 1.0));
+        return;
+    }
+    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
+    const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
+    const vec4 emissiveOcclusion = texelFetch(emissiveOcclusionTexture, pixel, 0);
+    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
+    const vec3 n = normalize(normalRoughness.xyz);
+    const vec3 v = normalize(frame.cameraPosition.xyz - p);
+
+    vec3 radiance = emissiveOcclusion.rgb;
+    const int lightCount = int(frame.shadowParams.z);
+    const int shadowLight = int(frame.shadowParams.w);
+    for (int i = 0; i < lightCount; ++i) {
+        vec3 l;
+        const vec3 incident = incidentLight(lights[i], p, l);
+        vec3 reflected = incident * evalBrdfCosine(n, v, l, baseColorMetallic.rgb, baseColorMetallic.a,
+                                                   normalRoughness.w);
+        if (i == shadowLight && any(greaterThan(reflected, vec3(0.0)))) reflected *= shadowVisibility(p, n);
+        radiance += reflected;
+    }
+    // Constant ambient (replaced by cone-traced indirect light): a uniform environment of radiance
+    // `ambient` reflected by the diffuse albedo plus F0, attenuated by the material's occlusion.
+    const vec3 albedo = diffuseAlbedo(baseColorMetallic.rgb, baseColorMetallic.a);
+    const vec3 f0 = f0FromMetallic(baseColorMetallic.rgb, baseColorMetallic.a);
+    radiance += frame.ambient.rgb * (albedo + f0) * emissiveOcclusion.a;
+    imageStore(outputImage, pixel, vec4(radiance, 1.0));
+}

@@ -1,0 +1,30 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// gbuffer: world-space attributes, and the current and previous clip positions for motion vectors.
+#include "lib/shared.h"
+
+layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = VCT_DRAW_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
+layout(push_constant) uniform Push { DrawPushConstants draw; };
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
+
+layout(location = 0) out vec3 outNormal;
+layout(location = 1) out vec4 outTangent;
+layout(location = 2) out vec2 outUv;
+layout(location = 3) out vec4 outClip;
+layout(location = 4) out vec4 outPrevClip;
+
+void main() {
+    const GpuInstance instance = instances[draw.indices.x];
+    const vec4 world = instance.world * vec4(inPosition, 1.0);
+    outNormal = mat3(instance.normalMatrix) * inNormal;
+    outTangent = vec4(mat3(instance.world) * inTangent.xyz, inTangent.w);
+    outUv = inUv;
+    outClip = frame.viewProj * world;
+    outPrevClip = frame.prevViewProj * (instance.prevWorld * vec4(inPosition, 1.0));
+    gl_Position = outClip;
+}
