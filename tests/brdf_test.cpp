@@ -11,10 +11,6 @@
 #include "render/dfg_table.h"
 #include "render/shader_math.h"
 
-namespace vct::glsl {
-#include "lib/color.glsl"
-}  // namespace vct::glsl
-
 namespace {
 
 namespace g = vct::glsl;

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 
 namespace vct {
@@ -41,14 +42,16 @@ void append(std::vector<uint8_t>& bytes, std::initializer_list<T> values) {
 }
 
 // Binary layout of the test triangle: 3 float positions (0..35), 3 float UV pairs (36..59),
-// 3 uint16 indices (60..65), padding, then a sparse override: uint16 index (68..69), pad, vec3 (72..83).
-std::vector<uint8_t> triangleBin(float x1 = 1.0f) {
+// 3 uint16 indices (60..65), padding, a sparse override (uint16 index at 68, vec3 at 72..83),
+// then uint8 indices (84..86) and normalized uint8 UVs (88..93) for the component-type test.
+std::vector<uint8_t> triangleBin(float x1 = 1.0f, uint16_t lastIndex = 2) {
     std::vector<uint8_t> b;
     append<float>(b, {0, 0, 0, x1, 0, 0, 0, 1, 0});
     append<float>(b, {0, 1, 1, 1, 0, 0});
-    append<uint16_t>(b, {0, 1, 2, 0});
+    append<uint16_t>(b, {0, 1, lastIndex, 0});
     append<uint16_t>(b, {2, 0});
     append<float>(b, {0, 2, 0});
+    append<uint8_t>(b, {0, 1, 2, 0, 0, 0, 255, 0, 0, 255, 0, 0});
     return b;
 }
 
@@ -66,7 +69,9 @@ json triangleGltf(const std::string& bufferUri, size_t byteLength) {
                          {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}},
                          {{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 6}},
                          {{"buffer", 0}, {"byteOffset", 68}, {"byteLength", 2}},
-                         {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 12}}}},
+                         {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 12}},
+                         {{"buffer", 0}, {"byteOffset", 84}, {"byteLength", 3}},
+                         {{"buffer", 0}, {"byteOffset", 88}, {"byteLength", 6}}}},
         {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
                         {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
                        {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}},
@@ -153,8 +158,8 @@ TEST(GltfLoad, SparseStripsAndComponentTypes) {
     }).string());
     EXPECT_FLOAT_EQ(sparse.vertices[2].position.y, 2.0f);
 
-    // Non-indexed triangle fan over 3 vertices, UVs read as normalized unsigned shorts from the float data
-    // would be wrong, so use the float UVs; the fan must keep counter-clockwise winding (+Z normals).
+    // Non-indexed triangle fan over 3 vertices: indices are generated and the winding stays
+    // counter-clockwise (flat normals along +Z).
     Scene fan = loadScene(validTriangle("fan", [](json& g) {
         g["meshes"][0]["primitives"][0].erase("indices");
         g["meshes"][0]["primitives"][0]["mode"] = 6;
@@ -162,15 +167,15 @@ TEST(GltfLoad, SparseStripsAndComponentTypes) {
     ASSERT_EQ(fan.indices.size(), 3u);
     for (const Vertex& v : fan.vertices) EXPECT_NEAR(v.normal.z, 1.0f, 1e-6f);
 
-    // uint8 indices, normalized ubyte texture coordinates (read from the index bytes 0,0,1,0,2,0).
+    // uint8 indices and normalized uint8 texture coordinates.
     Scene bytes = loadScene(validTriangle("bytes", [](json& g) {
-        g["accessors"][2] = {{"bufferView", 2}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}, {"byteOffset", 0}};
-        g["bufferViews"][2]["byteStride"] = 2;  // every other byte: 0, 1, 2
-        g["accessors"][1] = {{"bufferView", 2}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}};
+        g["accessors"][2] = {{"bufferView", 5}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}};
+        g["accessors"][1] = {{"bufferView", 6}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}};
     }).string());
     ASSERT_EQ(bytes.indices.size(), 3u);
     EXPECT_EQ(bytes.indices[2], 2u);
-    EXPECT_NEAR(bytes.vertices[1].uv.x, 1.0f / 255.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(bytes.vertices[1].uv.x, 1.0f);
+    EXPECT_FLOAT_EQ(bytes.vertices[2].uv.y, 1.0f);
 }
 
 TEST(GltfLoad, CamerasLightsMaterialsAndNotes) {
@@ -213,8 +218,8 @@ TEST(GltfLoad, BrokenFilesFailWithOneLine) {
 
     std::vector<uint8_t> truncated = triangleBin();
     truncated.resize(40);
-    json g = triangleGltf("truncated.bin", triangleBin().size());
-    expectLoadError(writeTriangle("truncated", g, truncated), "truncated.bin");
+    expectLoadError(writeTriangle("truncated", triangleGltf("truncated.bin", triangleBin().size()), truncated),
+                    "truncated.bin");
 
     json missingBin = triangleGltf("nowhere.bin", triangleBin().size());
     fs::path missingBinPath = outputDir() / "missing_bin.gltf";
@@ -224,9 +229,7 @@ TEST(GltfLoad, BrokenFilesFailWithOneLine) {
     expectLoadError(validTriangle("nan", {}, triangleBin(std::numeric_limits<float>::quiet_NaN())),
                     "mesh 'Tri' primitive 0: vertex 1 has a non-finite position");
 
-    expectLoadError(validTriangle("badindex", [](json& g) { g["accessors"][2]["byteOffset"] = 2; g["accessors"][2]["count"] = 2;
-                                                            g["meshes"][0]["primitives"][0]["mode"] = 5; }),
-                    "out of range");  // strip (1, 2) ... reads index 2 then the 0 padding: fine; see below
+    expectLoadError(validTriangle("badindex", {}, triangleBin(1.0f, 7)), "index 2 (= 7) is out of range");
 
     expectLoadError(validTriangle("lines", [](json& g) { g["meshes"][0]["primitives"][0]["mode"] = 1; }),
                     "unsupported primitive mode 1");

@@ -288,8 +288,12 @@ TEST(BuiltinScenes, CameraAndLightAreInsideTheRoom) {
         glm::vec3 p = translationOf(world[n]);
         EXPECT_TRUE(glm::all(glm::greaterThan(p, glm::vec3(-2, 0, -2))) && glm::all(glm::lessThan(p, glm::vec3(2, 3, 2))));
         glm::vec3 forward = -glm::vec3(world[n][2]);
-        if (s.nodes[n].light >= 0) EXPECT_LT(forward.y, -0.99f);  // spot points down
-        if (s.nodes[n].camera >= 0) EXPECT_LT(forward.z, -0.9f);  // camera looks at the back wall
+        if (s.nodes[n].light >= 0) {
+            EXPECT_LT(forward.y, -0.99f);  // the spot points down
+        }
+        if (s.nodes[n].camera >= 0) {
+            EXPECT_LT(forward.z, -0.9f);  // the camera looks at the back wall
+        }
     }
 }
 

@@ -6,4 +6,5 @@
 namespace vct::glsl {
 using namespace glm;
 #include "lib/brdf.glsl"
+#include "lib/color.glsl"
 }  // namespace vct::glsl

@@ -26,17 +26,21 @@ VCT_INLINE float alphaFromPerceptual(float perceptualRoughness) {
     return r * r;
 }
 
-// Reflectance at normal incidence: 4% for dielectrics (IOR 1.5), the base colour for metals (glTF appendix B).
+// Reflectance at normal incidence: 4% for dielectrics (IOR 1.5), the base colour for metals
+// (glTF appendix B).
 VCT_INLINE vec3 f0FromMetallic(vec3 baseColor, float metallic) {
     return mix(vec3(0.04f), baseColor, saturate(metallic));
 }
 
 // Diffuse albedo: metals have none (glTF appendix B).
-VCT_INLINE vec3 diffuseAlbedo(vec3 baseColor, float metallic) { return baseColor * (1.0f - saturate(metallic)); }
+VCT_INLINE vec3 diffuseAlbedo(vec3 baseColor, float metallic) {
+    return baseColor * (1.0f - saturate(metallic));
+}
 
 // ---- one function per physical term ----
 
-// GGX / Trowbridge-Reitz NDF: Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces", eq. 33.
+// GGX / Trowbridge-Reitz NDF: Walter et al. 2007, "Microfacet Models for Refraction through Rough
+// Surfaces", eq. 33.
 // Normalised: ∫ D(h) (n·h) dω_h = 1. Finite for every input (0 at α = 0: a delta cannot be sampled).
 VCT_INLINE float D_GGX(float NoH, float alpha) {
     if (NoH <= 0.0f) return 0.0f;  // χ⁺(n·h): no microfacet faces away from the macro surface

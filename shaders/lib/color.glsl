@@ -1,4 +1,5 @@
-// Colour: sRGB transfer functions, luminance and the display tone map. Shared by GLSL and C++ (lib/cpp_glsl.h).
+// Colour: sRGB transfer functions, luminance and the display tone map.
+// Shared by GLSL and C++ (lib/cpp_glsl.h).
 // All colours are linear Rec.709/sRGB primaries unless a name says otherwise.
 #ifndef VCT_COLOR_GLSL
 #define VCT_COLOR_GLSL
