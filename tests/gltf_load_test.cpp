@@ -1,19 +1,21 @@
 // glTF import: the sample models in shared/scenes, small files written here for every supported variant,
 // and broken files that must fail with a one-line vct::Error naming the file and the problem.
-#include "core/error.h"
-#include "scene/builtin_scenes.h"
-#include "scene/gltf_loader.h"
-#include "scene/tangents.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "io/image_io.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
+#include "scene/tangents.h"
 
 namespace vct {
 namespace {
@@ -28,9 +30,12 @@ fs::path outputDir() {
 }
 
 void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
-void writeText(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void writeText(const fs::path& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
 
 template <class T>
 void append(std::vector<uint8_t>& bytes, std::initializer_list<T> values) {
@@ -63,19 +68,27 @@ json triangleGltf(const std::string& bufferUri, size_t byteLength) {
         {"scene", 0},
         {"scenes", {{{"nodes", {0}}}}},
         {"nodes", {{{"name", "tri"}, {"mesh", 0}}}},
-        {"meshes", {{{"name", "Tri"}, {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}}}}}}},
+        {"meshes",
+         {{{"name", "Tri"},
+           {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}}}}}}},
         {"buffers", {buffer}},
-        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
-                         {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}},
-                         {{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 6}},
-                         {{"buffer", 0}, {"byteOffset", 68}, {"byteLength", 2}},
-                         {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 12}},
-                         {{"buffer", 0}, {"byteOffset", 84}, {"byteLength", 3}},
-                         {{"buffer", 0}, {"byteOffset", 88}, {"byteLength", 6}}}},
-        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
-                        {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
-                       {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}},
-                       {{"bufferView", 2}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
+          {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}},
+          {{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 6}},
+          {{"buffer", 0}, {"byteOffset", 68}, {"byteLength", 2}},
+          {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 12}},
+          {{"buffer", 0}, {"byteOffset", 84}, {"byteLength", 3}},
+          {{"buffer", 0}, {"byteOffset", 88}, {"byteLength", 6}}}},
+        {"accessors",
+         {{{"bufferView", 0},
+           {"componentType", 5126},
+           {"count", 3},
+           {"type", "VEC3"},
+           {"min", {0, 0, 0}},
+           {"max", {1, 1, 0}}},
+          {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}},
+          {{"bufferView", 2}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}}}},
     };
 }
 
@@ -113,7 +126,7 @@ TEST(GltfLoad, TriangleWithExternalBuffer) {
     EXPECT_EQ(s.indices.size(), 3u);
     ASSERT_EQ(s.vertices.size(), 3u);
     for (const Vertex& v : s.vertices) EXPECT_NEAR(v.normal.z, 1.0f, 1e-6f);  // flat normals were generated
-    EXPECT_EQ(s.materials.size(), 1u);                                          // the default material
+    EXPECT_EQ(s.materials.size(), 1u);                                        // the default material
     EXPECT_EQ(s.cameras.size(), 1u);
     EXPECT_EQ(s.lights.size(), 1u);
     EXPECT_EQ(s.notes.size(), 2u);  // default camera and light
@@ -151,27 +164,34 @@ TEST(GltfLoad, EmbeddedBase64AndGlb) {
 TEST(GltfLoad, SparseStripsAndComponentTypes) {
     // Sparse accessor: vertex 2 is moved from (0,1,0) to (0,2,0).
     Scene sparse = loadScene(validTriangle("sparse", [](json& g) {
-        g["accessors"][0]["sparse"] = {{"count", 1},
-                                       {"indices", {{"bufferView", 3}, {"componentType", 5123}}},
-                                       {"values", {{"bufferView", 4}}}};
-        g["accessors"][0]["max"] = {1, 2, 0};
-    }).string());
+                                 g["accessors"][0]["sparse"] = {
+                                     {"count", 1},
+                                     {"indices", {{"bufferView", 3}, {"componentType", 5123}}},
+                                     {"values", {{"bufferView", 4}}}};
+                                 g["accessors"][0]["max"] = {1, 2, 0};
+                             }).string());
     EXPECT_FLOAT_EQ(sparse.vertices[2].position.y, 2.0f);
 
     // Non-indexed triangle fan over 3 vertices: indices are generated and the winding stays
     // counter-clockwise (flat normals along +Z).
     Scene fan = loadScene(validTriangle("fan", [](json& g) {
-        g["meshes"][0]["primitives"][0].erase("indices");
-        g["meshes"][0]["primitives"][0]["mode"] = 6;
-    }).string());
+                              g["meshes"][0]["primitives"][0].erase("indices");
+                              g["meshes"][0]["primitives"][0]["mode"] = 6;
+                          }).string());
     ASSERT_EQ(fan.indices.size(), 3u);
     for (const Vertex& v : fan.vertices) EXPECT_NEAR(v.normal.z, 1.0f, 1e-6f);
 
     // uint8 indices and normalized uint8 texture coordinates.
-    Scene bytes = loadScene(validTriangle("bytes", [](json& g) {
-        g["accessors"][2] = {{"bufferView", 5}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}};
-        g["accessors"][1] = {{"bufferView", 6}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}};
-    }).string());
+    Scene bytes =
+        loadScene(validTriangle("bytes", [](json& g) {
+                      g["accessors"][2] = {
+                          {"bufferView", 5}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}};
+                      g["accessors"][1] = {{"bufferView", 6},
+                                           {"componentType", 5121},
+                                           {"normalized", true},
+                                           {"count", 3},
+                                           {"type", "VEC2"}};
+                  }).string());
     ASSERT_EQ(bytes.indices.size(), 3u);
     EXPECT_EQ(bytes.indices[2], 2u);
     EXPECT_FLOAT_EQ(bytes.vertices[1].uv.x, 1.0f);
@@ -179,20 +199,28 @@ TEST(GltfLoad, SparseStripsAndComponentTypes) {
 }
 
 TEST(GltfLoad, CamerasLightsMaterialsAndNotes) {
-    Scene s = loadScene(validTriangle("features", [](json& g) {
-        g["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
-        g["extensions"]["KHR_lights_punctual"]["lights"] = {
-            {{"type", "spot"}, {"intensity", 25.0}, {"color", {1, 0.5, 0.25}}, {"spot", {{"outerConeAngle", 0.5}}}}};
-        g["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}}};
-        g["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 5}}});
-        g["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", {0, 0, 0, 1}}});
-        g["scenes"][0]["nodes"] = {0, 1, 2};
-        g["materials"] = {{{"name", "glow"}, {"emissiveFactor", {1, 1, 1}}, {"alphaMode", "MASK"}, {"doubleSided", true},
-                           {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}},
-                           {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.3}}}}};
-        g["meshes"][0]["primitives"][0]["material"] = 0;
-        g["skins"] = {{{"joints", {0}}}};
-    }).string());
+    Scene s = loadScene(
+        validTriangle("features", [](json& g) {
+            g["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+            g["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "spot"},
+                                                                 {"intensity", 25.0},
+                                                                 {"color", {1, 0.5, 0.25}},
+                                                                 {"spot", {{"outerConeAngle", 0.5}}}}};
+            g["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}}};
+            g["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 5}}});
+            g["nodes"].push_back(
+                {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", {0, 0, 0, 1}}});
+            g["scenes"][0]["nodes"] = {0, 1, 2};
+            g["materials"] = {
+                {{"name", "glow"},
+                 {"emissiveFactor", {1, 1, 1}},
+                 {"alphaMode", "MASK"},
+                 {"doubleSided", true},
+                 {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}},
+                 {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.3}}}}};
+            g["meshes"][0]["primitives"][0]["material"] = 0;
+            g["skins"] = {{{"joints", {0}}}};
+        }).string());
     ASSERT_EQ(s.lights.size(), 1u);
     EXPECT_EQ(s.lights[0].type, LightType::Spot);
     EXPECT_FLOAT_EQ(s.lights[0].intensity, 25.0f);
@@ -207,6 +235,41 @@ TEST(GltfLoad, CamerasLightsMaterialsAndNotes) {
     EXPECT_FLOAT_EQ(s.materials[0].roughnessFactor, 0.3f);
     ASSERT_EQ(s.notes.size(), 1u);
     EXPECT_EQ(s.notes[0], "skins are not supported: rendering the bind pose");
+
+    Scene t = loadScene(validTriangle("texture_transform", [](json& g) {
+                            g["extensionsUsed"] = {"KHR_texture_transform"};
+                        }).string());
+    EXPECT_NE(std::find(t.notes.begin(), t.notes.end(),
+                        "extension KHR_texture_transform is not supported: ignored"),
+              t.notes.end());
+}
+
+TEST(GltfLoad, TexturesAreConvertedDuplicatedPerRoleAndMipmapped) {
+    std::vector<uint8_t> rgba(4 * 2 * 4);
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = uint8_t(i * 7);
+    writePng(outputDir() / "tex.png", 4, 2, rgba);
+    Scene s = loadScene(validTriangle("textured", [](json& g) {
+                            g["images"] = {{{"uri", "tex.png"}}};
+                            g["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}}};
+                            g["textures"] = {{{"source", 0}, {"sampler", 0}}};
+                            g["materials"] = {{{"pbrMetallicRoughness",
+                                                {{"baseColorTexture", {{"index", 0}}},
+                                                 {"metallicRoughnessTexture", {{"index", 0}}}}},
+                                               {"occlusionTexture", {{"index", 0}}},
+                                               {"normalTexture", {{"index", 0}, {"scale", 0.5}}}}};
+                            g["meshes"][0]["primitives"][0]["material"] = 0;
+                        }).string());
+    ASSERT_EQ(s.textures.size(), 3u);  // one per kind: Color, Linear (shared by MR and occlusion), Normal
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.metallicRoughnessTexture, m.occlusionTexture);
+    EXPECT_NE(m.baseColorTexture, m.normalTexture);
+    EXPECT_FLOAT_EQ(m.normalScale, 0.5f);
+    const Texture& t = s.textures[size_t(m.normalTexture)];
+    EXPECT_EQ(t.kind, TextureKind::Normal);
+    EXPECT_EQ(t.wrapS, TextureWrap::ClampToEdge);
+    EXPECT_EQ(t.wrapT, TextureWrap::MirroredRepeat);
+    EXPECT_EQ(t.mips.size(), 3u);  // 4x2, 2x1, 1x1
+    EXPECT_EQ(t.mips[0], rgba);
 }
 
 TEST(GltfLoad, BrokenFilesFailWithOneLine) {
@@ -218,8 +281,9 @@ TEST(GltfLoad, BrokenFilesFailWithOneLine) {
 
     std::vector<uint8_t> truncated = triangleBin();
     truncated.resize(40);
-    expectLoadError(writeTriangle("truncated", triangleGltf("truncated.bin", triangleBin().size()), truncated),
-                    "truncated.bin");
+    expectLoadError(
+        writeTriangle("truncated", triangleGltf("truncated.bin", triangleBin().size()), truncated),
+        "truncated.bin");
 
     json missingBin = triangleGltf("nowhere.bin", triangleBin().size());
     fs::path missingBinPath = outputDir() / "missing_bin.gltf";
@@ -234,13 +298,20 @@ TEST(GltfLoad, BrokenFilesFailWithOneLine) {
     expectLoadError(validTriangle("lines", [](json& g) { g["meshes"][0]["primitives"][0]["mode"] = 1; }),
                     "unsupported primitive mode 1");
 
-    expectLoadError(validTriangle("noimage", [](json& g) {
-                        g["images"] = {{{"uri", "missing.png"}}};
-                        g["textures"] = {{{"source", 0}}};
-                        g["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
-                        g["meshes"][0]["primitives"][0]["material"] = 0;
-                    }),
-                    "missing.png");
+    expectLoadError(
+        validTriangle(
+            "noimage",
+            [](json& g) {
+                g["images"] = {{{"uri", "missing.png"}}};
+                g["textures"] = {{{"source", 0}}};
+                g["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+                g["meshes"][0]["primitives"][0]["material"] = 0;
+            }),
+        "missing.png");
+
+    expectLoadError(
+        validTriangle("draco", [](json& g) { g["extensionsRequired"] = {"KHR_draco_mesh_compression"}; }),
+        "requires the unsupported extension KHR_draco_mesh_compression");
 
     expectLoadError(validTriangle("nonodes", [](json& g) { g["scenes"][0]["nodes"] = json::array(); }),
                     "no mesh instances");
@@ -248,10 +319,13 @@ TEST(GltfLoad, BrokenFilesFailWithOneLine) {
 
 // ---- the sample models in shared/scenes ----
 
-fs::path sharedModel(const std::string& name) { return fs::path(VCT_SHARED_SCENES) / name / "glTF" / (name + ".gltf"); }
+fs::path sharedModel(const std::string& name) {
+    return fs::path(VCT_SHARED_SCENES) / name / "glTF" / (name + ".gltf");
+}
 
-#define REQUIRE_SHARED(name)                                                                   \
-    if (!fs::exists(sharedModel(name))) GTEST_SKIP() << "no " << sharedModel(name) << " (shared scenes not available)"
+#define REQUIRE_SHARED(name)            \
+    if (!fs::exists(sharedModel(name))) \
+    GTEST_SKIP() << "no " << sharedModel(name) << " (shared scenes not available)"
 
 TEST(GltfSamples, DamagedHelmet) {
     REQUIRE_SHARED("DamagedHelmet");
@@ -266,8 +340,8 @@ TEST(GltfSamples, DamagedHelmet) {
     EXPECT_EQ(s.textures[size_t(m.baseColorTexture)].kind, TextureKind::Color);
     EXPECT_EQ(s.textures[size_t(m.metallicRoughnessTexture)].kind, TextureKind::Linear);
     EXPECT_EQ(s.textures[size_t(m.normalTexture)].mips.size(), 12u);  // 2048² → 1²
-    EXPECT_EQ(s.cameras.size(), 1u);                                   // default
-    EXPECT_EQ(s.lights.size(), 1u);                                    // default
+    EXPECT_EQ(s.cameras.size(), 1u);                                  // default
+    EXPECT_EQ(s.lights.size(), 1u);                                   // default
     for (const Vertex& v : s.vertices) ASSERT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0f, 1e-3f);
 }
 
@@ -296,7 +370,8 @@ TEST(GltfSamples, NormalTangentMirrorTestTangentsMatchOurGenerator) {
     Scene s = loadScene(sharedModel("NormalTangentMirrorTest").string());
     ASSERT_EQ(s.primitives.size(), 1u);
     const Primitive& p = s.primitives[0];
-    std::vector<Vertex> file(s.vertices.begin() + p.vertexOffset, s.vertices.begin() + p.vertexOffset + p.vertexCount);
+    std::vector<Vertex> file(s.vertices.begin() + p.vertexOffset,
+                             s.vertices.begin() + p.vertexOffset + p.vertexCount);
     std::vector<Vertex> ours = file;
     std::span<const uint32_t> indices(s.indices.data() + p.firstIndex, p.indexCount);
     generateTangents(ours, indices);

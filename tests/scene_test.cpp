@@ -1,6 +1,4 @@
 // Scene evaluation (animation, hierarchy), defaults, validation, mip chains and the built-in scenes.
-#include "core/error.h"
-#include "scene/builtin_scenes.h"
 #include "scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +6,9 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+
+#include "core/error.h"
+#include "scene/builtin_scenes.h"
 
 namespace vct {
 namespace {
@@ -43,8 +44,12 @@ Scene withChannel(AnimationChannel ch) {
     return s;
 }
 
-glm::vec3 translationOf(const glm::mat4& m) { return glm::vec3(m[3]); }
-glm::vec4 quatValue(const glm::quat& q) { return glm::vec4(q.x, q.y, q.z, q.w); }
+glm::vec3 translationOf(const glm::mat4& m) {
+    return glm::vec3(m[3]);
+}
+glm::vec4 quatValue(const glm::quat& q) {
+    return glm::vec4(q.x, q.y, q.z, q.w);
+}
 
 void expectNear(glm::vec3 a, glm::vec3 b, float eps = 1e-5f) {
     EXPECT_NEAR(a.x, b.x, eps);
@@ -64,14 +69,18 @@ void expectSingleLineError(const std::function<void()>& f, const std::string& ne
 }
 
 TEST(Animation, LinearTranslationMidpointAndClamping) {
-    AnimationChannel ch{0, AnimationPath::Translation, Interpolation::Linear, {0.0f, 2.0f}, {{0, 0, 0, 0}, {2, 4, 6, 0}}};
+    AnimationChannel ch{
+        0, AnimationPath::Translation, Interpolation::Linear, {0.0f, 2.0f}, {{0, 0, 0, 0}, {2, 4, 6, 0}}};
     Scene s = withChannel(ch);
     expectNear(translationOf(s.evaluate(1.0f)[0]), {1, 2, 3});
     expectNear(translationOf(s.evaluate(0.5f)[0]), {0.5f, 1, 1.5f});
 }
 
 TEST(Animation, StepHoldsThePreviousKey) {
-    AnimationChannel ch{0, AnimationPath::Translation, Interpolation::Step, {0.0f, 1.0f, 2.0f},
+    AnimationChannel ch{0,
+                        AnimationPath::Translation,
+                        Interpolation::Step,
+                        {0.0f, 1.0f, 2.0f},
                         {{0, 0, 0, 0}, {5, 0, 0, 0}, {9, 0, 0, 0}}};
     Scene s = withChannel(ch);
     expectNear(translationOf(s.evaluate(0.99f)[0]), {0, 0, 0});
@@ -81,7 +90,10 @@ TEST(Animation, StepHoldsThePreviousKey) {
 TEST(Animation, RotationSlerpTakesTheShortWay) {
     glm::quat q90 = glm::angleAxis(glm::radians(90.0f), glm::vec3(0, 1, 0));
     // The second key is stored negated (the same rotation); slerp must still turn by 45°, not 135°.
-    AnimationChannel ch{0, AnimationPath::Rotation, Interpolation::Linear, {0.0f, 1.0f},
+    AnimationChannel ch{0,
+                        AnimationPath::Rotation,
+                        Interpolation::Linear,
+                        {0.0f, 1.0f},
                         {quatValue(glm::quat(1, 0, 0, 0)), -quatValue(q90)}};
     Scene s = withChannel(ch);
     glm::mat4 m = s.evaluate(0.5f)[0];
@@ -93,7 +105,10 @@ TEST(Animation, RotationSlerpTakesTheShortWay) {
 
 TEST(Animation, CubicSplineWithFlatTangentsPassesTheMidpoint) {
     // Keys (in-tangent, value, out-tangent): flat tangents make the midpoint the average of the values.
-    AnimationChannel ch{0, AnimationPath::Scale, Interpolation::CubicSpline, {0.0f, 2.0f},
+    AnimationChannel ch{0,
+                        AnimationPath::Scale,
+                        Interpolation::CubicSpline,
+                        {0.0f, 2.0f},
                         {{0, 0, 0, 0}, {1, 1, 1, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {3, 3, 3, 0}, {0, 0, 0, 0}}};
     Scene s = withChannel(ch);
     glm::mat4 m = s.evaluate(1.0f)[0];
@@ -102,7 +117,8 @@ TEST(Animation, CubicSplineWithFlatTangentsPassesTheMidpoint) {
 }
 
 TEST(Animation, LoopsOverTheDuration) {
-    AnimationChannel ch{0, AnimationPath::Translation, Interpolation::Linear, {0.0f, 2.0f}, {{0, 0, 0, 0}, {2, 0, 0, 0}}};
+    AnimationChannel ch{
+        0, AnimationPath::Translation, Interpolation::Linear, {0.0f, 2.0f}, {{0, 0, 0, 0}, {2, 0, 0, 0}}};
     Scene s = withChannel(ch);
     expectNear(translationOf(s.evaluate(3.0f)[0]), translationOf(s.evaluate(1.0f)[0]));
     expectNear(translationOf(s.evaluate(-0.5f)[0]), translationOf(s.evaluate(1.5f)[0]));
@@ -119,7 +135,8 @@ TEST(Scene, HierarchyComposesAndAnimationPropagatesToChildren) {
     s.nodes.push_back(child);
     s.nodes[0].children.push_back(1);
     s.nodes[0].scale = glm::vec3(2.0f);
-    AnimationChannel ch{0, AnimationPath::Translation, Interpolation::Linear, {0.0f, 1.0f}, {{0, 0, 0, 0}, {10, 0, 0, 0}}};
+    AnimationChannel ch{
+        0, AnimationPath::Translation, Interpolation::Linear, {0.0f, 1.0f}, {{0, 0, 0, 0}, {10, 0, 0, 0}}};
     s.animations.push_back(Animation{"a", {ch}, 1.0f});
     expectNear(translationOf(s.evaluate(0.5f)[1]), {5, 2, 0});
     std::vector<bool> animated = s.animatedNodes();
@@ -169,7 +186,8 @@ TEST(Scene, ValidateNamesTheProblem) {
     EXPECT_NO_THROW(s.validate());
     Scene nanPos = s;
     nanPos.vertices[1].position.y = std::numeric_limits<float>::quiet_NaN();
-    expectSingleLineError([&] { nanPos.validate(); }, "mesh 'tri' primitive 0: vertex 1 has a non-finite position");
+    expectSingleLineError([&] { nanPos.validate(); },
+                          "mesh 'tri' primitive 0: vertex 1 has a non-finite position");
     Scene infUv = s;
     infUv.vertices[2].uv.x = std::numeric_limits<float>::infinity();
     expectSingleLineError([&] { infUv.validate(); }, "non-finite texture coordinate");
@@ -286,7 +304,8 @@ TEST(BuiltinScenes, CameraAndLightAreInsideTheRoom) {
     for (size_t n = 0; n < s.nodes.size(); ++n) {
         if (s.nodes[n].camera < 0 && s.nodes[n].light < 0) continue;
         glm::vec3 p = translationOf(world[n]);
-        EXPECT_TRUE(glm::all(glm::greaterThan(p, glm::vec3(-2, 0, -2))) && glm::all(glm::lessThan(p, glm::vec3(2, 3, 2))));
+        EXPECT_TRUE(glm::all(glm::greaterThan(p, glm::vec3(-2, 0, -2))) &&
+                    glm::all(glm::lessThan(p, glm::vec3(2, 3, 2))));
         glm::vec3 forward = -glm::vec3(world[n][2]);
         if (s.nodes[n].light >= 0) {
             EXPECT_LT(forward.y, -0.99f);  // the spot points down

@@ -107,7 +107,8 @@ TEST(Tangents, BadInputNeverProducesNaN) {
 }
 
 TEST(Tangents, AnyPerpendicularIsUnitAndOrthogonal) {
-    for (glm::vec3 n : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, 1, 1))}) {
+    for (glm::vec3 n :
+         {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, 1, 1))}) {
         glm::vec3 t = anyPerpendicular(n);
         EXPECT_NEAR(glm::length(t), 1.0f, 1e-6f);
         EXPECT_NEAR(glm::dot(t, n), 0.0f, 1e-6f);
@@ -125,9 +126,12 @@ TEST(FlatNormals, UnweldsAndUsesFaceNormals) {
     ASSERT_EQ(v.size(), 9u);
     ASSERT_EQ(indices.size(), 9u);
     for (size_t i = 0; i < indices.size(); ++i) EXPECT_EQ(indices[i], i);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(glm::distance(v[size_t(k)].normal, glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
-    for (int k = 3; k < 6; ++k) EXPECT_NEAR(glm::distance(v[size_t(k)].normal, glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
-    for (int k = 6; k < 9; ++k) EXPECT_NEAR(glm::length(v[size_t(k)].normal), 1.0f, 1e-6f);  // degenerate: still unit
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(glm::distance(v[size_t(k)].normal, glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
+    for (int k = 3; k < 6; ++k)
+        EXPECT_NEAR(glm::distance(v[size_t(k)].normal, glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
+    for (int k = 6; k < 9; ++k)
+        EXPECT_NEAR(glm::length(v[size_t(k)].normal), 1.0f, 1e-6f);  // degenerate: still unit
 }
 
 }  // namespace

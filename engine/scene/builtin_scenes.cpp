@@ -1,13 +1,12 @@
 #include "scene/builtin_scenes.h"
 
+#include <filesystem>
+#include <glm/gtc/constants.hpp>
+
 #include "core/error.h"
 #include "scene/gltf_loader.h"
 #include "scene/procedural_textures.h"
 #include "scene/tangents.h"
-
-#include <glm/gtc/constants.hpp>
-
-#include <filesystem>
 
 namespace vct {
 
@@ -40,12 +39,12 @@ void addQuad(Geometry& g, glm::vec3 o, glm::vec3 u, glm::vec3 v, glm::vec2 uvSca
 Geometry box(glm::vec3 h) {
     Geometry g;
     glm::vec3 X(2 * h.x, 0, 0), Y(0, 2 * h.y, 0), Z(0, 0, 2 * h.z);
-    addQuad(g, {h.x, -h.y, h.z}, -Z, Y);    // +X
-    addQuad(g, {-h.x, -h.y, -h.z}, Z, Y);   // -X
-    addQuad(g, {-h.x, -h.y, h.z}, X, Y);    // +Z
-    addQuad(g, {h.x, -h.y, -h.z}, -X, Y);   // -Z
-    addQuad(g, {-h.x, h.y, h.z}, X, -Z);    // +Y
-    addQuad(g, {-h.x, -h.y, -h.z}, X, Z);   // -Y
+    addQuad(g, {h.x, -h.y, h.z}, -Z, Y);   // +X
+    addQuad(g, {-h.x, -h.y, -h.z}, Z, Y);  // -X
+    addQuad(g, {-h.x, -h.y, h.z}, X, Y);   // +Z
+    addQuad(g, {h.x, -h.y, -h.z}, -X, Y);  // -Z
+    addQuad(g, {-h.x, h.y, h.z}, X, -Z);   // +Y
+    addQuad(g, {-h.x, -h.y, -h.z}, X, Z);  // -Y
     return g;
 }
 
@@ -57,7 +56,8 @@ Geometry sphere(float radius, uint32_t segments, uint32_t rings) {
         for (uint32_t j = 0; j <= segments; ++j) {
             float phi = glm::two_pi<float>() * float(j) / float(segments);
             Vertex v;
-            v.normal = glm::vec3(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
+            v.normal =
+                glm::vec3(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
             v.position = radius * v.normal;
             v.uv = glm::vec2(float(j) / float(segments), float(i) / float(rings));
             g.vertices.push_back(v);
@@ -74,7 +74,7 @@ Geometry sphere(float radius, uint32_t segments, uint32_t rings) {
 
 // Appends meshes, materials and nodes to a Scene, generating tangents for every primitive.
 class SceneBuilder {
-public:
+  public:
     explicit SceneBuilder(const std::string& name) { scene.name = name; }
 
     uint32_t material(const Material& m) {
@@ -112,7 +112,8 @@ public:
         scene.roots.push_back(int(scene.nodes.size() - 1));
         return int(scene.nodes.size() - 1);
     }
-    int cameraNode(const std::string& name, glm::vec3 position, glm::vec3 target, float yfovDegrees, float zfar) {
+    int cameraNode(const std::string& name, glm::vec3 position, glm::vec3 target, float yfovDegrees,
+                   float zfar) {
         Camera cam;
         cam.name = name;
         cam.yfov = glm::radians(yfovDegrees);
@@ -122,7 +123,8 @@ public:
         Node n;
         n.name = name;
         n.translation = position;
-        n.rotation = glm::quatLookAtRH(glm::normalize(target - position), glm::vec3(0, 1, 0));  // -Z looks at target
+        n.rotation =
+            glm::quatLookAtRH(glm::normalize(target - position), glm::vec3(0, 1, 0));  // -Z looks at target
         n.camera = int(scene.cameras.size() - 1);
         return node(n);
     }
@@ -154,7 +156,8 @@ Scene cornell() {
     const glm::vec3 white(0.725f, 0.71f, 0.68f), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
 
     Material floor = makeMaterial("floor", glm::vec3(0.75f), 1.0f, 1.0f);  // factors scale the stripe texture
-    floor.metallicRoughnessTexture = b.texture(makeRoughnessStripes("floor roughness stripes", 256, 8, 0.05f, 0.8f, 0.0f));
+    floor.metallicRoughnessTexture =
+        b.texture(makeRoughnessStripes("floor roughness stripes", 256, 8, 0.05f, 0.8f, 0.0f));
     Material back = makeMaterial("back wall", white, 0.0f, 0.35f);
     back.normalTexture = b.texture(makeBumpNormalMap("back wall bumps", 512, 8, 0.8f));
     uint32_t floorMat = b.material(floor), backMat = b.material(back);
@@ -165,7 +168,7 @@ Scene cornell() {
     // Walls face inwards: the camera is inside, and single-sided quads keep back-face culling useful.
     const float W = 4.0f, H = 3.0f, D = 4.0f, x0 = -W / 2, x1 = W / 2, z0 = -D / 2, z1 = D / 2;
     Geometry floorG, ceilingG, backG, frontG, leftG, rightG;
-    addQuad(floorG, {x0, 0, z1}, {W, 0, 0}, {0, 0, -D});           // stripes vary along x
+    addQuad(floorG, {x0, 0, z1}, {W, 0, 0}, {0, 0, -D});  // stripes vary along x
     addQuad(ceilingG, {x0, H, z0}, {W, 0, 0}, {0, 0, D});
     addQuad(backG, {x0, 0, z0}, {W, 0, 0}, {0, H, 0}, {4.0f, 3.0f});  // 2048 × 1536 texels: 2 mm each
     addQuad(frontG, {x1, 0, z1}, {-W, 0, 0}, {0, H, 0});
@@ -173,14 +176,19 @@ Scene cornell() {
     addQuad(rightG, {x1, 0, z0}, {0, 0, D}, {0, H, 0});
     Node room;
     room.name = "room";
-    room.mesh = b.mesh("room", {{floorG, floorMat}, {ceilingG, whiteMat}, {backG, backMat}, {frontG, whiteMat},
-                                {leftG, redMat}, {rightG, greenMat}});
+    room.mesh = b.mesh("room", {{floorG, floorMat},
+                                {ceilingG, whiteMat},
+                                {backG, backMat},
+                                {frontG, whiteMat},
+                                {leftG, redMat},
+                                {rightG, greenMat}});
     b.node(room);
 
     Node ball;
     ball.name = "gold sphere";
     ball.translation = glm::vec3(-1.0f, 0.5f, -0.8f);
-    ball.mesh = b.mesh("sphere", {{sphere(0.5f, 64, 32), b.material(makeMaterial("gold", {1.0f, 0.766f, 0.336f}, 1.0f, 0.2f))}});
+    ball.mesh = b.mesh("sphere", {{sphere(0.5f, 64, 32),
+                                   b.material(makeMaterial("gold", {1.0f, 0.766f, 0.336f}, 1.0f, 0.2f))}});
     b.node(ball);
 
     Node tall;
@@ -194,10 +202,11 @@ Scene cornell() {
     // counter-clockwise seen from above) while spinning about +Y once per loop.
     Node cube;
     cube.name = "moving cube";
-    cube.mesh = b.mesh("cube", {{box(glm::vec3(0.15f)), b.material(makeMaterial("blue", {0.2f, 0.4f, 0.9f}, 0.0f, 0.5f))}});
+    cube.mesh = b.mesh(
+        "cube", {{box(glm::vec3(0.15f)), b.material(makeMaterial("blue", {0.2f, 0.4f, 0.9f}, 0.0f, 0.5f))}});
     int cubeNode = b.node(cube);
     AnimationChannel move{cubeNode, AnimationPath::Translation, Interpolation::Linear, {}, {}};
-    const int keys = 32;  // 11.25° segments: the linear path stays within 1.4 cm of the circle
+    const int keys = 32;  // 11.25° segments: the linear path stays within 4 mm of the circle
     for (int k = 0; k <= keys; ++k) {
         float t = 4.0f * float(k) / keys, a = glm::two_pi<float>() * float(k) / keys;
         move.times.push_back(t);
@@ -224,7 +233,7 @@ Scene cornell() {
     spot.outerConeAngle = 0.9f;
     b.lightNode(spot, {0.0f, 2.9f, -0.5f}, glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0)));
 
-    b.cameraNode("camera", {0.0f, 1.5f, 1.85f}, {0.0f, 1.2f, -2.0f}, 50.0f, 20.0f);
+    b.cameraNode("camera", {0.0f, 2.0f, 1.9f}, {0.0f, 0.75f, -1.2f}, 55.0f, 20.0f);
     b.scene.validate();
     return std::move(b.scene);
 }
@@ -257,7 +266,9 @@ Scene plane() {
 
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "plane"}; }
+std::vector<std::string> builtinSceneNames() {
+    return {"cornell", "plane"};
+}
 
 std::string builtinSceneDescription(const std::string& name) {
     if (name == "cornell")
@@ -265,7 +276,8 @@ std::string builtinSceneDescription(const std::string& name) {
                "bump-normal-mapped back wall, gold sphere, tall white box, a blue cube circling the floor "
                "(4 s loop), one 40 cd spot light under the ceiling";
     if (name == "plane")
-        return "10x10 m silver plane (roughness 0.15) with a fine bump normal map, a directional light and an "
+        return "10x10 m silver plane (roughness 0.15) with a fine bump normal map, a directional light and "
+               "an "
                "oblique camera on its highlight (normal-map filtering tests)";
     return "";
 }

@@ -2,11 +2,11 @@
 // normal-map filtering (Toksvig) tests. loadScene() is the one entry point for "--scene NAME|PATH".
 #pragma once
 
-#include "scene/scene.h"
-
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "scene/scene.h"
 
 namespace vct {
 

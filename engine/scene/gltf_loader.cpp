@@ -1,9 +1,5 @@
 #include "scene/gltf_loader.h"
 
-#include "core/error.h"
-#include "scene/tangents.h"
-
-#include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -11,13 +7,19 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/type_ptr.hpp>
 #include <map>
+
+#include "core/error.h"
+#include "scene/tangents.h"
 
 namespace vct {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& message) { throw Error(message); }
+[[noreturn]] void fail(const std::string& message) {
+    throw Error(message);
+}
 
 // tinygltf reports several problems separated by newlines; our errors are one line.
 std::string oneLine(const std::string& text) {
@@ -45,29 +47,36 @@ struct AccessorData {
 };
 
 double readComponent(const unsigned char* p, int type, bool normalized) {
-    auto load = [p](auto v) {
+    auto load = [p](auto v) -> double {
         std::memcpy(&v, p, sizeof(v));  // buffers need not be aligned for the host
-        return v;
+        return double(v);
     };
+    // glTF: a normalized integer's largest value maps to 1; signed ones clamp their smallest to -1.
+    auto unorm = [normalized](double v, double max) { return normalized ? std::max(v / max, -1.0) : v; };
+    // One line per component type reads as a table.
+    // clang-format off
     switch (type) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE: { double v = load(int8_t{}); return normalized ? std::max(v / 127.0, -1.0) : v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { double v = load(uint8_t{}); return normalized ? v / 255.0 : v; }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: { double v = load(int16_t{}); return normalized ? std::max(v / 32767.0, -1.0) : v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { double v = load(uint16_t{}); return normalized ? v / 65535.0 : v; }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: return unorm(load(int8_t{}), 127.0);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return unorm(load(uint8_t{}), 255.0);
+        case TINYGLTF_COMPONENT_TYPE_SHORT: return unorm(load(int16_t{}), 32767.0);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return unorm(load(uint16_t{}), 65535.0);
         case TINYGLTF_COMPONENT_TYPE_INT: return load(int32_t{});
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load(uint32_t{});
         case TINYGLTF_COMPONENT_TYPE_FLOAT: return load(float{});
         default: return load(double{});  // TINYGLTF_COMPONENT_TYPE_DOUBLE (not glTF 2.0, but harmless)
     }
+    // clang-format on
 }
 
 // Pointer to `count` elements of `elementSize` bytes, `stride` apart, in a buffer view, range-checked so a
 // truncated .bin or a bad offset is an error instead of a read past the end.
 const unsigned char* viewData(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count,
                               size_t elementSize, size_t& stride, const std::string& what) {
-    if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size()) fail(what + " has no valid bufferView");
+    if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size())
+        fail(what + " has no valid bufferView");
     const tinygltf::BufferView& view = model.bufferViews[size_t(viewIndex)];
-    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size()) fail(what + ": bufferView has no valid buffer");
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+        fail(what + ": bufferView has no valid buffer");
     const tinygltf::Buffer& buffer = model.buffers[size_t(view.buffer)];
     if (stride == 0) stride = view.byteStride ? view.byteStride : elementSize;
     size_t needed = count == 0 ? 0 : offset + stride * (count - 1) + elementSize;
@@ -91,27 +100,32 @@ AccessorData readAccessor(const tinygltf::Model& model, int index, const std::st
     size_t elementSize = size_t(componentSize) * size_t(components);
     if (acc.bufferView >= 0) {
         size_t stride = 0;
-        const unsigned char* p = viewData(model, acc.bufferView, acc.byteOffset, acc.count, elementSize, stride, name);
+        const unsigned char* p =
+            viewData(model, acc.bufferView, acc.byteOffset, acc.count, elementSize, stride, name);
         for (size_t i = 0; i < acc.count; ++i)
             for (int c = 0; c < components; ++c)
-                data.values[i * size_t(components) + size_t(c)] =
-                    readComponent(p + i * stride + size_t(c * componentSize), acc.componentType, acc.normalized);
+                data.values[i * size_t(components) + size_t(c)] = readComponent(
+                    p + i * stride + size_t(c * componentSize), acc.componentType, acc.normalized);
     }
     if (acc.sparse.isSparse) {
         size_t n = size_t(std::max(acc.sparse.count, 0));
         int indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.sparse.indices.componentType));
         if (indexSize <= 0) fail(name + ": sparse indices have an unknown component type");
         size_t indexStride = size_t(indexSize), valueStride = elementSize;
-        const unsigned char* ip = viewData(model, acc.sparse.indices.bufferView, size_t(acc.sparse.indices.byteOffset),
-                                           n, size_t(indexSize), indexStride, name + " sparse indices");
-        const unsigned char* vp = viewData(model, acc.sparse.values.bufferView, size_t(acc.sparse.values.byteOffset),
-                                           n, elementSize, valueStride, name + " sparse values");
+        const unsigned char* ip =
+            viewData(model, acc.sparse.indices.bufferView, size_t(acc.sparse.indices.byteOffset), n,
+                     size_t(indexSize), indexStride, name + " sparse indices");
+        const unsigned char* vp =
+            viewData(model, acc.sparse.values.bufferView, size_t(acc.sparse.values.byteOffset), n,
+                     elementSize, valueStride, name + " sparse values");
         for (size_t s = 0; s < n; ++s) {
-            auto target = size_t(readComponent(ip + s * indexStride, acc.sparse.indices.componentType, false));
-            if (target >= acc.count) fail(name + ": sparse index " + std::to_string(target) + " is out of range");
+            auto target =
+                size_t(readComponent(ip + s * indexStride, acc.sparse.indices.componentType, false));
+            if (target >= acc.count)
+                fail(name + ": sparse index " + std::to_string(target) + " is out of range");
             for (int c = 0; c < components; ++c)
-                data.values[target * size_t(components) + size_t(c)] =
-                    readComponent(vp + s * valueStride + size_t(c * componentSize), acc.componentType, acc.normalized);
+                data.values[target * size_t(components) + size_t(c)] = readComponent(
+                    vp + s * valueStride + size_t(c * componentSize), acc.componentType, acc.normalized);
         }
     }
     return data;
@@ -133,10 +147,19 @@ std::optional<double> extensionNumber(const tinygltf::ExtensionMap& extensions, 
 }
 
 class GltfImporter {
-public:
+  public:
     explicit GltfImporter(const tinygltf::Model& model) : model_(model) {}
 
     Scene run() {
+        // KHR_mesh_quantization needs nothing more than readAccessor's normalized/integer support.
+        auto supported = [](const std::string& ext) {
+            return ext == "KHR_lights_punctual" || ext == "KHR_materials_emissive_strength" ||
+                   ext == "KHR_mesh_quantization";
+        };
+        for (const std::string& ext : model_.extensionsRequired)
+            if (!supported(ext)) fail("requires the unsupported extension " + ext);
+        for (const std::string& ext : model_.extensionsUsed)
+            if (!supported(ext)) note("extension " + ext + " is not supported: ignored");
         if (model_.skins.size() > 0) note("skins are not supported: rendering the bind pose");
         for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(material(i));
         for (size_t i = 0; i < model_.meshes.size(); ++i) mesh(i);
@@ -148,7 +171,7 @@ public:
         return std::move(scene_);
     }
 
-private:
+  private:
     void note(const std::string& text) {
         if (std::find(scene_.notes.begin(), scene_.notes.end(), text) == scene_.notes.end())
             scene_.notes.push_back(text);
@@ -158,16 +181,19 @@ private:
     // because the two need different formats (sRGB vs UNORM) and different mip filtering.
     int texture(int gltfIndex, int texCoord, TextureKind kind) {
         if (gltfIndex < 0) return -1;
-        if (size_t(gltfIndex) >= model_.textures.size()) fail("texture index " + std::to_string(gltfIndex) + " is out of range");
+        if (size_t(gltfIndex) >= model_.textures.size())
+            fail("texture index " + std::to_string(gltfIndex) + " is out of range");
         if (texCoord != 0) note("only TEXCOORD_0 is supported: textures using other UV sets use TEXCOORD_0");
         auto key = std::make_pair(gltfIndex, kind);
         if (auto it = textureCache_.find(key); it != textureCache_.end()) return it->second;
         const tinygltf::Texture& src = model_.textures[size_t(gltfIndex)];
         if (src.source < 0 || size_t(src.source) >= model_.images.size())
-            fail("texture " + std::to_string(gltfIndex) + " has no image (image extensions such as KTX2/WebP are not supported)");
+            fail("texture " + std::to_string(gltfIndex) +
+                 " has no image (image extensions such as KTX2/WebP are not supported)");
         const tinygltf::Image& image = model_.images[size_t(src.source)];
-        std::string imageName = !image.uri.empty() ? image.uri : !image.name.empty() ? image.name
-                                                                  : "image " + std::to_string(src.source);
+        std::string imageName = !image.uri.empty()    ? image.uri
+                                : !image.name.empty() ? image.name
+                                                      : "image " + std::to_string(src.source);
         if (image.image.empty() || image.width <= 0 || image.height <= 0)
             fail("texture image '" + imageName + "' is missing or could not be decoded");
         Texture tex;
@@ -194,9 +220,11 @@ private:
         if (channels < 1 || channels > 4 || (bytes != 1 && bytes != 2))
             fail("texture image '" + name + "' has an unsupported pixel format (" + std::to_string(channels) +
                  " channels, " + std::to_string(image.bits) + " bits)");
-        if (image.image.size() < pixels * size_t(channels * bytes)) fail("texture image '" + name + "' is truncated");
+        if (image.image.size() < pixels * size_t(channels * bytes))
+            fail("texture image '" + name + "' is truncated");
         auto channel = [&](size_t pixel, int c) -> uint8_t {
-            const unsigned char* p = image.image.data() + (pixel * size_t(channels) + size_t(c)) * size_t(bytes);
+            const unsigned char* p =
+                image.image.data() + (pixel * size_t(channels) + size_t(c)) * size_t(bytes);
             if (bytes == 1) return p[0];
             uint16_t v;
             std::memcpy(&v, p, 2);
@@ -225,19 +253,25 @@ private:
         m.metallicFactor = float(pbr.metallicFactor);
         m.roughnessFactor = float(pbr.roughnessFactor);
         if (src.emissiveFactor.size() == 3) m.emissiveFactor = glm::make_vec3(src.emissiveFactor.data());
-        if (auto strength = extensionNumber(src.extensions, "KHR_materials_emissive_strength", "emissiveStrength"))
+        if (auto strength =
+                extensionNumber(src.extensions, "KHR_materials_emissive_strength", "emissiveStrength"))
             m.emissiveFactor *= float(*strength);
         m.normalScale = float(src.normalTexture.scale);
         m.occlusionStrength = float(src.occlusionTexture.strength);
         m.alphaCutoff = float(src.alphaCutoff);
-        m.alphaMode = src.alphaMode == "MASK" ? AlphaMode::Mask : src.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+        m.alphaMode = src.alphaMode == "MASK"    ? AlphaMode::Mask
+                      : src.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                 : AlphaMode::Opaque;
         m.doubleSided = src.doubleSided;
-        m.baseColorTexture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, TextureKind::Color);
-        m.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                             TextureKind::Linear);
+        m.baseColorTexture =
+            texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, TextureKind::Color);
+        m.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index,
+                                             pbr.metallicRoughnessTexture.texCoord, TextureKind::Linear);
         m.normalTexture = texture(src.normalTexture.index, src.normalTexture.texCoord, TextureKind::Normal);
-        m.emissiveTexture = texture(src.emissiveTexture.index, src.emissiveTexture.texCoord, TextureKind::Color);
-        m.occlusionTexture = texture(src.occlusionTexture.index, src.occlusionTexture.texCoord, TextureKind::Linear);
+        m.emissiveTexture =
+            texture(src.emissiveTexture.index, src.emissiveTexture.texCoord, TextureKind::Color);
+        m.occlusionTexture =
+            texture(src.occlusionTexture.index, src.occlusionTexture.texCoord, TextureKind::Linear);
         return m;
     }
 
@@ -253,18 +287,21 @@ private:
     }
 
     // Triangle-list indices for a primitive of any triangle mode.
-    static std::vector<uint32_t> triangles(const std::vector<uint32_t>& in, int mode, const std::string& where) {
+    static std::vector<uint32_t> triangles(const std::vector<uint32_t>& in, int mode,
+                                           const std::string& where) {
         if (mode == TINYGLTF_MODE_TRIANGLES) return in;
         std::vector<uint32_t> out;
         if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-            for (size_t i = 0; i + 2 < in.size(); ++i) {  // every other triangle is flipped to keep the winding
+            // Every other triangle of a strip is flipped so that all keep the strip's winding.
+            for (size_t i = 0; i + 2 < in.size(); ++i) {
                 bool odd = i & 1;
                 out.insert(out.end(), {in[i], in[odd ? i + 2 : i + 1], in[odd ? i + 1 : i + 2]});
             }
         } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
             for (size_t i = 1; i + 1 < in.size(); ++i) out.insert(out.end(), {in[i], in[i + 1], in[0]});
         } else {
-            fail(where + ": unsupported primitive mode " + std::to_string(mode) + " (only triangles, strips and fans)");
+            fail(where + ": unsupported primitive mode " + std::to_string(mode) +
+                 " (only triangles, strips and fans)");
         }
         return out;
     }
@@ -285,7 +322,8 @@ private:
             AccessorData pos = readAccessor(model_, attribute("POSITION"), where + " POSITION");
             if (pos.components < 3) fail(where + " POSITION is not a vec3");
             std::vector<Vertex> verts(pos.count);
-            for (size_t i = 0; i < pos.count; ++i) verts[i].position = glm::vec3(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2));
+            for (size_t i = 0; i < pos.count; ++i)
+                verts[i].position = glm::vec3(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2));
             auto readInto = [&](const char* name, int minComponents, auto store) {
                 if (attribute(name) < 0) return false;
                 AccessorData a = readAccessor(model_, attribute(name), where + " " + name);
@@ -298,7 +336,9 @@ private:
             bool hasNormals = readInto("NORMAL", 3, [](Vertex& v, const AccessorData& a, size_t i) {
                 v.normal = glm::vec3(a.at(i, 0), a.at(i, 1), a.at(i, 2));
             });
-            readInto("TEXCOORD_0", 2, [](Vertex& v, const AccessorData& a, size_t i) { v.uv = glm::vec2(a.at(i, 0), a.at(i, 1)); });
+            readInto("TEXCOORD_0", 2, [](Vertex& v, const AccessorData& a, size_t i) {
+                v.uv = glm::vec2(a.at(i, 0), a.at(i, 1));
+            });
             bool hasTangents = readInto("TANGENT", 4, [](Vertex& v, const AccessorData& a, size_t i) {
                 // glTF tangents are unit xyz with w = ±1; quantised data may be slightly off, so snap w.
                 v.tangent = glm::vec4(a.at(i, 0), a.at(i, 1), a.at(i, 2), a.at(i, 3) < 0.0 ? -1.0 : 1.0);
@@ -315,8 +355,8 @@ private:
             idx.resize(idx.size() - idx.size() % 3);
             for (size_t i = 0; i < idx.size(); ++i)
                 if (idx[i] >= verts.size())
-                    fail(where + ": index " + std::to_string(i) + " (= " + std::to_string(idx[i]) + ") is out of range (" +
-                         std::to_string(verts.size()) + " vertices)");
+                    fail(where + ": index " + std::to_string(i) + " (= " + std::to_string(idx[i]) +
+                         ") is out of range (" + std::to_string(verts.size()) + " vertices)");
 
             if (!hasNormals) {
                 makeFlatNormals(verts, idx);
@@ -361,7 +401,9 @@ private:
     void punctualLight(const tinygltf::Light& src) {
         Light light;
         light.name = src.name;
-        light.type = src.type == "spot" ? LightType::Spot : src.type == "point" ? LightType::Point : LightType::Directional;
+        light.type = src.type == "spot"    ? LightType::Spot
+                     : src.type == "point" ? LightType::Point
+                                           : LightType::Directional;
         if (src.color.size() == 3) light.color = glm::make_vec3(src.color.data());
         light.intensity = float(src.intensity);
         light.range = float(src.range);
@@ -388,7 +430,8 @@ private:
             }
             auto check = [&](int index, size_t size, const char* what) {
                 if (index >= 0 && size_t(index) >= size)
-                    fail("node '" + node.name + "': " + what + " index " + std::to_string(index) + " is out of range");
+                    fail("node '" + node.name + "': " + what + " index " + std::to_string(index) +
+                         " is out of range");
                 return index;
             };
             node.mesh = check(src.mesh, scene_.meshes.size(), "mesh");
@@ -398,7 +441,8 @@ private:
             for (int c : src.children) {
                 check(c, count, "child");
                 if (c < 0 || scene_.nodes[size_t(c)].parent >= 0 || size_t(c) == i)
-                    fail("node '" + node.name + "': child " + std::to_string(c) + " is invalid or has two parents");
+                    fail("node '" + node.name + "': child " + std::to_string(c) +
+                         " is invalid or has two parents");
                 scene_.nodes[size_t(c)].parent = int(i);
                 node.children.push_back(c);
             }
@@ -447,12 +491,15 @@ private:
                      std::to_string(in.count) + " key times");
             for (size_t k = 0; k < in.count; ++k) {
                 double t = in.at(k, 0);
-                if (!std::isfinite(t) || (k > 0 && t < out.times.back())) fail(where + ": key times are not increasing");
+                if (!std::isfinite(t) || (k > 0 && t < out.times.back()))
+                    fail(where + ": key times are not increasing");
                 out.times.push_back(float(t));
             }
             for (size_t k = 0; k < values.count; ++k) {
-                glm::vec4 v(values.at(k, 0), values.at(k, 1), values.at(k, 2), wanted == 4 ? values.at(k, 3) : 0.0);
-                if (!std::isfinite(v.x + v.y + v.z + v.w)) fail(where + ": key value " + std::to_string(k) + " is not finite");
+                glm::vec4 v(values.at(k, 0), values.at(k, 1), values.at(k, 2),
+                            wanted == 4 ? values.at(k, 3) : 0.0);
+                if (!std::isfinite(v.x + v.y + v.z + v.w))
+                    fail(where + ": key value " + std::to_string(k) + " is not finite");
                 out.values.push_back(v);
             }
             anim.duration = std::max(anim.duration, out.times.back());

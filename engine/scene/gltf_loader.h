@@ -1,9 +1,9 @@
 // glTF 2.0 import (.gltf with external or embedded buffers, and .glb) into the flat vct::Scene.
 #pragma once
 
-#include "scene/scene.h"
-
 #include <string>
+
+#include "scene/scene.h"
 
 namespace vct {
 

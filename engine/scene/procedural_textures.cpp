@@ -1,15 +1,16 @@
 #include "scene/procedural_textures.h"
 
-#include <glm/gtc/constants.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 
 namespace vct {
 
 namespace {
 
-uint8_t unorm8(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+uint8_t unorm8(float v) {
+    return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
 
 Texture blank(const std::string& name, TextureKind kind, uint32_t size) {
     Texture tex;
@@ -47,7 +48,8 @@ Texture makeBumpNormalMap(const std::string& name, uint32_t size, uint32_t perio
 Texture makeRoughnessStripes(const std::string& name, uint32_t size, uint32_t bands, float minRoughness,
                              float maxRoughness, float metallic) {
     Texture tex = blank(name, TextureKind::Linear, size);
-    tex.wrapS = tex.wrapT = TextureWrap::ClampToEdge;  // one set of stripes across the surface, no wrap-around
+    tex.wrapS = tex.wrapT =
+        TextureWrap::ClampToEdge;  // one set of stripes across the surface, no wrap-around
     for (uint32_t row = 0; row < size; ++row) {
         for (uint32_t col = 0; col < size; ++col) {
             uint32_t band = std::min(bands - 1, col * bands / size);

@@ -2,10 +2,10 @@
 // their full mip chain (buildMipChain).
 #pragma once
 
-#include "scene/scene.h"
-
 #include <cstdint>
 #include <string>
+
+#include "scene/scene.h"
 
 namespace vct {
 

@@ -1,13 +1,12 @@
 // Scene evaluation (animation, instances, bounds), default camera/light, validation and mip chains.
 #include "scene/scene.h"
 
-#include "core/error.h"
-
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
 
 namespace vct {
 
@@ -29,7 +28,9 @@ glm::mat4 Node::localMatrix() const {
 
 namespace {
 
-glm::quat toQuat(const glm::vec4& xyzw) { return glm::quat(xyzw.w, xyzw.x, xyzw.y, xyzw.z); }
+glm::quat toQuat(const glm::vec4& xyzw) {
+    return glm::quat(xyzw.w, xyzw.x, xyzw.y, xyzw.z);
+}
 
 // glTF stores unit quaternions, but interpolated or quantised ones drift; a zero one becomes identity.
 glm::quat normalizedQuat(const glm::quat& q) {
@@ -56,7 +57,8 @@ glm::vec4 sampleChannel(const AnimationChannel& ch, float t) {
             return value(k);
         case Interpolation::Linear:
             if (rotation) {
-                glm::quat q = glm::slerp(normalizedQuat(toQuat(value(k))), normalizedQuat(toQuat(value(k1))), u);
+                glm::quat q =
+                    glm::slerp(normalizedQuat(toQuat(value(k))), normalizedQuat(toQuat(value(k1))), u);
                 return glm::vec4(q.x, q.y, q.z, q.w);
             }
             return glm::mix(value(k), value(k1), u);
@@ -65,7 +67,8 @@ glm::vec4 sampleChannel(const AnimationChannel& ch, float t) {
             float u2 = u * u, u3 = u2 * u;
             glm::vec4 p0 = ch.values[k * 3 + 1], m0 = ch.values[k * 3 + 2] * dt;
             glm::vec4 p1 = ch.values[k1 * 3 + 1], m1 = ch.values[k1 * 3 + 0] * dt;
-            return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1;
+            return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 +
+                   (u3 - u2) * m1;
         }
     }
     return value(k);
@@ -105,29 +108,48 @@ glm::quat lookRotation(const glm::vec3& dir) {
 }  // namespace
 
 std::vector<glm::mat4> Scene::evaluate(float timeSeconds) const {
-    std::vector<Node> posed = nodes;
+    // Only the TRS of each node changes; keep just those (this runs every frame) instead of copying nodes.
+    struct Pose {
+        glm::vec3 t;
+        glm::quat r;
+        glm::vec3 s;
+    };
+    std::vector<Pose> pose(nodes.size());
+    for (size_t n = 0; n < nodes.size(); ++n)
+        pose[n] = {nodes[n].translation, nodes[n].rotation, nodes[n].scale};
     for (const Animation& anim : animations) {
         // Loop: every animation wraps over its own duration (negative times wrap too).
         float t = anim.duration > 0.0f ? std::fmod(timeSeconds, anim.duration) : 0.0f;
         if (t < 0.0f) t += anim.duration;
         for (const AnimationChannel& ch : anim.channels) {
-            if (ch.node < 0 || static_cast<size_t>(ch.node) >= posed.size() || ch.times.empty()) continue;
+            if (ch.node < 0 || static_cast<size_t>(ch.node) >= pose.size() || ch.times.empty()) continue;
             size_t needed = ch.times.size() * (ch.interpolation == Interpolation::CubicSpline ? 3 : 1);
             if (ch.values.size() < needed) continue;
-            Node& node = posed[static_cast<size_t>(ch.node)];
+            Pose& p = pose[static_cast<size_t>(ch.node)];
             glm::vec4 v = sampleChannel(ch, t);
             switch (ch.path) {
-                case AnimationPath::Translation: node.translation = glm::vec3(v); break;
-                case AnimationPath::Rotation: node.rotation = normalizedQuat(toQuat(v)); break;
-                case AnimationPath::Scale: node.scale = glm::vec3(v); break;
+                case AnimationPath::Translation:
+                    p.t = glm::vec3(v);
+                    break;
+                case AnimationPath::Rotation:
+                    p.r = normalizedQuat(toQuat(v));
+                    break;
+                case AnimationPath::Scale:
+                    p.s = glm::vec3(v);
+                    break;
             }
         }
     }
     std::vector<glm::mat4> world(nodes.size(), glm::mat4(1.0f));
-    for (int n : topologicalOrder(posed, parentlessNodes(posed))) {
-        const Node& node = posed[static_cast<size_t>(n)];
-        glm::mat4 local = node.localMatrix();
-        world[static_cast<size_t>(n)] = node.parent >= 0 ? world[static_cast<size_t>(node.parent)] * local : local;
+    for (int n : topologicalOrder(nodes, parentlessNodes(nodes))) {
+        const Node& node = nodes[static_cast<size_t>(n)];
+        const Pose& p = pose[static_cast<size_t>(n)];
+        // A node with a matrix cannot be animated (glTF), so its matrix is its pose.
+        glm::mat4 local = node.matrix ? *node.matrix
+                                      : glm::translate(glm::mat4(1.0f), p.t) * glm::mat4_cast(p.r) *
+                                            glm::scale(glm::mat4(1.0f), p.s);
+        world[static_cast<size_t>(n)] =
+            node.parent >= 0 ? world[static_cast<size_t>(node.parent)] * local : local;
     }
     return world;
 }
@@ -136,7 +158,8 @@ std::vector<bool> Scene::animatedNodes() const {
     std::vector<bool> animated(nodes.size(), false);
     for (const Animation& anim : animations)
         for (const AnimationChannel& ch : anim.channels)
-            if (ch.node >= 0 && static_cast<size_t>(ch.node) < nodes.size()) animated[static_cast<size_t>(ch.node)] = true;
+            if (ch.node >= 0 && static_cast<size_t>(ch.node) < nodes.size())
+                animated[static_cast<size_t>(ch.node)] = true;
     for (int n : topologicalOrder(nodes, parentlessNodes(nodes))) {
         int p = nodes[static_cast<size_t>(n)].parent;
         if (p >= 0 && animated[static_cast<size_t>(p)]) animated[static_cast<size_t>(n)] = true;
@@ -151,7 +174,8 @@ std::vector<Instance> Scene::instances(float timeSeconds) const {
     for (int n : topologicalOrder(nodes, roots)) {
         const Node& node = nodes[static_cast<size_t>(n)];
         if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= meshes.size()) continue;
-        out.push_back(Instance{n, node.mesh, world[static_cast<size_t>(n)], animated[static_cast<size_t>(n)]});
+        out.push_back(
+            Instance{n, node.mesh, world[static_cast<size_t>(n)], animated[static_cast<size_t>(n)]});
     }
     return out;
 }
@@ -215,15 +239,23 @@ void Scene::addDefaultsIfMissing() {
 
 namespace {
 
-bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isfinite(v.w); }
+bool finite(const glm::vec2& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y);
+}
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite(const glm::vec4& v) {
+    return finite(glm::vec3(v)) && std::isfinite(v.w);
+}
 
 }  // namespace
 
 void Scene::validate() const {
     auto fail = [](const std::string& what) { throw Error(what); };
-    auto quoted = [](const std::string& s, size_t i) { return "'" + (s.empty() ? "#" + std::to_string(i) : s) + "'"; };
+    auto quoted = [](const std::string& s, size_t i) {
+        return "'" + (s.empty() ? "#" + std::to_string(i) : s) + "'";
+    };
 
     for (size_t t = 0; t < textures.size(); ++t) {
         const Texture& tex = textures[t];
@@ -234,12 +266,13 @@ void Scene::validate() const {
     }
     for (size_t m = 0; m < materials.size(); ++m) {
         const Material& mat = materials[m];
-        for (int tex : {mat.baseColorTexture, mat.metallicRoughnessTexture, mat.normalTexture, mat.emissiveTexture,
-                        mat.occlusionTexture})
+        for (int tex : {mat.baseColorTexture, mat.metallicRoughnessTexture, mat.normalTexture,
+                        mat.emissiveTexture, mat.occlusionTexture})
             if (tex < -1 || tex >= static_cast<int>(textures.size()))
-                fail("material " + quoted(mat.name, m) + ": texture index " + std::to_string(tex) + " is out of range");
-        if (!finite(mat.baseColorFactor) || !finite(mat.emissiveFactor) || !std::isfinite(mat.metallicFactor) ||
-            !std::isfinite(mat.roughnessFactor))
+                fail("material " + quoted(mat.name, m) + ": texture index " + std::to_string(tex) +
+                     " is out of range");
+        if (!finite(mat.baseColorFactor) || !finite(mat.emissiveFactor) ||
+            !std::isfinite(mat.metallicFactor) || !std::isfinite(mat.roughnessFactor))
             fail("material " + quoted(mat.name, m) + ": a factor is not finite");
     }
     for (size_t me = 0; me < meshes.size(); ++me) {
@@ -264,9 +297,9 @@ void Scene::validate() const {
             }
             for (uint32_t v = 0; v < prim.vertexCount; ++v) {
                 const Vertex& vert = vertices[size_t(prim.vertexOffset) + v];
-                const char* bad = !finite(vert.position) ? "position"
-                                  : !finite(vert.normal) ? "normal"
-                                  : !finite(vert.uv)     ? "texture coordinate"
+                const char* bad = !finite(vert.position)  ? "position"
+                                  : !finite(vert.normal)  ? "normal"
+                                  : !finite(vert.uv)      ? "texture coordinate"
                                   : !finite(vert.tangent) ? "tangent"
                                                           : nullptr;
                 if (bad) fail(where + "vertex " + std::to_string(v) + " has a non-finite " + bad);
@@ -281,12 +314,12 @@ void Scene::validate() const {
         if (node.light >= static_cast<int>(lights.size())) fail(where + "light index is out of range");
         for (int c : node.children)
             if (c < 0 || c >= static_cast<int>(nodes.size())) fail(where + "child index is out of range");
-        bool finiteTransform = finite(node.translation) && finite(node.scale) &&
-                               finite(glm::vec4(node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w));
+        bool finiteTransform =
+            finite(node.translation) && finite(node.scale) &&
+            finite(glm::vec4(node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w));
         if (node.matrix)
             for (int c = 0; c < 4; ++c) finiteTransform = finiteTransform && finite((*node.matrix)[c]);
-        if (!finiteTransform)
-            fail(where + "transform is not finite");
+        if (!finiteTransform) fail(where + "transform is not finite");
     }
     if (instances(0.0f).empty()) fail("scene " + quoted(name, 0) + " has no mesh instances: nothing to draw");
 }
@@ -294,7 +327,9 @@ void Scene::validate() const {
 namespace {
 
 // sRGB transfer functions (IEC 61966-2-1), used so Color mips average light, not encoded values.
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+float srgbToLinear(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
 float linearToSrgb(float c) {
     c = std::clamp(c, 0.0f, 1.0f);
     return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
@@ -309,7 +344,8 @@ void buildMipChain(Texture& texture) {
 
     // Work in float from level 0 to the last level so rounding does not accumulate level after level.
     std::array<float, 256> decode{};
-    for (int i = 0; i < 256; ++i) decode[static_cast<size_t>(i)] = srgb ? srgbToLinear(i / 255.0f) : i / 255.0f;
+    for (int i = 0; i < 256; ++i)
+        decode[static_cast<size_t>(i)] = srgb ? srgbToLinear(i / 255.0f) : i / 255.0f;
     uint32_t w = texture.width, h = texture.height;
     std::vector<float> level(size_t(w) * h * 4);
     const std::vector<uint8_t>& base = texture.mips[0];

@@ -6,7 +6,9 @@ namespace vct {
 
 namespace {
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // Unit vector or `fallback` when v is zero, tiny or not finite, so nothing downstream sees a NaN.
 glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
@@ -19,7 +21,7 @@ glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
 
 glm::vec3 anyPerpendicular(const glm::vec3& n) {
     // Cross with the axis least aligned with n: never parallel, so the result is well conditioned.
-    glm::vec3 a = std::abs(n.x) < 0.577f ? glm::vec3(1, 0, 0)
+    glm::vec3 a = std::abs(n.x) < 0.577f   ? glm::vec3(1, 0, 0)
                   : std::abs(n.y) < 0.577f ? glm::vec3(0, 1, 0)
                                            : glm::vec3(0, 0, 1);
     return safeNormalize(glm::cross(n, a), glm::vec3(1, 0, 0));
@@ -31,7 +33,8 @@ void generateTangents(std::span<Vertex> vertices, std::span<const uint32_t> indi
 
     for (size_t i = 0; i + 2 < indices.size(); i += 3) {
         uint32_t ia = indices[i], ib = indices[i + 1], ic = indices[i + 2];
-        if (ia >= vertices.size() || ib >= vertices.size() || ic >= vertices.size()) continue;  // validate() reports it
+        if (ia >= vertices.size() || ib >= vertices.size() || ic >= vertices.size())
+            continue;  // validate() reports it
         const Vertex& a = vertices[ia];
         const Vertex& b = vertices[ib];
         const Vertex& c = vertices[ic];
@@ -64,7 +67,8 @@ void generateTangents(std::span<Vertex> vertices, std::span<const uint32_t> indi
         } else {
             // dP/du is parallel to the normal or unknown: derive it from the bitangent if that is usable.
             glm::vec3 fromBit = glm::cross(bt, n);
-            t = glm::length(fromBit) > 1e-12f ? safeNormalize(fromBit, anyPerpendicular(n)) : anyPerpendicular(n);
+            t = glm::length(fromBit) > 1e-12f ? safeNormalize(fromBit, anyPerpendicular(n))
+                                              : anyPerpendicular(n);
         }
         float w = glm::dot(glm::cross(n, t), bt) < 0.0f ? -1.0f : 1.0f;
         vertices[v].tangent = glm::vec4(t, w);
@@ -81,9 +85,9 @@ void makeFlatNormals(std::vector<Vertex>& vertices, std::vector<uint32_t>& indic
             // An out-of-range index keeps a zero vertex here; the caller validates indices before this.
             corner[k] = index < vertices.size() ? vertices[index] : Vertex{};
         }
-        glm::vec3 n = safeNormalize(glm::cross(corner[1].position - corner[0].position,
-                                               corner[2].position - corner[0].position),
-                                    glm::vec3(0, 0, 1));
+        glm::vec3 n = safeNormalize(
+            glm::cross(corner[1].position - corner[0].position, corner[2].position - corner[0].position),
+            glm::vec3(0, 0, 1));
         for (Vertex& c : corner) {
             c.normal = n;
             flat.push_back(c);

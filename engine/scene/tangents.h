@@ -2,11 +2,11 @@
 // per-vertex tangents (for normal maps) and normals (flat, as the glTF spec requires when absent).
 #pragma once
 
-#include "scene/scene.h"
-
 #include <cstdint>
 #include <span>
 #include <vector>
+
+#include "scene/scene.h"
 
 namespace vct {
 
