@@ -91,6 +91,8 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     u.ambient = glm::vec4(settings_.ambient, settings_.exposure);
     u.shadowParams = glm::vec4(gpuScene_.shadowTexelWorldSize(), 1.0f / float(VCT_SHADOW_MAP_SIZE),
                                float(gpuScene_.lightCount()), float(gpuScene_.shadowLightIndex()));
+    u.materialParams = glm::vec4(settings_.toksvig ? 1.0f : 0.0f, settings_.specularAA ? 1.0f : 0.0f, 0.0f, 0.0f);
+    u.voxelParams = glm::vec4(0.0f, 0.0f, settings_.gi ? 1.0f : 0.0f, float(settings_.traceScale));
     std::memcpy(frameUniforms_.mapped(), &u, sizeof(u));
     previousViewProj_ = u.viewProj;
     hasPrevious_ = true;

@@ -29,6 +29,9 @@ struct FrameUniforms {
     vec4 ambient;          // rgb: constant ambient radiance (stand-in for GI), w: exposure
     vec4 shadowParams;     // x: normal offset (world units per shadow texel), y: 1/shadow map size,
                            // z: number of lights, w: main light index or -1 when none is shadowed
+    vec4 voxelOrigin;      // xyz: world position of the voxel grid's min corner, w: voxel size (world units)
+    vec4 voxelParams;      // x: resolution N (N³ voxels), y: mip count, z: 1 when GI is on, w: trace scale
+    vec4 materialParams;   // x: 1 when Toksvig roughness is on, y: 1 when geometric specular AA is on
 };
 
 #define VCT_LIGHT_DIRECTIONAL 0
@@ -90,7 +93,7 @@ struct DrawPushConstants {
 #define VCT_COMPOSITE_BINDING_LDR 3
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameUniforms) == 6 * 64 + 4 * 16);
+static_assert(sizeof(FrameUniforms) == 6 * 64 + 7 * 16);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(GpuInstance) == 192);
