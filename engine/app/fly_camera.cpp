@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace vct {
 
-FlyCamera::FlyCamera(const CameraView& start, float speed) : lens_(start), speed_(speed) {
+FlyCamera::FlyCamera(const CameraView& start, float speed) : start_(start), speed_(speed) {
     const glm::mat4 cameraToWorld = glm::inverse(start.view);
     position_ = glm::vec3(cameraToWorld[3]);
     const glm::vec3 f = glm::normalize(-glm::vec3(cameraToWorld[2]));  // the camera looks along its -Z
@@ -21,6 +22,9 @@ glm::vec3 FlyCamera::forward() const {
 }
 
 void FlyCamera::update(const FlyInput& input) {
+    // An idle frame keeps the pose, and with it the exact start view.
+    if (input.look == glm::vec2(0.0f) && (input.move == glm::vec3(0.0f) || input.dt == 0.0f)) return;
+    moved_ = true;
     yaw_ -= input.look.x;
     pitch_ = std::clamp(pitch_ + input.look.y, -kMaxPitch, kMaxPitch);
     // Keep yaw bounded so float precision does not drift after long sessions of turning one way.
@@ -37,7 +41,9 @@ void FlyCamera::update(const FlyInput& input) {
 }
 
 CameraView FlyCamera::view() const {
-    CameraView v = lens_;
+    // Rebuilding the start view from yaw/pitch would differ from it by rounding; return it as given.
+    if (!moved_) return start_;
+    CameraView v = start_;
     v.view = glm::lookAt(position_, position_ + forward(), glm::vec3(0.0f, 1.0f, 0.0f));
     return v;
 }

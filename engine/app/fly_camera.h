@@ -1,5 +1,6 @@
 // A free-flying camera for the demo window, kept free of GLFW so its math is unit-tested: yaw about world +Y,
-// pitch clamped short of straight up/down (where yaw would become meaningless), and moves in the camera's frame.
+// pitch clamped short of straight up/down (where yaw would become meaningless), and moves in the camera's
+// frame.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -20,8 +21,9 @@ public:
     static constexpr float kFastFactor = 4.0f;
     static constexpr float kMaxPitch = 1.55f;  // ≈ 89°
 
-    // Starts where `start` is, looking the same way (any roll is dropped), keeping its lens;
-    // `speed` is in world units per second.
+    // Starts where `start` is, looking the same way, keeping its lens; `speed` is in world units per second.
+    // Until the first turn or move, view() is `start` exactly (so scripted demo frames match `vct render`);
+    // after that any roll of `start` is dropped.
     FlyCamera(const CameraView& start, float speed);
 
     void update(const FlyInput& input);
@@ -34,7 +36,8 @@ public:
     float speed() const { return speed_; }
 
 private:
-    CameraView lens_;  // yfov, znear, zfar of the start view
+    CameraView start_;  // also the lens (yfov, znear, zfar) kept after moving
+    bool moved_ = false;
     glm::vec3 position_{0.0f};
     float yaw_ = 0.0f;    // 0 looks along -Z; positive turns left (counter-clockwise seen from above)
     float pitch_ = 0.0f;  // 0 is level; positive looks up
