@@ -1,9 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // composite: linear HDR result, then exposure, tone map and sRGB encoding for display.
+// With GI on (frame.voxelParams.z): direct + albedo·diffuse·occlusion + specularDfg(F0, DFG)·specular, where
+// diffuse and specular are the demodulated cone-traced incoming radiance (lib/cone.glsl) and DFG the split-sum
+// table with multiple-scattering energy compensation (brdf.glsl). With GI off, direct already holds the
+// constant ambient term.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
+#include "lib/brdf.glsl"
 #include "lib/color.glsl"
+#include "lib/gbuffer_read.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
@@ -11,11 +17,41 @@ layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame
 layout(set = 0, binding = VCT_COMPOSITE_BINDING_DIRECT, rgba16f) uniform readonly image2D directImage;
 layout(set = 0, binding = VCT_COMPOSITE_BINDING_HDR, rgba32f) uniform writeonly image2D hdrImage;
 layout(set = 0, binding = VCT_COMPOSITE_BINDING_LDR, rgba8) uniform writeonly image2D ldrImage;
+layout(set = 0, binding = VCT_COMPOSITE_BINDING_DEPTH) uniform sampler2D depthTexture;
+layout(set = 0, binding = VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC) uniform sampler2D baseColorMetallicTexture;
+layout(set = 0, binding = VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION) uniform sampler2D emissiveOcclusionTexture;
+layout(set = 0, binding = VCT_COMPOSITE_BINDING_DIFFUSE, rgba16f) uniform readonly image2D diffuseImage;
+layout(set = 0, binding = VCT_COMPOSITE_BINDING_SPECULAR, rgba16f) uniform readonly image2D specularImage;
+layout(set = 0, binding = VCT_COMPOSITE_BINDING_DFG) uniform sampler2D dfgTable;
+
+// Indirect light leaving the surface at `pixel` towards the camera.
+vec3 indirect(ivec2 pixel) {
+    const float depth = texelFetch(depthTexture, pixel, 0).r;
+    if (isBackground(depth)) return vec3(0.0);  // the background's radiance is already in direct
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
+    const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
+    const float occlusion = texelFetch(emissiveOcclusionTexture, pixel, 0).a;
+    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
+    const float nLength = length(normalRoughness.xyz);
+    const vec3 n = nLength > 1e-6 ? normalRoughness.xyz / nLength : vec3(0.0, 1.0, 0.0);
+    const vec3 v = normalize(frame.cameraPosition.xyz - p);
+    const float NoV = max(dot(n, v), MIN_N_DOT_V);
+    // Table texel centres are at (i + 0.5)/size for both axes, so (n·v, roughness) is the uv directly.
+    const vec2 dfg = textureLod(dfgTable, vec2(NoV, saturate(normalRoughness.w)), 0.0).rg;
+    const vec3 albedo = diffuseAlbedo(baseColorMetallic.rgb, baseColorMetallic.a);
+    const vec3 f0 = f0FromMetallic(baseColorMetallic.rgb, baseColorMetallic.a);
+    const vec3 diffuse = imageLoad(diffuseImage, pixel).rgb;
+    const vec3 specular = imageLoad(specularImage, pixel).rgb;
+    return albedo * diffuse * occlusion + specularDfg(f0, dfg) * specular;
+}
 
 void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.imageSize.xy)))) return;
-    const vec3 hdr = imageLoad(directImage, pixel).rgb;
+    vec3 hdr = imageLoad(directImage, pixel).rgb;
+    if (frame.voxelParams.z > 0.5) hdr += indirect(pixel);
     imageStore(hdrImage, pixel, vec4(hdr, 1.0));
     imageStore(ldrImage, pixel, vec4(linearToSrgb(toneMapAces(hdr, frame.ambient.w)), 1.0));
 }

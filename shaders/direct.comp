@@ -87,10 +87,13 @@ void main() {
         if (i == shadowLight && any(greaterThan(reflected, vec3(0.0)))) reflected *= shadowVisibility(p, n);
         radiance += reflected;
     }
-    // Constant ambient (replaced by cone-traced indirect light): a uniform environment of radiance
-    // `ambient` reflected by the diffuse albedo plus F0, attenuated by the material's occlusion.
-    const vec3 albedo = diffuseAlbedo(baseColorMetallic.rgb, baseColorMetallic.a);
-    const vec3 f0 = f0FromMetallic(baseColorMetallic.rgb, baseColorMetallic.a);
-    radiance += frame.ambient.rgb * (albedo + f0) * emissiveOcclusion.a;
+    // Constant ambient, only with GI off (with GI on, composite adds the cone-traced indirect light instead):
+    // a uniform environment of radiance `ambient` reflected by the diffuse albedo plus F0, attenuated by the
+    // material's occlusion.
+    if (frame.voxelParams.z < 0.5) {
+        const vec3 albedo = diffuseAlbedo(baseColorMetallic.rgb, baseColorMetallic.a);
+        const vec3 f0 = f0FromMetallic(baseColorMetallic.rgb, baseColorMetallic.a);
+        radiance += frame.ambient.rgb * (albedo + f0) * emissiveOcclusion.a;
+    }
     imageStore(outputImage, pixel, vec4(radiance, 1.0));
 }

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/aux_output.h"
 #include "app/cli.h"
 #include "app/commands.h"
 #include "app/session.h"
@@ -13,17 +14,26 @@ namespace vct {
 
 namespace {
 
-const CommandSpec& renderSpec() {
-    static const CommandSpec spec(
-        "render", "Renders frames headless (no window) and writes DIR/final.png, DIR/final.exr, DIR/timings.json.",
-        {{"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
+std::vector<Option> renderOptions() {
+    std::vector<Option> options = {{"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
          {"size", "WxH", "image size in pixels", "1280x720"},
          {"frames", "N", "frames to render; the scene advances 1/60 s per frame from t = 0", "60"},
          {"warmup", "K", "frames left out of the timing statistics (default: min(10, frames/4))", ""},
          {"out", "DIR", "output directory (created if missing)", "out"},
          {"exposure", "X", "linear exposure before tone mapping", "1"},
          {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
-         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""}});
+         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
+         {"aux", "", "also write every buffer as EXR: direct, normal, roughness, albedo, depth (and indirect)", ""},
+         {"view", "BUFFER", "what final.png shows: final, direct, diffuse, specular, normals, roughness", "final"}};
+    for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
+    for (Option& option : giOptions()) options.push_back(std::move(option));
+    return options;
+}
+
+const CommandSpec& renderSpec() {
+    static const CommandSpec spec(
+        "render", "Renders frames headless (no window) and writes DIR/final.png, DIR/final.exr, DIR/timings.json.",
+        renderOptions());
     return spec;
 }
 
@@ -37,6 +47,7 @@ int runRenderCommand(int argc, char** argv, int first) {
     const uint32_t frames = args.getUint("frames", 1, 100000);
     const uint32_t warmup = args.has("warmup") ? args.getUint("warmup", 0, frames - 1) : std::min(10u, frames / 4);
     const std::filesystem::path outDir = args.get("out");
+    const AuxView view = parseAuxView(args.get("view"));
 
     {
         Session session(options);
@@ -56,7 +67,7 @@ int runRenderCommand(int argc, char** argv, int first) {
         }
 
         const uint32_t w = renderer.settings().width, h = renderer.settings().height;
-        writePng(outDir / "final.png", w, h, renderer.readLdr());
+        writePng(outDir / "final.png", w, h, viewImage(renderer, view));
         writeExr(outDir / "final.exr", w, h, renderer.readFloatImage(renderer.targets().hdr));
 
         TimingReport report;
@@ -68,6 +79,9 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.passes = renderer.timer().passStats();
         report.frame = renderer.timer().frameStats();
         writeTimingsJson(outDir / "timings.json", report);
+        if (args.has("aux"))
+            for (const std::string& name : writeAuxImages(renderer, outDir))
+                std::printf("wrote %s\n", (outDir / name).c_str());
         std::printf("%s", formatTimingTable(report).c_str());
         std::printf("wrote %s, %s, %s\n", (outDir / "final.png").c_str(), (outDir / "final.exr").c_str(),
                     (outDir / "timings.json").c_str());

@@ -17,7 +17,43 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
     options.settings.exposure = args.getFloat("exposure", 1e-4f, 1e4f);
     options.context.deviceSubstring = args.get("device");
     options.context.validation = args.has("validate");
+    // Material filtering (DESIGN §3.2): only commands that declare the flags (materialFilterOptions) see them.
+    auto onOff = [&](const std::string& name, bool fallback) {
+        if (!args.has(name)) return fallback;
+        const std::string value = args.get(name);
+        if (value == "on") return true;
+        if (value == "off") return false;
+        throw UsageError("--" + name + " '" + value + "': expected on or off");
+    };
+    options.settings.toksvig = onOff("toksvig", options.settings.toksvig);
+    options.settings.specularAA = onOff("specular-aa", options.settings.specularAA);
+    // Global illumination (DESIGN §3.6), likewise only where declared (giOptions).
+    options.settings.gi = onOff("gi", options.settings.gi);
+    if (args.has("trace-scale")) {
+        const std::string value = args.get("trace-scale");
+        if (value != "1" && value != "2" && value != "4")
+            throw UsageError("--trace-scale '" + value + "': expected 1, 2 or 4");
+        options.settings.traceScale = uint32_t(std::stoul(value));
+    }
+    // 0 (flag absent) lets the renderer choose from the device (render/voxel_grid.h); N must be a power of two.
+    if (args.has("voxels")) {
+        options.settings.voxelResolution = args.getUint("voxels", 32, 256);
+        if ((options.settings.voxelResolution & (options.settings.voxelResolution - 1)) != 0)
+            throw UsageError("--voxels " + args.get("voxels") + ": expected a power of two (32, 64, 128 or 256)");
+    }
     return options;
+}
+
+std::vector<Option> materialFilterOptions() {
+    return {{"toksvig", "on|off", "Toksvig roughness from normal-map mips (DESIGN 3.2)", "on"},
+            {"specular-aa", "on|off", "geometric specular anti-aliasing from normal derivatives", "on"}};
+}
+
+std::vector<Option> giOptions() {
+    return {{"gi", "on|off", "cone-traced indirect light; off: the constant ambient term instead", "on"},
+            {"trace-scale", "1|2|4", "trace indirect light at 1/S of the resolution per axis", "1"},
+            {"voxels", "N", "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
+             ""}};
 }
 
 Session::Session(const SessionOptions& options) {

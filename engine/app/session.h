@@ -18,8 +18,15 @@ struct SessionOptions {
     vk::ContextOptions context;
 };
 
-// Reads --scene, --size, --exposure, --device and --validate.
+// Reads --scene, --size, --exposure, --device and --validate; --toksvig and --specular-aa (on|off) when the
+// command declares them.
 SessionOptions sessionOptions(const ParsedArgs& args);
+
+// The --toksvig and --specular-aa options, for a command's CommandSpec (both default on).
+std::vector<Option> materialFilterOptions();
+
+// The --gi (on|off) and --trace-scale (1|2|4) options, for a command's CommandSpec.
+std::vector<Option> giOptions();
 
 class Session {
 public:

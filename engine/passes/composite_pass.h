@@ -1,7 +1,9 @@
-// composite: the frame's linear HDR result (direct; indirect joins in the cone-tracing issue) and its
-// tone-mapped sRGB version for the PNG and the window.
+// composite: the frame's linear HDR result — direct light plus, with GI on, the indirect light re-modulated:
+// albedo·diffuse·occlusion + specularDfg(F0, DFG(n·v, roughness))·specular (multiple-scattering energy
+// compensation, seed 002) — and its tone-mapped sRGB version for the PNG and the window.
 #pragma once
 
+#include "render/dfg_lut.h"
 #include "render/pass.h"
 #include "vk/pipeline.h"
 
@@ -16,6 +18,7 @@ public:
 
 private:
     vk::Pipeline pipeline_;
+    DfgLut dfg_;
 };
 
 }  // namespace vct

@@ -2,9 +2,11 @@
 
 namespace vct {
 
-void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, uint32_t shadowMapSize) {
+void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, uint32_t shadowMapSize,
+                          uint32_t scale) {
     width = w;
     height = h;
+    traceScale = scale < 1 ? 1 : scale;
     auto make = [&](uint32_t iw, uint32_t ih, VkFormat format, VkImageUsageFlags usage) {
         vk::ImageDesc desc;
         desc.width = iw;
@@ -24,6 +26,12 @@ void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, ui
     emissiveOcclusion = make(w, h, kEmissiveOcclusionFormat, attachment);
     motion = make(w, h, kMotionFormat, attachment);
     direct = make(w, h, kRadianceFormat, storage);
+    // Low res rounds up, so that every full-res pixel has a low-res sample at or beyond it to filter with.
+    const uint32_t lowW = (w + traceScale - 1) / traceScale, lowH = (h + traceScale - 1) / traceScale;
+    diffuseIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
+    specularIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
+    diffuseIndirect = make(w, h, kRadianceFormat, storage);
+    specularIndirect = make(w, h, kRadianceFormat, storage);
     hdr = make(w, h, kHdrFormat, storage);
     ldr = make(w, h, kLdrFormat, storage);
 }

@@ -23,12 +23,20 @@ struct FrameTargets {
     vk::Image emissiveOcclusion;  // emitted radiance (rgb), ambient occlusion (a)
     vk::Image motion;             // screen-space motion in UV units: uv_previous = uv - motion
     vk::Image direct;             // direct light + emission (linear HDR)
+    // Demodulated indirect light (lib/cone.glsl): diffuse = cosine-weighted mean incoming radiance (× albedo
+    // in composite), specular = incoming radiance along the specular cone (× DFG in composite).
+    vk::Image diffuseIndirectLow;   // trace output, ceil(w/s) × ceil(h/s) for trace scale s
+    vk::Image specularIndirectLow;
+    vk::Image diffuseIndirect;      // upsample output, full res
+    vk::Image specularIndirect;
     vk::Image hdr;                // final linear HDR (what final.exr holds)
     vk::Image ldr;                // final tone-mapped sRGB (what final.png holds and the window shows)
 
     uint32_t width = 0, height = 0;
+    uint32_t traceScale = 1;
 
-    void create(const vk::Context& context, uint32_t width, uint32_t height, uint32_t shadowMapSize);
+    void create(const vk::Context& context, uint32_t width, uint32_t height, uint32_t shadowMapSize,
+                uint32_t traceScale = 1);
 };
 
 }  // namespace vct

@@ -7,7 +7,12 @@
 #include "passes/composite_pass.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
+#include "passes/inject_pass.h"
 #include "passes/shadow_pass.h"
+#include "passes/trace_pass.h"
+#include "passes/upsample_pass.h"
+#include "passes/voxel_mips_pass.h"
+#include "passes/voxelize_pass.h"
 #include "vk/check.h"
 
 namespace vct {
@@ -24,12 +29,28 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         throw UsageError("size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                          " exceeds the device's maximum image dimension " +
                          std::to_string(limits.maxImageDimension2D));
-    targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE);
+    targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE, settings.traceScale);
     createSamplers();
     // The frame, in order (DESIGN §2).
     passes_.push_back(std::make_unique<ShadowPass>(context));
+    if (settings.gi) {
+        // The voxel grid and its light (DESIGN §3.6); inject reads the shadow map drawn just before.
+        voxelGrid_ = std::make_unique<VoxelGrid>(context, scene, chooseVoxelResolution(context, settings));
+        settings_.voxelResolution = voxelGrid_->resolution();
+        passes_.push_back(std::make_unique<VoxelizePass>(context, *voxelGrid_));
+        passes_.push_back(std::make_unique<InjectPass>(context, *voxelGrid_));
+        passes_.push_back(std::make_unique<VoxelMipsPass>(context, *voxelGrid_));
+    }
     passes_.push_back(std::make_unique<GBufferPass>(context));
     passes_.push_back(std::make_unique<DirectPass>(context));
+    if (settings.gi) {
+        // Indirect light: traced at low resolution, brought back to full resolution (DESIGN §3.5, §3.6).
+        auto trace = std::make_unique<TracePass>(context);
+        tracePass_ = trace.get();
+        tracePass_->setVoxels({&voxelGrid_->radiance(), voxelGrid_->sampler()});
+        passes_.push_back(std::move(trace));
+        passes_.push_back(std::make_unique<UpsamplePass>(context));
+    }
     passes_.push_back(std::make_unique<CompositePass>(context));
 
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -72,7 +93,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     vkDeviceWaitIdle(context_.device());
     settings_.width = width;
     settings_.height = height;
-    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE);
+    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE, settings_.traceScale);
     hasPrevious_ = false;
 }
 
@@ -92,7 +113,10 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     u.shadowParams = glm::vec4(gpuScene_.shadowTexelWorldSize(), 1.0f / float(VCT_SHADOW_MAP_SIZE),
                                float(gpuScene_.lightCount()), float(gpuScene_.shadowLightIndex()));
     u.materialParams = glm::vec4(settings_.toksvig ? 1.0f : 0.0f, settings_.specularAA ? 1.0f : 0.0f, 0.0f, 0.0f);
-    u.voxelParams = glm::vec4(0.0f, 0.0f, settings_.gi ? 1.0f : 0.0f, float(settings_.traceScale));
+    if (voxelGrid_) u.voxelOrigin = voxelGrid_->originSize();
+    u.voxelParams = glm::vec4(voxelGrid_ ? float(voxelGrid_->resolution()) : 0.0f,
+                              voxelGrid_ ? float(voxelGrid_->mipCount()) : 0.0f, settings_.gi ? 1.0f : 0.0f,
+                              float(settings_.traceScale));
     std::memcpy(frameUniforms_.mapped(), &u, sizeof(u));
     previousViewProj_ = u.viewProj;
     hasPrevious_ = true;

@@ -11,6 +11,7 @@
 #include "render/gpu_scene.h"
 #include "render/pass.h"
 #include "render/settings.h"
+#include "render/voxel_grid.h"
 #include "vk/buffer.h"
 #include "vk/timer.h"
 
@@ -31,6 +32,8 @@ struct FrameSubmit {
     VkSemaphore signal = VK_NULL_HANDLE;
 };
 
+class TracePass;
+
 class Renderer {
 public:
     Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings);
@@ -46,6 +49,8 @@ public:
     const vk::GpuTimer& timer() const { return timer_; }
     const RenderSettings& settings() const { return settings_; }
     const GpuScene& gpuScene() const { return gpuScene_; }
+    // The voxel grid of cone tracing; null when GI is off.
+    VoxelGrid* voxelGrid() { return voxelGrid_.get(); }
 
     // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones).
     std::vector<float> readFloatImage(vk::Image& image);
@@ -63,7 +68,9 @@ private:
     Samplers samplers_;
     vk::Buffer frameUniforms_;
     vk::GpuTimer timer_;
+    std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
+    TracePass* tracePass_ = nullptr;  // in passes_ when GI is on; reads the voxel grid
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
     glm::mat4 previousViewProj_{1.0f};

@@ -7,4 +7,6 @@ namespace vct::glsl {
 using namespace glm;
 #include "lib/brdf.glsl"
 #include "lib/color.glsl"
+#include "lib/cone.glsl"
+#include "lib/toksvig.glsl"
 }  // namespace vct::glsl

@@ -91,6 +91,59 @@ struct DrawPushConstants {
 #define VCT_COMPOSITE_BINDING_DIRECT 1
 #define VCT_COMPOSITE_BINDING_HDR 2
 #define VCT_COMPOSITE_BINDING_LDR 3
+#define VCT_COMPOSITE_BINDING_DEPTH 4
+#define VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS 5
+#define VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC 6
+#define VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION 7
+#define VCT_COMPOSITE_BINDING_DIFFUSE 8   // full-res demodulated indirect diffuse (upsample output)
+#define VCT_COMPOSITE_BINDING_SPECULAR 9  // full-res demodulated indirect specular
+#define VCT_COMPOSITE_BINDING_DFG 10      // split-sum DFG table, uv = (n·v, perceptual roughness)
+
+// trace (cone tracing at 1/traceScale resolution)
+#define VCT_TRACE_BINDING_DEPTH 1
+#define VCT_TRACE_BINDING_NORMAL_ROUGHNESS 2
+#define VCT_TRACE_BINDING_VOXELS 3    // radiance (premultiplied rgb) + opacity, 3D with mips
+#define VCT_TRACE_BINDING_DIFFUSE 4   // out: low-res cosine-weighted incoming radiance
+#define VCT_TRACE_BINDING_SPECULAR 5  // out: low-res incoming radiance along the specular cone
+
+// upsample
+#define VCT_UPSAMPLE_BINDING_DIFFUSE_LOW 1
+#define VCT_UPSAMPLE_BINDING_SPECULAR_LOW 2
+#define VCT_UPSAMPLE_BINDING_DIFFUSE 3
+#define VCT_UPSAMPLE_BINDING_SPECULAR 4
+
+// voxelize (triangles → fixed-point accumulators) and its resolve (accumulators → albedo/normal/emission)
+#define VCT_VOXEL_GROUP_SIZE 64        // voxelize: triangles per workgroup
+#define VCT_VOXEL_TILE 4               // resolve / inject / mips: 4×4×4 voxels per workgroup
+#define VCT_VOXEL_ACCUM_STRIDE 10      // uints per voxel: albedo rgb, normal xyz, emission rgb, count
+#define VCT_VOXELIZE_BINDING_INSTANCES 1
+#define VCT_VOXELIZE_BINDING_MATERIALS 2
+#define VCT_VOXELIZE_BINDING_VERTICES 3  // the scene's vertex buffer read as floats (12 per vertex)
+#define VCT_VOXELIZE_BINDING_INDICES 4
+#define VCT_VOXELIZE_BINDING_BASE_COLOR 5
+#define VCT_VOXELIZE_BINDING_EMISSIVE 6
+#define VCT_VOXELIZE_BINDING_ACCUM 7
+#define VCT_RESOLVE_BINDING_STATIC 1
+#define VCT_RESOLVE_BINDING_DYNAMIC 2
+#define VCT_RESOLVE_BINDING_ALBEDO 3     // rgba8: albedo, opacity
+#define VCT_RESOLVE_BINDING_NORMAL 4     // rgba16f: averaged normal (not renormalised), w unused
+#define VCT_RESOLVE_BINDING_EMISSION 5   // rgba16f: emitted radiance
+// inject
+#define VCT_INJECT_BINDING_LIGHTS 1
+#define VCT_INJECT_BINDING_ALBEDO 2
+#define VCT_INJECT_BINDING_NORMAL 3
+#define VCT_INJECT_BINDING_EMISSION 4
+#define VCT_INJECT_BINDING_SHADOW_MAP 5
+#define VCT_INJECT_BINDING_RADIANCE 6    // out: mip 0 of the radiance texture
+// mips
+#define VCT_MIPS_BINDING_SOURCE 1
+#define VCT_MIPS_BINDING_DEST 2
+
+// Push constants of voxelize (one dispatch per instance × primitive) and resolve.
+struct VoxelizePushConstants {
+    uvec4 draw;    // x: instance, y: material, z: first index, w: triangle count
+    uvec4 params;  // x: vertex offset (int32 bits); resolve: y = 1 when the dynamic accumulator is bound
+};
 
 #ifdef __cplusplus
 static_assert(sizeof(FrameUniforms) == 6 * 64 + 7 * 16);
@@ -98,6 +151,7 @@ static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(GpuInstance) == 192);
 static_assert(sizeof(DrawPushConstants) == 16);
+static_assert(sizeof(VoxelizePushConstants) == 32);
 }  // namespace vct::gpu
 #endif
 

@@ -1,0 +1,123 @@
+#include "app/aux_output.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "io/image_io.h"
+#include "render/shader_math.h"
+
+namespace vct {
+
+namespace {
+
+// The indirect-light targets exist once cone tracing adds them to FrameTargets; until then these are null.
+template <class Targets>
+vk::Image* diffuseIndirect(Targets& targets) {
+    if constexpr (requires { targets.diffuseIndirect; }) return &targets.diffuseIndirect;
+    else return nullptr;
+}
+template <class Targets>
+vk::Image* specularIndirect(Targets& targets) {
+    if constexpr (requires { targets.specularIndirect; }) return &targets.specularIndirect;
+    else return nullptr;
+}
+
+// Per-pixel transforms of an RGBA32F image, in place.
+void toGrey(std::vector<float>& rgba, int channel) {
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+        const float v = rgba[i + size_t(channel)];
+        rgba[i] = rgba[i + 1] = rgba[i + 2] = v;
+        rgba[i + 3] = 1.0f;
+    }
+}
+
+void toAlbedo(std::vector<float>& rgba) {  // base colour × (1 − metallic)
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+        const float k = 1.0f - rgba[i + 3];
+        for (size_t c = 0; c < 3; ++c) rgba[i + c] *= k;
+        rgba[i + 3] = 1.0f;
+    }
+}
+
+void opaque(std::vector<float>& rgba) {
+    for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 1.0f;
+}
+
+uint8_t toByte(float v) { return uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) * 255.0f)); }
+
+}  // namespace
+
+AuxView parseAuxView(const std::string& value) {
+    if (value == "final") return AuxView::Final;
+    if (value == "direct") return AuxView::Direct;
+    if (value == "diffuse") return AuxView::Diffuse;
+    if (value == "specular") return AuxView::Specular;
+    if (value == "normals") return AuxView::Normals;
+    if (value == "roughness") return AuxView::Roughness;
+    if (value == "voxels") throw UsageError("--view voxels: not available yet");
+    throw UsageError("--view '" + value + "': expected final, direct, diffuse, specular, normals or roughness");
+}
+
+std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesystem::path& dir) {
+    FrameTargets& t = renderer.targets();
+    const uint32_t w = t.width, h = t.height;
+    std::vector<std::string> written;
+    auto write = [&](const std::string& name, std::vector<float> rgba) {
+        writeExr(dir / name, w, h, rgba);
+        written.push_back(name);
+    };
+    auto writeRadiance = [&](const std::string& name, vk::Image& image) {  // at the image's own size
+        std::vector<float> rgba = renderer.readFloatImage(image);
+        opaque(rgba);
+        writeExr(dir / name, image.width(), image.height(), rgba);
+        written.push_back(name);
+    };
+    writeRadiance("direct.exr", t.direct);
+    if (vk::Image* image = diffuseIndirect(t)) writeRadiance("diffuse_indirect.exr", *image);
+    if (vk::Image* image = specularIndirect(t)) writeRadiance("specular_indirect.exr", *image);
+    std::vector<float> normalRoughness = renderer.readFloatImage(t.normalRoughness);
+    std::vector<float> normal = normalRoughness;
+    opaque(normal);
+    write("normal.exr", std::move(normal));
+    toGrey(normalRoughness, 3);
+    write("roughness.exr", std::move(normalRoughness));
+    std::vector<float> albedo = renderer.readFloatImage(t.baseColorMetallic);
+    toAlbedo(albedo);
+    write("albedo.exr", std::move(albedo));
+    std::vector<float> depth = renderer.readFloatImage(t.depth);
+    toGrey(depth, 0);
+    write("depth.exr", std::move(depth));
+    return written;
+}
+
+std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view) {
+    if (view == AuxView::Final) return renderer.readLdr();
+    FrameTargets& t = renderer.targets();
+    vk::Image* source = &t.direct;
+    if (view == AuxView::Diffuse || view == AuxView::Specular) {
+        source = view == AuxView::Diffuse ? diffuseIndirect(t) : specularIndirect(t);
+        if (!source)
+            throw Error(std::string("--view ") + (view == AuxView::Diffuse ? "diffuse" : "specular") +
+                        ": the renderer has no indirect-light buffer yet");
+    }
+    if (view == AuxView::Normals || view == AuxView::Roughness) source = &t.normalRoughness;
+    const std::vector<float> rgba = renderer.readFloatImage(*source);
+    // A buffer at a reduced resolution (indirect light traced at 1/traceScale) is shown nearest-neighbour.
+    const uint32_t sw = source->width(), sh = source->height();
+    std::vector<uint8_t> bytes(size_t(t.width) * t.height * 4);
+    const float exposure = renderer.settings().exposure;
+    for (size_t i = 0; i < bytes.size(); i += 4) {
+        const size_t x = (i / 4) % t.width, y = (i / 4) / t.width;
+        const size_t s = ((y * sh / t.height) * sw + x * sw / t.width) * 4;
+        glm::vec3 c(rgba[s], rgba[s + 1], rgba[s + 2]);
+        if (view == AuxView::Normals) c = c * 0.5f + 0.5f;
+        else if (view == AuxView::Roughness) c = glm::vec3(rgba[s + 3]);
+        else c = glsl::linearToSrgb(glsl::toneMapAces(c, exposure));
+        for (size_t k = 0; k < 3; ++k) bytes[i + k] = toByte(c[int(k)]);
+        bytes[i + 3] = 255;
+    }
+    return bytes;
+}
+
+}  // namespace vct

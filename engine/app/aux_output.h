@@ -1,0 +1,26 @@
+// `vct render --aux` and `--view`: every intermediate buffer as EXR, and which buffer final.png shows.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace vct {
+
+// What final.png shows: the composited frame or one intermediate buffer.
+enum class AuxView { Final, Direct, Diffuse, Specular, Normals, Roughness };
+
+// Parses a --view value; throws UsageError for unknown ones and for those not implemented yet.
+AuxView parseAuxView(const std::string& value);
+
+// Writes direct, diffuse_indirect, specular_indirect (when the frame targets have them), normal, roughness,
+// albedo and depth as EXR into `dir`; returns the names written.
+std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesystem::path& dir);
+
+// RGBA8 for final.png: the LDR frame for AuxView::Final, else the buffer encoded for display (radiance
+// exposed, tone mapped and sRGB-encoded like the composite; normals as n·0.5 + 0.5; roughness grey).
+std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view);
+
+}  // namespace vct

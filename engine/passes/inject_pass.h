@@ -1,0 +1,23 @@
+// inject: direct light (main light shadow-mapped, other lights unshadowed) and emission into the occupied
+// voxels → mip 0 of the grid's premultiplied radiance + opacity texture (DESIGN §2, §3.6).
+#pragma once
+
+#include "render/pass.h"
+#include "render/voxel_grid.h"
+#include "vk/pipeline.h"
+
+namespace vct {
+
+class InjectPass : public Pass {
+public:
+    InjectPass(const vk::Context& context, VoxelGrid& grid);
+    const char* name() const override { return "inject"; }
+    std::vector<ImageUse> uses(FrameTargets& targets) override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    VoxelGrid& grid_;
+    vk::Pipeline pipeline_;
+};
+
+}  // namespace vct

@@ -1,0 +1,23 @@
+// mips: the radiance + opacity mip chain of the voxel grid, one dispatch per level (2×2×2 premultiplied
+// average of the level above), with a barrier between levels. The timer scope is named "mips".
+#pragma once
+
+#include "render/pass.h"
+#include "render/voxel_grid.h"
+#include "vk/pipeline.h"
+
+namespace vct {
+
+class VoxelMipsPass : public Pass {
+public:
+    VoxelMipsPass(const vk::Context& context, VoxelGrid& grid);
+    const char* name() const override { return "mips"; }
+    std::vector<ImageUse> uses(FrameTargets& targets) override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    VoxelGrid& grid_;
+    vk::Pipeline pipeline_;
+};
+
+}  // namespace vct

@@ -1,0 +1,29 @@
+// voxelize: scene triangles → the voxel grid's albedo + opacity, normal and emission volumes (DESIGN §3.6).
+// A compute pass over triangles (no conservative rasterization on lavapipe): static instances are voxelized
+// once, on the first frame, into a persistent accumulator; moving instances every frame into a second one,
+// cleared first; a resolve merges both into the volumes. One timer scope covers all of it.
+#pragma once
+
+#include "render/pass.h"
+#include "render/voxel_grid.h"
+#include "vk/pipeline.h"
+
+namespace vct {
+
+class VoxelizePass : public Pass {
+public:
+    VoxelizePass(const vk::Context& context, VoxelGrid& grid);
+    const char* name() const override { return "voxelize"; }
+    std::vector<ImageUse> uses(FrameTargets& targets) override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    // Dispatches the triangles of every instance whose `moving` flag equals `moving` into `accumulator`.
+    void voxelizeInstances(const FrameContext& frame, bool moving, VkBuffer accumulator);
+
+    VoxelGrid& grid_;
+    vk::Pipeline voxelize_, resolve_;
+    bool resolved_ = false;  // the volumes hold the current accumulators
+};
+
+}  // namespace vct

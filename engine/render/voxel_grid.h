@@ -1,0 +1,89 @@
+// The voxel grid of voxel cone tracing (DESIGN §3.6): an N³ cube fitted to the scene's bounds, its resolved
+// material volumes and the premultiplied radiance + opacity texture with its mip chain. Owned by the
+// Renderer (only when GI is on); written by the voxelize, inject and mips passes, read by the trace pass.
+//
+// Conventions (shared with shaders/lib/voxel.glsl and FrameUniforms::voxelOrigin / voxelParams):
+//  - origin() is the world position of the grid's min corner, voxelSize() the edge of one voxel; the grid
+//    spans origin .. origin + N·voxelSize on every axis (a cube, one voxel of padding around the bounds).
+//  - Voxel i (integer xyz, 0..N−1) covers [origin + i·size, origin + (i+1)·size); its texel centre is
+//    origin + (i + 0.5)·voxelSize. Texture coordinate of a world point: UVW = (p − origin) / (N·voxelSize).
+//  - Mip level m has max(1, N >> m)³ texels, each the 2×2×2 premultiplied average of level m−1; a texel of
+//    level m spans 2^m voxels. mipCount() = log2(N) + 1 (down to 1³).
+//  - radiance(): RGBA16F, rgb = outgoing radiance × opacity, a = opacity (premultiplied). Sample it with
+//    sampler(): trilinear, linear between mips, clamp-to-border transparent black (outside = empty space).
+//  - N is a power of two in 32..256. Default (settings.voxelResolution = 0): 64 on a CPU device (lavapipe),
+//    128 on a GPU.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "render/settings.h"
+#include "scene/scene.h"
+#include "vk/buffer.h"
+#include "vk/image.h"
+
+// The voxel math of the shaders (shaders/lib/voxel.glsl) as C++, in namespace vct::glsl like
+// render/shader_math.h (include guards keep the two compatible in one translation unit).
+#include "lib/cpp_glsl.h"
+namespace vct::glsl {
+using namespace glm;
+#include "lib/voxel.glsl"
+}  // namespace vct::glsl
+
+namespace vct {
+
+// The N the grid gets for these settings on this device (validated: a power of two in 32..256).
+uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings& settings);
+
+// World bounds the grid must cover: every instance over the scene's animation (sampled), so that moving
+// geometry stays inside the grid.
+Aabb voxelSceneBounds(const Scene& scene);
+
+class VoxelGrid {
+public:
+    VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution);
+    ~VoxelGrid();
+    VoxelGrid(const VoxelGrid&) = delete;
+    VoxelGrid& operator=(const VoxelGrid&) = delete;
+
+    glm::vec3 origin() const { return glm::vec3(originSize_); }
+    float voxelSize() const { return originSize_.w; }
+    glm::vec4 originSize() const { return originSize_; }  // as FrameUniforms::voxelOrigin
+    uint32_t resolution() const { return resolution_; }
+    uint32_t mipCount() const { return mipCount_; }
+
+    // Premultiplied radiance + opacity, 3D RGBA16F with the full mip chain (SAMPLED | STORAGE).
+    vk::Image& radiance() { return radiance_; }
+    VkSampler sampler() const { return sampler_; }
+
+    // Resolved material volumes (mip 0 only, STORAGE): albedo rgb + opacity a (RGBA8), averaged normal
+    // (RGBA16F xyz, not renormalised: shorter where surfaces in the voxel disagree), emission (RGBA16F rgb).
+    vk::Image& albedo() { return albedo_; }
+    vk::Image& normal() { return normal_; }
+    vk::Image& emission() { return emission_; }
+
+    // Fixed-point accumulators (VCT_VOXEL_ACCUM_STRIDE uints per voxel): static geometry, written once, and
+    // moving instances, cleared and rewritten every frame (absent when the scene has none).
+    VkBuffer staticAccumulator() const { return staticAccum_.handle(); }
+    VkBuffer dynamicAccumulator() const { return dynamicAccum_.handle(); }
+    bool hasMovingInstances() const { return dynamicAccum_.handle() != VK_NULL_HANDLE; }
+    VkDeviceSize accumulatorSize() const { return staticAccum_.size(); }
+
+    // Whether the static accumulator holds the static geometry yet (set by the voxelize pass).
+    bool staticVoxelized() const { return staticVoxelized_; }
+    void markStaticVoxelized() { staticVoxelized_ = true; }
+
+private:
+    const vk::Context& context_;
+    uint32_t resolution_ = 0;
+    uint32_t mipCount_ = 1;
+    glm::vec4 originSize_{0.0f};
+    vk::Image radiance_, albedo_, normal_, emission_;
+    vk::Buffer staticAccum_, dynamicAccum_;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+    bool staticVoxelized_ = false;
+};
+
+}  // namespace vct

@@ -1,0 +1,88 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// inject: direct light into the voxels. For each occupied voxel: Σ lights E·albedo/π·cos (the main light
+// shadow-mapped at the voxel centre, the others unshadowed) + emission, written premultiplied by opacity into
+// mip 0 of the radiance texture (rgb = radiance × opacity, a = opacity). One thread per voxel.
+#include "lib/shared.h"
+#include "lib/constants.glsl"
+#include "lib/voxel.glsl"
+
+layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
+
+layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = VCT_INJECT_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = VCT_INJECT_BINDING_ALBEDO, rgba8) uniform readonly image3D albedoImage;
+layout(set = 0, binding = VCT_INJECT_BINDING_NORMAL, rgba16f) uniform readonly image3D normalImage;
+layout(set = 0, binding = VCT_INJECT_BINDING_EMISSION, rgba16f) uniform readonly image3D emissionImage;
+layout(set = 0, binding = VCT_INJECT_BINDING_SHADOW_MAP) uniform sampler2DShadow shadowMap;
+layout(set = 0, binding = VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform writeonly image3D radianceImage;
+
+// The main light's shadow map at p (same lightViewProj as the direct pass). One bilinear comparison tap:
+// a voxel spans many shadow texels, so a wider PCF kernel would cost much and change little.
+float shadowVisibility(vec3 p) {
+    const vec4 clip = frame.lightViewProj * vec4(p, 1.0);
+    if (clip.w <= 0.0) return 1.0;
+    const vec3 ndc = clip.xyz / clip.w;
+    const vec2 uv = ndc.xy * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z >= 1.0) return 1.0;
+    return texture(shadowMap, vec3(uv, ndc.z));
+}
+
+// Radiance arriving at p from a KHR_lights_punctual light and the direction towards it (as in direct.comp).
+vec3 incidentLight(GpuLight light, vec3 p, out vec3 towardsLight) {
+    const int type = int(light.directionType.w);
+    if (type == VCT_LIGHT_DIRECTIONAL) {
+        towardsLight = -light.directionType.xyz;
+        return light.colorIntensity.rgb;
+    }
+    const vec3 delta = light.positionRange.xyz - p;
+    const float distance2 = max(dot(delta, delta), 1e-8);
+    towardsLight = delta * inversesqrt(distance2);
+    float attenuation = 1.0 / distance2;
+    const float range = light.positionRange.w;
+    if (range > 0.0) {
+        const float ratio = sqrt(distance2) / range;
+        attenuation *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+    }
+    if (type == VCT_LIGHT_SPOT) {
+        const float cd = dot(light.directionType.xyz, -towardsLight);
+        const float spot = clamp(cd * light.spotScaleOffset.x + light.spotScaleOffset.y, 0.0, 1.0);
+        attenuation *= spot * spot;
+    }
+    return light.colorIntensity.rgb * attenuation;
+}
+
+void main() {
+    const ivec3 voxel = ivec3(gl_GlobalInvocationID);
+    const int n = int(frame.voxelParams.x);
+    if (any(greaterThanEqual(voxel, ivec3(n)))) return;
+    const vec4 albedoOpacity = imageLoad(albedoImage, voxel);
+    if (albedoOpacity.a <= 0.0) {
+        imageStore(radianceImage, voxel, vec4(0.0));
+        return;
+    }
+    const vec3 nbar = imageLoad(normalImage, voxel).xyz;
+    const vec3 emission = imageLoad(emissionImage, voxel).rgb;
+    const float voxelSize = frame.voxelOrigin.w;
+    const vec3 center = voxelCenterWorld(voxel, frame.voxelOrigin);
+
+    vec3 radiance = emission;
+    const int lightCount = int(frame.shadowParams.z);
+    const int shadowLight = int(frame.shadowParams.w);
+    for (int i = 0; i < lightCount; ++i) {
+        vec3 l;
+        const vec3 incident = incidentLight(lights[i], center, l);
+        const float cosine = voxelCosine(nbar, l);
+        if (cosine <= 0.0 || all(equal(incident, vec3(0.0)))) continue;
+        float visibility = 1.0;
+        if (i == shadowLight) {
+            // The centre may lie up to half a diagonal behind the surface: step out along the light and
+            // the normal (turned towards the light) so the surface does not shadow its own voxel.
+            const float r = length(nbar);
+            const vec3 towardsLightSide = r > 1e-3 ? nbar / r * sign(dot(nbar, l) + 1e-6) : vec3(0.0);
+            visibility = shadowVisibility(center + voxelSize * (l + towardsLightSide));
+        }
+        radiance += incident * albedoOpacity.rgb * INV_PI * cosine * visibility;
+    }
+    imageStore(radianceImage, voxel, vec4(radiance * albedoOpacity.a, albedoOpacity.a));
+}

@@ -1,0 +1,108 @@
+// Voxel cone tracing math (DESIGN §3.6, Crassin et al. 2011): cone footprint, mip level, step length,
+// front-to-back compositing with step-length opacity correction, the 6 diffuse cones and the specular aperture.
+// Shared by GLSL and C++ (lib/cpp_glsl.h): pure functions, `f` literals. The march loop itself lives in
+// trace.comp (GLSL cannot take a sample function as a parameter); tests/cone_test.cpp repeats it on the CPU
+// with an emulated grid, built from these very functions.
+//
+// Units: distances in world units; v0 = the finest voxel size. A sample at mip m covers a cube of side v0·2^m.
+//
+// Normalisation of what the cones return (the trace pass's outputs):
+//   diffuse  = Σ_i w_i·L_i with Σ w_i = 1: the cosine-weighted mean of incoming radiance, "radiance-equivalent".
+//              Irradiance E = π·diffuse; outgoing Lambert radiance = albedo·diffuse (albedo/π · E).
+//   specular = the incoming radiance averaged over the specular cone; outgoing = specularDfg(F0, DFG)·specular.
+#ifndef VCT_CONE_GLSL
+#define VCT_CONE_GLSL
+
+#include "lib/constants.glsl"
+
+// Diffuse cones: half-angle 30° (aperture 60°), tan(θ/2) = tan 30°: six such cones tile the hemisphere.
+const float DIFFUSE_CONE_TAN_HALF = 0.577350269f;
+const int DIFFUSE_CONE_COUNT = 6;
+// Step length as a fraction of the footprint: 1/2 samples each footprint about twice (Nyquist-ish), so
+// trilinear samples overlap and thin walls are not skipped.
+const float CONE_STEP_SCALE = 0.5f;
+// Marching stops once the cone is this opaque: what lies behind adds < 5%.
+const float CONE_MAX_OPACITY = 0.95f;
+// Start offset along the normal in voxels (p + n·v0·k): the surface's own voxel and its trilinear
+// neighbourhood reach ~1 voxel from the surface; 1 keeps contact bounce without self-occlusion.
+const float CONE_START_OFFSET = 1.0f;
+// Widest specular cone: half-angle 45°. Wider lobes are as blurry as the diffuse cones, and a wider cone
+// would reach coarse mips within a voxel or two (leaking through walls).
+const float SPECULAR_CONE_MAX_TAN_HALF = 1.0f;
+
+// Cone diameter at distance t: d = max(v0, 2·tan(θ/2)·t). Never below one voxel (mip 0 cannot be finer).
+VCT_INLINE float coneDiameter(float tanHalfAngle, float t, float voxelSize) {
+    return max(voxelSize, 2.0f * tanHalfAngle * max(t, 0.0f));
+}
+
+// Mip whose voxels match the footprint: log2(d / v0) ≥ 0 (fractional: trilinear between mips).
+VCT_INLINE float coneMip(float diameter, float voxelSize) {
+    return max(log2(max(diameter, voxelSize) / voxelSize), 0.0f);
+}
+
+// Step length Δt ∝ d.
+VCT_INLINE float coneStep(float diameter) { return CONE_STEP_SCALE * diameter; }
+
+// Opacity of a sample re-scaled from its voxel size (the depth it was averaged over) to the step length:
+// a' = 1 − (1 − a)^(Δt / v_mip). Keeps the result independent of the step size.
+VCT_INLINE float correctOpacity(float alpha, float stepLength, float mipVoxelSize) {
+    float a = saturate(alpha);
+    return 1.0f - pow(1.0f - a, stepLength / max(mipVoxelSize, 1e-20f));
+}
+
+// One front-to-back step: acc (rgb premultiplied radiance, a opacity) under sample s (premultiplied radiance,
+// opacity), with s's opacity corrected for the step length; the radiance scales with the same factor (the
+// sample's colour c/a is kept). c += (1 − a)·s.rgb, a += (1 − a)·s.a.
+VCT_INLINE vec4 coneComposite(vec4 acc, vec4 s, float stepLength, float mipVoxelSize) {
+    float a = saturate(s.a);
+    float corrected = correctOpacity(a, stepLength, mipVoxelSize);
+    // Premultiplied: s.rgb = colour·a, so the corrected sample is colour·a' = s.rgb·(a'/a).
+    vec3 rgb = vec3(s) * (a > 1e-6f ? corrected / a : stepLength / max(mipVoxelSize, 1e-20f));
+    float transmittance = 1.0f - acc.a;
+    return vec4(vec3(acc) + transmittance * rgb, acc.a + transmittance * corrected);
+}
+
+// Orthonormal tangent for a unit normal (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"):
+// continuous except at n.z = −1 exactly, where it is still orthonormal.
+VCT_INLINE vec3 coneTangent(vec3 n) {
+    float s = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n.z);
+    float b = n.x * n.y * a;
+    return vec3(1.0f + s * n.x * n.x * a, s * b, -s * n.x);
+}
+VCT_INLINE vec3 coneBitangent(vec3 n) {
+    float s = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n.z);
+    float b = n.x * n.y * a;
+    return vec3(b, s + n.y * n.y * a, -n.y);
+}
+
+// Diffuse cone i (0..5): 0 along n, 1..5 at 60° from n, 72° apart in azimuth. Unit length for unit n.
+VCT_INLINE vec3 diffuseConeDirection(vec3 n, int i) {
+    if (i == 0) return n;
+    float phi = float(i - 1) * (2.0f * PI / 5.0f);
+    const float sin60 = 0.866025404f;
+    const float cos60 = 0.5f;
+    return cos60 * n + sin60 * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));
+}
+
+// Cosine weights, normalised to sum to 1. The central 30° cone holds exactly ∫cos dω = π·sin²30° = π/4 of the
+// hemisphere's π; the five side cones share the rest, 3π/20 each (Rauwendaal 2013). So a uniform radiance L
+// gives exactly L, i.e. irradiance π·L.
+VCT_INLINE float diffuseConeWeight(int i) { return i == 0 ? 0.25f : 0.15f; }
+
+// Specular cone aperture from GGX α (= perceptual²). The GGX NDF falls to half its peak at the half-vector
+// angle θ_h with tan θ_h = α·sqrt((√2 − 1)/(1 − √2·α²)) ≈ 0.644·α; reflection doubles angles around the mirror
+// direction, so the cone's half-angle is 2·θ_h, with tan(2θ_h) = 2t/(1 − t²), t = 0.644·α (the small-α form,
+// within 10% of the exact half-width up to α ≈ 0.45). Clamped to SPECULAR_CONE_MAX_TAN_HALF. α = 0 gives 0:
+// a mirror ray, whose footprint is still one voxel (coneDiameter).
+VCT_INLINE float specularConeTanHalf(float alpha) {
+    float t = 0.643594253f * clamp(alpha, 0.0f, 1.0f);  // sqrt(√2 − 1)
+    float denominator = 1.0f - t * t;  // ≥ 0.585 for α ≤ 1
+    return min(2.0f * t / denominator, SPECULAR_CONE_MAX_TAN_HALF);
+}
+
+// Mirror direction of v about n: reflect(−v, n) = 2(n·v)n − v.
+VCT_INLINE vec3 specularConeDirection(vec3 n, vec3 v) { return 2.0f * dot(n, v) * n - v; }
+
+#endif  // VCT_CONE_GLSL

@@ -1,0 +1,136 @@
+// Voxel-grid math shared by the voxelize / inject / mips shaders and the CPU (grid fitting, tests); see
+// lib/cpp_glsl.h for the rules. The grid is a cube of N³ voxels: `originSize` packs the world position of its
+// min corner (xyz) and the edge length of one voxel (w), exactly as FrameUniforms::voxelOrigin.
+// Voxel i covers [origin + i·size, origin + (i+1)·size); its centre is origin + (i + 0.5)·size.
+#ifndef VCT_VOXEL_GLSL
+#define VCT_VOXEL_GLSL
+
+#include "lib/constants.glsl"
+
+// ---- grid fitting and coordinates ----
+
+// A cube around the bounds [bmin, bmax] with one voxel of padding on every side (so surfaces on the bounds
+// still have an empty neighbour for the mip filter). Zero extent on any axis (a flat scene) stays valid:
+// the cube's edge is at least a small positive length. Returns (origin, voxel size).
+VCT_INLINE vec4 voxelGridFit(vec3 bmin, vec3 bmax, float n) {
+    vec3 extent = max(bmax - bmin, vec3(0.0f));
+    float side = max(max(extent.x, max(extent.y, extent.z)), 1e-3f);
+    // N voxels span side·N/(N−2), leaving one voxel free at each end.
+    float voxelSize = side / max(n - 2.0f, 1.0f);
+    vec3 center = 0.5f * (bmin + bmax);
+    return vec4(center - vec3(0.5f * n * voxelSize), voxelSize);
+}
+
+VCT_INLINE vec3 voxelFromWorld(vec3 p, vec4 originSize) { return (p - vec3(originSize)) / originSize.w; }
+VCT_INLINE vec3 worldFromVoxel(vec3 v, vec4 originSize) { return vec3(originSize) + v * originSize.w; }
+VCT_INLINE vec3 voxelCenterWorld(ivec3 i, vec4 originSize) { return worldFromVoxel(vec3(i) + 0.5f, originSize); }
+// Normalized texture coordinate of a world position (what the trace pass samples with).
+VCT_INLINE vec3 voxelUvw(vec3 p, vec4 originSize, float n) { return voxelFromWorld(p, originSize) / n; }
+VCT_INLINE uint voxelLinearIndex(ivec3 i, int n) { return uint(i.x + n * (i.y + n * i.z)); }
+
+// ---- triangle / box overlap (separating axis theorem, Akenine-Möller 2001) ----
+
+// Whether the projections of the triangle (relative to the box centre) and the box onto `axis` overlap.
+// Touching counts as overlapping. A zero axis (parallel edges, degenerate triangle) never separates.
+VCT_INLINE bool voxelAxisOverlaps(vec3 axis, vec3 v0, vec3 v1, vec3 v2, vec3 halfSize) {
+    float p0 = dot(axis, v0), p1 = dot(axis, v1), p2 = dot(axis, v2);
+    float r = dot(halfSize, abs(axis));
+    return !(min(p0, min(p1, p2)) > r || max(p0, max(p1, p2)) < -r);
+}
+
+// Exact overlap test of triangle (a, b, c) with the axis-aligned box centre ± halfSize. Only products and
+// sums: a degenerate (zero-area, even single-point) triangle gives no NaN and overlaps where its points do.
+VCT_INLINE bool triangleBoxOverlap(vec3 center, vec3 halfSize, vec3 a, vec3 b, vec3 c) {
+    vec3 v0 = a - center, v1 = b - center, v2 = c - center;
+    // 3 box face normals: the triangle's bounding box against the box.
+    if (any(greaterThan(min(v0, min(v1, v2)), halfSize)) || any(lessThan(max(v0, max(v1, v2)), -halfSize)))
+        return false;
+    vec3 e0 = v1 - v0, e1 = v2 - v1, e2 = v0 - v2;
+    // The triangle's plane.
+    if (!voxelAxisOverlaps(cross(e0, e1), v0, v1, v2, halfSize)) return false;
+    // 9 edge × box-axis cross products.
+    vec3 edges[3] = {e0, e1, e2};
+    for (int i = 0; i < 3; ++i) {
+        if (!voxelAxisOverlaps(vec3(0.0f, -edges[i].z, edges[i].y), v0, v1, v2, halfSize)) return false;
+        if (!voxelAxisOverlaps(vec3(edges[i].z, 0.0f, -edges[i].x), v0, v1, v2, halfSize)) return false;
+        if (!voxelAxisOverlaps(vec3(-edges[i].y, edges[i].x, 0.0f), v0, v1, v2, halfSize)) return false;
+    }
+    return true;
+}
+
+// Barycentric weights of the point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision
+// Detection §5.1.5). Degenerate triangles fall back to a vertex or an edge; the weights always sum to 1.
+VCT_INLINE vec3 closestPointBarycentric(vec3 p, vec3 a, vec3 b, vec3 c) {
+    vec3 ab = b - a, ac = c - a, ap = p - a;
+    float d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0.0f && d2 <= 0.0f) return vec3(1.0f, 0.0f, 0.0f);
+    vec3 bp = p - b;
+    float d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0.0f && d4 <= d3) return vec3(0.0f, 1.0f, 0.0f);
+    float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+        float t = d1 / max(d1 - d3, 1e-30f);
+        return vec3(1.0f - t, t, 0.0f);
+    }
+    vec3 cp = p - c;
+    float d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0.0f && d5 <= d6) return vec3(0.0f, 0.0f, 1.0f);
+    float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+        float t = d2 / max(d2 - d6, 1e-30f);
+        return vec3(1.0f - t, 0.0f, t);
+    }
+    float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+        float t = (d4 - d3) / max((d4 - d3) + (d5 - d6), 1e-30f);
+        return vec3(0.0f, 1.0f - t, t);
+    }
+    float sum = va + vb + vc;
+    if (!(sum > 0.0f)) return vec3(1.0f, 0.0f, 0.0f);  // zero area: any vertex will do
+    float v = vb / sum, w = vc / sum;
+    return vec3(1.0f - v - w, v, w);
+}
+
+// ---- fixed-point accumulation (atomicAdd on uint buffers) ----
+// Per voxel VCT_VOXEL_ACCUM_STRIDE uints: albedo rgb, normal xyz (two's complement), emission rgb, count.
+// Scales: albedo in [0,1] × 1023 and normals × 1023 overflow only beyond ~4M / ~2M samples in one voxel;
+// emission × 256 is clamped to 4096 per sample (enough for any emissive material in practice).
+
+const float VOXEL_UNIT_SCALE = 1023.0f;
+const float VOXEL_EMISSION_SCALE = 256.0f;
+const float VOXEL_EMISSION_MAX = 4096.0f;
+
+VCT_INLINE uint voxelEncodeUnit(float x) { return uint(clamp(x, 0.0f, 1.0f) * VOXEL_UNIT_SCALE + 0.5f); }
+VCT_INLINE uint voxelEncodeSigned(float x) {
+    return uint(int(round(clamp(x, -1.0f, 1.0f) * VOXEL_UNIT_SCALE)));
+}
+VCT_INLINE uint voxelEncodeEmission(float x) {
+    return uint(clamp(x, 0.0f, VOXEL_EMISSION_MAX) * VOXEL_EMISSION_SCALE + 0.5f);
+}
+// Averages of `count` samples (count > 0).
+VCT_INLINE float voxelDecodeUnit(uint sum, uint count) { return float(sum) / (VOXEL_UNIT_SCALE * float(count)); }
+VCT_INLINE float voxelDecodeSigned(uint sum, uint count) {
+    return float(int(sum)) / (VOXEL_UNIT_SCALE * float(count));
+}
+VCT_INLINE float voxelDecodeEmission(uint sum, uint count) {
+    return float(sum) / (VOXEL_EMISSION_SCALE * float(count));
+}
+
+// ---- lighting a voxel ----
+
+// Cosine factor for a voxel whose averaged normal is nbar (|nbar| ≤ 1, short when the surfaces in it
+// disagree, e.g. both sides of a thin wall): one-sided max(n·l, 0) when the normals agree, blending to
+// two-sided |n·l| as they cancel, and 1/2 (the hemisphere-average guess) when no direction is left.
+VCT_INLINE float voxelCosine(vec3 nbar, vec3 l) {
+    float r = length(nbar);
+    if (r < 1e-3f) return 0.5f;
+    float ndl = dot(nbar, l) / r;
+    return mix(abs(ndl), max(ndl, 0.0f), min(r, 1.0f));
+}
+
+// Premultiplied 2×2×2 average of eight RGBA samples (rgb = radiance × opacity, a = opacity).
+VCT_INLINE vec4 voxelAverage8(vec4 a, vec4 b, vec4 c, vec4 d, vec4 e, vec4 f, vec4 g, vec4 h) {
+    return 0.125f * (((a + b) + (c + d)) + ((e + f) + (g + h)));
+}
+
+#endif  // VCT_VOXEL_GLSL

@@ -1,0 +1,48 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// voxelize, second step: averages the static accumulator (voxelized once) plus the per-frame accumulator of
+// moving instances into albedo + opacity, normal and emission textures. One thread per voxel.
+#include "lib/shared.h"
+#include "lib/constants.glsl"
+#include "lib/voxel.glsl"
+
+layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
+
+layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = VCT_RESOLVE_BINDING_STATIC) readonly buffer Static { uint staticAccum[]; };
+layout(set = 0, binding = VCT_RESOLVE_BINDING_DYNAMIC) readonly buffer Dynamic { uint dynamicAccum[]; };
+layout(set = 0, binding = VCT_RESOLVE_BINDING_ALBEDO, rgba8) uniform writeonly image3D albedoImage;
+layout(set = 0, binding = VCT_RESOLVE_BINDING_NORMAL, rgba16f) uniform writeonly image3D normalImage;
+layout(set = 0, binding = VCT_RESOLVE_BINDING_EMISSION, rgba16f) uniform writeonly image3D emissionImage;
+
+layout(push_constant) uniform Push { VoxelizePushConstants push; };
+
+void main() {
+    const ivec3 voxel = ivec3(gl_GlobalInvocationID);
+    const int n = int(frame.voxelParams.x);
+    if (any(greaterThanEqual(voxel, ivec3(n)))) return;
+    const uint base = voxelLinearIndex(voxel, n) * VCT_VOXEL_ACCUM_STRIDE;
+    const bool dynamic = push.params.y != 0;
+    // The count first: most voxels are empty and need nothing else read.
+    const uint count = staticAccum[base + 9] + (dynamic ? dynamicAccum[base + 9] : 0u);
+    if (count == 0u) {
+        imageStore(albedoImage, voxel, vec4(0.0));
+        imageStore(normalImage, voxel, vec4(0.0));
+        imageStore(emissionImage, voxel, vec4(0.0));
+        return;
+    }
+    // Sums of both accumulators (uint addition wraps like the atomics, so signed normals add correctly).
+    uint sums[VCT_VOXEL_ACCUM_STRIDE - 1];
+    for (int i = 0; i < VCT_VOXEL_ACCUM_STRIDE - 1; ++i)
+        sums[i] = staticAccum[base + i] + (dynamic ? dynamicAccum[base + i] : 0u);
+    const vec3 albedo = vec3(voxelDecodeUnit(sums[0], count), voxelDecodeUnit(sums[1], count),
+                             voxelDecodeUnit(sums[2], count));
+    const vec3 normal = vec3(voxelDecodeSigned(sums[3], count), voxelDecodeSigned(sums[4], count),
+                             voxelDecodeSigned(sums[5], count));
+    const vec3 emission = vec3(voxelDecodeEmission(sums[6], count), voxelDecodeEmission(sums[7], count),
+                               voxelDecodeEmission(sums[8], count));
+    // Any surface in the voxel makes it opaque (binary coverage, as in Crassin et al.).
+    imageStore(albedoImage, voxel, vec4(albedo, 1.0));
+    imageStore(normalImage, voxel, vec4(normal, 0.0));
+    imageStore(emissionImage, voxel, vec4(emission, 0.0));
+}

@@ -1,0 +1,224 @@
+// Voxel cone tracing math (shaders/lib/cone.glsl) on the CPU, with the trace.comp march loop repeated over an
+// emulated grid; and the trace pass on the GPU (cornell, GI on vs off).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "io/image_io.h"
+#include "render/shader_math.h"
+#include "test_util.h"
+
+namespace {
+
+using namespace vct::glsl;
+using vct::test::luminance;
+
+// A grid sample at a point with a footprint (cube side d): premultiplied radiance rgb, opacity a.
+using GridSample = std::function<glm::vec4(glm::vec3 p, float d)>;
+
+// trace.comp's traceCone loop (without the environment term), on an unbounded grid of voxel size v0 with
+// `levels` mips, marching until opaque or t > maxT.
+glm::vec4 marchCone(const GridSample& grid, glm::vec3 origin, glm::vec3 dir, float tanHalf, float v0,
+                    float maxT, int levels = 12) {
+    glm::vec4 acc(0.0f);
+    float t = v0;
+    for (int i = 0; i < 10000 && acc.a < CONE_MAX_OPACITY && t <= maxT; ++i) {
+        float d = coneDiameter(tanHalf, t, v0);
+        float mip = std::min(coneMip(d, v0), float(levels - 1));
+        float size = v0 * std::exp2(mip);
+        float dt = coneStep(d);
+        acc = coneComposite(acc, grid(origin + dir * t, size), dt, size);
+        t += dt;
+    }
+    return acc;
+}
+
+// The 6 diffuse cones' weighted sum, as trace.comp: cosine-weighted mean incoming radiance.
+glm::vec3 diffuseCones(const GridSample& grid, glm::vec3 p, glm::vec3 n, float v0, float maxT) {
+    glm::vec3 sum(0.0f);
+    glm::vec3 origin = p + n * (v0 * CONE_START_OFFSET);
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+        sum += diffuseConeWeight(i) *
+               glm::vec3(marchCone(grid, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF, v0, maxT));
+    return sum;
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+TEST(Cone, FootprintMipAndStep) {
+    const float v0 = 0.1f;
+    EXPECT_FLOAT_EQ(coneDiameter(0.5f, 0.0f, v0), v0);    // never below one voxel
+    EXPECT_FLOAT_EQ(coneDiameter(0.5f, 0.05f, v0), v0);   // 2·0.5·0.05 = 0.05 < v0
+    EXPECT_FLOAT_EQ(coneDiameter(0.5f, 0.8f, v0), 0.8f);  // 2·tan·t
+    EXPECT_FLOAT_EQ(coneMip(v0, v0), 0.0f);
+    EXPECT_NEAR(coneMip(0.4f, v0), 2.0f, 1e-6f);
+    EXPECT_NEAR(coneMip(0.2828427f, v0), 1.5f, 1e-5f);
+    EXPECT_FLOAT_EQ(coneMip(0.01f, v0), 0.0f);  // clamped: no mip finer than 0
+    EXPECT_FLOAT_EQ(coneStep(0.8f), CONE_STEP_SCALE * 0.8f);
+    EXPECT_GT(coneStep(v0), 0.0f);
+}
+
+TEST(Cone, OpacityCorrectionFollowsStepLength) {
+    // Two half steps through the same medium compose to one full step.
+    float half = correctOpacity(0.6f, 0.5f, 1.0f);
+    EXPECT_NEAR(1.0f - (1.0f - half) * (1.0f - half), 0.6f, 1e-5f);
+    EXPECT_FLOAT_EQ(correctOpacity(1.0f, 0.5f, 1.0f), 1.0f);
+    EXPECT_FLOAT_EQ(correctOpacity(0.0f, 0.5f, 1.0f), 0.0f);
+}
+
+TEST(Cone, OpaqueVoxelOccludesWhatLiesBehind) {
+    // An opaque red wall at x ∈ [1, 1.2], a bright green one behind it at x ∈ [2, 2.2].
+    GridSample grid = [](glm::vec3 p, float) {
+        if (p.x >= 1.0f && p.x <= 1.2f) return glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+        if (p.x >= 2.0f && p.x <= 2.2f) return glm::vec4(0.0f, 100.0f, 0.0f, 1.0f);
+        return glm::vec4(0.0f);
+    };
+    glm::vec4 c = marchCone(grid, glm::vec3(0.0f), glm::vec3(1, 0, 0), 0.0f, 0.05f, 10.0f);
+    EXPECT_GE(c.a, CONE_MAX_OPACITY);
+    EXPECT_NEAR(c.r, c.a, 1e-4f);  // premultiplied red only
+    EXPECT_EQ(c.g, 0.0f);          // stopped before the green wall
+}
+
+TEST(Cone, EmptyGridGivesZero) {
+    GridSample empty = [](glm::vec3, float) { return glm::vec4(0.0f); };
+    glm::vec4 c = marchCone(empty, glm::vec3(0.0f), glm::vec3(0, 1, 0), DIFFUSE_CONE_TAN_HALF, 0.1f, 50.0f);
+    EXPECT_EQ(c, glm::vec4(0.0f));
+    EXPECT_EQ(diffuseCones(empty, glm::vec3(0.0f), glm::vec3(0, 0, 1), 0.1f, 50.0f), glm::vec3(0.0f));
+}
+
+TEST(Cone, DiffuseWeightsSumToOneAndDirectionsAreRight) {
+    float sum = 0.0f;
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) sum += diffuseConeWeight(i);
+    EXPECT_NEAR(sum, 1.0f, 1e-6f);
+    for (glm::vec3 n : {glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, -2, 0.3f)),
+                        glm::vec3(1, 0, 0)}) {
+        glm::vec3 mean(0.0f);
+        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
+            glm::vec3 d = diffuseConeDirection(n, i);
+            EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
+            EXPECT_NEAR(glm::dot(d, n), i == 0 ? 1.0f : 0.5f, 1e-5f);  // the normal, then 60° off it
+            mean += d;
+        }
+        // The side cones are spread evenly in azimuth: their mean lies on the normal.
+        EXPECT_NEAR(glm::length(glm::cross(mean, n)), 0.0f, 1e-5f);
+    }
+}
+
+// Inside a closed box whose walls emit L (opacity 1), the cosine-weighted incoming radiance is L everywhere:
+// irradiance π·L. The grid is emulated exactly: a sample with footprint d is the box-filtered occupancy of a
+// d-cube around p (the fraction outside the unit box's interior), as the mip chain of a voxelized wall gives.
+TEST(Cone, UniformlyEmissiveBoxGivesAnalyticIrradiance) {
+    const float L = 2.5f;
+    GridSample box = [L](glm::vec3 p, float d) {
+        float inside = 1.0f;
+        for (int axis = 0; axis < 3; ++axis) {
+            float lo = std::max(p[axis] - 0.5f * d, 0.0f), hi = std::min(p[axis] + 0.5f * d, 1.0f);
+            inside *= std::max(hi - lo, 0.0f) / d;
+        }
+        float occupancy = 1.0f - inside;
+        return glm::vec4(L * occupancy, L * occupancy, L * occupancy, occupancy);
+    };
+    const float v0 = 1.0f / 64.0f;
+    struct Point {
+        glm::vec3 p, n;
+    } points[] = {{{0.5f, 0.5f, 0.5f}, {0, 0, 1}},
+                  {{0.5f, 0.02f, 0.5f}, {0, 1, 0}},  // on the floor
+                  {{0.3f, 0.7f, 0.2f}, glm::normalize(glm::vec3(1, 1, -1))},
+                  {{0.9f, 0.1f, 0.5f}, {-1, 0, 0}}};  // a wall, near a corner
+    for (const Point& pt : points) {
+        glm::vec3 diffuse = diffuseCones(box, pt.p, pt.n, v0, 10.0f);
+        float irradiance = PI * diffuse.x;  // the normalisation: irradiance = π × cone output
+        EXPECT_NEAR(irradiance, PI * L, 0.1f * PI * L) << "at " << pt.p.x << "," << pt.p.y << "," << pt.p.z;
+        EXPECT_LE(diffuse.x, L * 1.0001f);
+    }
+}
+
+TEST(Cone, SpecularApertureIsFiniteAndMonotonic) {
+    EXPECT_EQ(specularConeTanHalf(0.0f), 0.0f);  // a mirror: a ray with a one-voxel footprint
+    float previous = 0.0f;
+    for (float r = 0.05f; r <= 1.0f; r += 0.05f) {
+        float t = specularConeTanHalf(alphaFromPerceptual(r));
+        EXPECT_TRUE(std::isfinite(t));
+        EXPECT_GE(t, previous);
+        EXPECT_LE(t, SPECULAR_CONE_MAX_TAN_HALF);
+        previous = t;
+    }
+    EXPECT_FLOAT_EQ(specularConeTanHalf(1.0f), SPECULAR_CONE_MAX_TAN_HALF);
+}
+
+TEST(Cone, NoNaNAtRoughnessExtremesAndGrazingOrBackFacingViews) {
+    GridSample grid = [](glm::vec3 p, float) {
+        return p.y < 0.0f ? glm::vec4(0.5f, 0.5f, 0.5f, 1.0f) : glm::vec4(0.0f);
+    };
+    const glm::vec3 n(0, 1, 0);
+    for (float roughness : {0.0f, 1.0f}) {
+        for (glm::vec3 v : {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, -0.5f, 0)), glm::vec3(0, -1, 0)}) {
+            // As trace.comp: n·v clamped to ≥ 0 before reflecting, a zero reflection replaced by n.
+            float NoV = std::max(glm::dot(n, v), 0.0f);
+            glm::vec3 r = 2.0f * NoV * n - v;
+            r = glm::dot(r, r) > 1e-12f ? glm::normalize(r) : n;
+            glm::vec4 c = marchCone(grid, glm::vec3(0, 0.1f, 0), r, specularConeTanHalf(alphaFromPerceptual(roughness)),
+                                    0.1f, 20.0f);
+            EXPECT_TRUE(finite(glm::vec3(c)) && std::isfinite(c.a)) << roughness;
+            glm::vec2 dfg = integrateDFG(NoV, alphaFromPerceptual(roughness), 64);
+            EXPECT_TRUE(finite(specularDfg(glm::vec3(0.04f), dfg))) << roughness;
+        }
+    }
+}
+
+// ---- GPU: the trace pass in the program ----
+
+float regionLuminance(const vct::ImageRgba32f& image, int x0, int y0, int x1, int y1) {
+    double sum = 0.0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const float* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+            sum += luminance(p[0], p[1], p[2]);
+        }
+    return float(sum / double((x1 - x0) * (y1 - y0)));
+}
+
+TEST(ConeGpu, IndirectLightBrightensShadowsOnCornell) {
+    vct::ImageRgba32f images[2];
+    const char* modes[2] = {"on", "off"};
+    for (int i = 0; i < 2; ++i) {
+        auto dir = vct::test::freshOutputDir(std::string("cone/gi_") + modes[i]);
+        auto r = vct::test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames", "2", "--voxels",
+                                    "32", "--trace-scale", "1", "--gi", modes[i], "--out", dir.string(), "--aux"});
+        ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
+        images[i] = vct::readExr(dir / "final.exr");
+        ASSERT_EQ(images[i].width, 160u);
+        EXPECT_EQ(vct::test::countNonFinite(images[i].pixels), 0u) << "gi " << modes[i];
+        if (i == 0) {
+            auto specular = vct::readExr(dir / "specular_indirect.exr");
+            EXPECT_EQ(vct::test::countNonFinite(specular.pixels), 0u);
+            // The glossy floor in front of the tall box reflects it and the lit back wall: not black.
+            EXPECT_GT(regionLuminance(specular, 70, 78, 100, 88), 0.01f);
+        }
+    }
+    // Regions picked from the 160x90 image (camera in builtin_scenes.cpp): the tall box's side facing away
+    // from the spot light, and the sphere's shadow on the floor. Only indirect light reaches them.
+    struct Region {
+        const char* name;
+        int x0, y0, x1, y1;
+    } regions[] = {{"box side in shadow", 106, 30, 118, 60}, {"sphere shadow on floor", 32, 70, 45, 74}};
+    for (const Region& region : regions) {
+        float on = regionLuminance(images[0], region.x0, region.y0, region.x1, region.y1);
+        float off = regionLuminance(images[1], region.x0, region.y0, region.x1, region.y1);
+        std::printf("%s: gi on %.4f, gi off %.4f\n", region.name, on, off);
+        EXPECT_GT(on, 1.3f * off) << region.name;
+    }
+}
+
+TEST(ConeGpu, BadFlagValuesAreOneLineErrors) {
+    for (std::vector<std::string> args : {std::vector<std::string>{"render", "--gi", "maybe"},
+                                          std::vector<std::string>{"render", "--trace-scale", "3"}}) {
+        auto r = vct::test::runVct(args);
+        ASSERT_TRUE(r.exited()) << r.describe();
+        EXPECT_EQ(r.exitCode, 2) << r.describe();
+        EXPECT_NE(r.err.find("expected"), std::string::npos) << r.err;
+    }
+}
+
+}  // namespace

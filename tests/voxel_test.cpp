@@ -1,0 +1,175 @@
+// The voxel grid: the shared math of shaders/lib/voxel.glsl on the CPU (triangle/box overlap, closest point,
+// coordinate conversions, grid fitting, fixed-point accumulation, the voxel cosine), and the voxelize /
+// inject / mips passes end to end through `vct render` on lavapipe.
+#include "render/voxel_grid.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <string>
+
+namespace vct {
+namespace {
+
+namespace g = vct::glsl;
+using glm::vec3;
+using glm::vec4;
+
+const vec3 kCenter(0.5f), kHalf(0.5f);  // the unit voxel [0,1]³
+
+bool overlaps(vec3 a, vec3 b, vec3 c) { return g::triangleBoxOverlap(kCenter, kHalf, a, b, c); }
+
+TEST(VoxelOverlap, TriangleInsideAndThrough) {
+    EXPECT_TRUE(overlaps(vec3(0.2f), vec3(0.8f, 0.2f, 0.2f), vec3(0.2f, 0.8f, 0.2f)));
+    // Crosses the box, no vertex inside.
+    EXPECT_TRUE(overlaps(vec3(-1.0f, -1.0f, 0.5f), vec3(3.0f, -1.0f, 0.5f), vec3(-1.0f, 3.0f, 0.5f)));
+}
+
+TEST(VoxelOverlap, TouchingCountsAsOverlap) {
+    // In the plane z = 1 (the box's top face), and one touching only at the corner (1,1,1).
+    EXPECT_TRUE(overlaps(vec3(0.0f, 0.0f, 1.0f), vec3(1.0f, 0.0f, 1.0f), vec3(0.0f, 1.0f, 1.0f)));
+    EXPECT_TRUE(overlaps(vec3(1.0f), vec3(2.0f, 1.0f, 1.0f), vec3(1.0f, 2.0f, 1.0f)));
+}
+
+TEST(VoxelOverlap, Separated) {
+    // Above the box.
+    EXPECT_FALSE(overlaps(vec3(0.0f, 0.0f, 1.01f), vec3(1.0f, 0.0f, 1.01f), vec3(0.0f, 1.0f, 1.01f)));
+    // Bounding boxes overlap, but the plane x+y+z = 3.1 passes beyond the corner (1,1,1).
+    EXPECT_FALSE(overlaps(vec3(3.1f, 0.0f, 0.0f), vec3(0.0f, 3.1f, 0.0f), vec3(0.0f, 0.0f, 3.1f)));
+    // A thin vertical sliver along x+y = 2.2, beside the box's vertical edge at (1,1).
+    EXPECT_FALSE(overlaps(vec3(2.2f, 0.0f, 0.5f), vec3(0.0f, 2.2f, 0.5f), vec3(2.2f, 0.0f, 0.6f)));
+}
+
+TEST(VoxelOverlap, HugeTriangle) {
+    const float big = 1e6f;
+    EXPECT_TRUE(overlaps(vec3(-big, -big, 0.5f), vec3(big, -big, 0.5f), vec3(0.0f, big, 0.5f)));
+    EXPECT_FALSE(overlaps(vec3(-big, -big, 2.0f), vec3(big, -big, 2.0f), vec3(0.0f, big, 2.0f)));
+}
+
+TEST(VoxelOverlap, DegenerateTrianglesGiveNoNaN) {
+    // A point inside, a point outside, a segment through the box, a segment beside it.
+    EXPECT_TRUE(overlaps(vec3(0.5f), vec3(0.5f), vec3(0.5f)));
+    EXPECT_FALSE(overlaps(vec3(2.0f), vec3(2.0f), vec3(2.0f)));
+    EXPECT_TRUE(overlaps(vec3(-1.0f, 0.5f, 0.5f), vec3(2.0f, 0.5f, 0.5f), vec3(0.5f, 0.5f, 0.5f)));
+    EXPECT_FALSE(overlaps(vec3(-1.0f, 1.5f, 0.5f), vec3(2.0f, 1.5f, 0.5f), vec3(0.5f, 1.5f, 0.5f)));
+    for (vec3 p : {vec3(0.5f), vec3(3.0f, -2.0f, 7.0f)}) {
+        const vec3 point = g::closestPointBarycentric(p, vec3(1.0f), vec3(1.0f), vec3(1.0f));
+        const vec3 segment = g::closestPointBarycentric(p, vec3(0.0f), vec3(1.0f), vec3(2.0f));
+        for (vec3 b : {point, segment}) {
+            EXPECT_TRUE(std::isfinite(b.x) && std::isfinite(b.y) && std::isfinite(b.z));
+            EXPECT_NEAR(b.x + b.y + b.z, 1.0f, 1e-5f);
+        }
+    }
+}
+
+TEST(VoxelClosestPoint, InteriorAndVertex) {
+    const vec3 a(0.0f), b(1.0f, 0.0f, 0.0f), c(0.0f, 1.0f, 0.0f);
+    const vec3 inside = g::closestPointBarycentric(vec3(0.25f, 0.25f, 3.0f), a, b, c);
+    EXPECT_NEAR(inside.y, 0.25f, 1e-6f);
+    EXPECT_NEAR(inside.z, 0.25f, 1e-6f);
+    const vec3 corner = g::closestPointBarycentric(vec3(2.0f, -1.0f, 0.0f), a, b, c);
+    EXPECT_NEAR(corner.y, 1.0f, 1e-6f);
+}
+
+TEST(VoxelCoordinates, WorldVoxelRoundTrip) {
+    const vec4 grid(-2.0f, 1.0f, 3.0f, 0.25f);
+    const vec3 p(0.3f, 1.7f, 4.1f);
+    const vec3 v = g::voxelFromWorld(p, grid);
+    const vec3 back = g::worldFromVoxel(v, grid);
+    EXPECT_NEAR(back.x, p.x, 1e-5f);
+    EXPECT_NEAR(back.y, p.y, 1e-5f);
+    EXPECT_NEAR(back.z, p.z, 1e-5f);
+    // Texel centre of voxel i at origin + (i + 0.5)·size; its UVW is (i + 0.5) / N.
+    const vec3 center = g::voxelCenterWorld(glm::ivec3(3, 0, 7), grid);
+    EXPECT_NEAR(center.x, -2.0f + 3.5f * 0.25f, 1e-6f);
+    EXPECT_NEAR(center.z, 3.0f + 7.5f * 0.25f, 1e-6f);
+    const vec3 uvw = g::voxelUvw(center, grid, 16.0f);
+    EXPECT_NEAR(uvw.x, 3.5f / 16.0f, 1e-6f);
+    EXPECT_NEAR(uvw.y, 0.5f / 16.0f, 1e-6f);
+    EXPECT_EQ(g::voxelLinearIndex(glm::ivec3(1, 2, 3), 4), 1u + 4u * (2u + 4u * 3u));
+}
+
+TEST(VoxelGridFit, CubeCoversBoundsWithPadding) {
+    const vec3 lo(-1.0f, 0.0f, -3.0f), hi(1.0f, 2.0f, 5.0f);
+    const vec4 grid = g::voxelGridFit(lo, hi, 64.0f);
+    const vec3 gridMax = vec3(grid) + 64.0f * grid.w;
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_LE(grid[axis] + grid.w * 0.99f, lo[axis]);  // at least ~one voxel free below
+        EXPECT_GE(gridMax[axis] - grid.w * 0.99f, hi[axis]);
+    }
+    EXPECT_NEAR(grid.w, 8.0f / 62.0f, 1e-6f);
+}
+
+TEST(VoxelGridFit, FlatSceneStaysValid) {
+    // Zero extent on y (a plane), and a single point: positive, finite voxel size, bounds inside the grid.
+    const std::pair<vec3, vec3> cases[] = {{vec3(-1.0f, 0.0f, -1.0f), vec3(1.0f, 0.0f, 1.0f)},
+                                           {vec3(2.0f), vec3(2.0f)}};
+    for (const auto& [lo, hi] : cases) {
+        const vec4 grid = g::voxelGridFit(lo, hi, 32.0f);
+        EXPECT_GT(grid.w, 0.0f);
+        EXPECT_TRUE(std::isfinite(grid.x) && std::isfinite(grid.y) && std::isfinite(grid.z) && std::isfinite(grid.w));
+        const vec3 v = g::voxelFromWorld(0.5f * (lo + hi), grid);
+        for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(v[axis], 16.0f, 1e-3f);  // centred
+    }
+}
+
+TEST(VoxelAccumulation, FixedPointAveragesAndSignedSums) {
+    // Two normals that cancel plus one that does not: wrapping uint sums give the signed average.
+    const uint32_t sum = g::voxelEncodeSigned(-1.0f) + g::voxelEncodeSigned(0.5f) + g::voxelEncodeSigned(-0.2f);
+    EXPECT_NEAR(g::voxelDecodeSigned(sum, 3), (-1.0f + 0.5f - 0.2f) / 3.0f, 2e-3f);
+    EXPECT_NEAR(g::voxelDecodeUnit(g::voxelEncodeUnit(0.3f) + g::voxelEncodeUnit(0.9f), 2), 0.6f, 1e-3f);
+    EXPECT_NEAR(g::voxelDecodeEmission(g::voxelEncodeEmission(12.5f), 1), 12.5f, 1e-2f);
+    EXPECT_EQ(g::voxelEncodeUnit(-3.0f), 0u);  // clamped, never wraps
+}
+
+TEST(VoxelCosine, OneSidedTwoSidedAndAmbiguous) {
+    const vec3 l(0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(g::voxelCosine(vec3(0.0f, 0.0f, 1.0f), l), 1.0f, 1e-6f);
+    EXPECT_NEAR(g::voxelCosine(vec3(0.0f, 0.0f, -1.0f), l), 0.0f, 1e-6f);  // lit from behind: dark
+    EXPECT_NEAR(g::voxelCosine(vec3(0.0f), l), 0.5f, 1e-6f);                // no direction left
+    const float thinWall = g::voxelCosine(vec3(0.0f, 0.0f, -0.1f), l);      // both sides, barely agreeing
+    EXPECT_GT(thinWall, 0.8f);
+    EXPECT_TRUE(std::isfinite(thinWall));
+}
+
+TEST(VoxelMips, PremultipliedAverage) {
+    const vec4 lit(2.0f, 1.0f, 0.0f, 1.0f), empty(0.0f);
+    const vec4 m = g::voxelAverage8(lit, empty, empty, empty, empty, empty, empty, empty);
+    EXPECT_NEAR(m.a, 0.125f, 1e-6f);
+    EXPECT_NEAR(m.r / m.a, 2.0f, 1e-5f);  // un-premultiplied colour is the lit voxel's
+}
+
+// ---- the passes on the GPU (lavapipe): cornell with a 32³ grid, validation on ----
+
+TEST(VoxelPasses, CornellTimingsListVoxelPasses) {
+    const auto dir = test::freshOutputDir("voxel_passes");
+    const test::RunResult run = test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames", "4",
+                                              "--voxels", "32", "--validate", "--out", dir.string()});
+    ASSERT_TRUE(run.exited()) << run.describe();
+    ASSERT_EQ(run.exitCode, 0) << run.describe();
+    std::ifstream file(dir / "timings.json");
+    ASSERT_TRUE(file) << "no timings.json";
+    const nlohmann::json timings = nlohmann::json::parse(file);
+    std::set<std::string> seen;
+    for (const auto& pass : timings.at("passes")) {
+        const std::string name = pass.at("name");
+        if (name != "voxelize" && name != "inject" && name != "mips") continue;
+        seen.insert(name);
+        EXPECT_GT(pass.at("median_ms").get<double>(), 0.0) << name;
+    }
+    EXPECT_EQ(seen, (std::set<std::string>{"voxelize", "inject", "mips"}));
+}
+
+TEST(VoxelPasses, BadResolutionIsAUsageError) {
+    const auto dir = test::freshOutputDir("voxel_bad");
+    const test::RunResult run = test::runVct({"render", "--frames", "1", "--voxels", "48", "--out", dir.string()});
+    ASSERT_TRUE(run.exited()) << run.describe();
+    EXPECT_EQ(run.exitCode, 2) << run.describe();
+}
+
+}  // namespace
+}  // namespace vct
