@@ -19,17 +19,25 @@ namespace vct {
 
 namespace {
 
+CommandSpec makeDemoSpec() {
+    std::vector<Option> options = {
+        {"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
+        {"size", "WxH", "initial window size", "1280x720"},
+        {"frames", "N", "quit after N frames, advancing the scene 1/60 s per frame (0: run until closed)",
+         "0"},
+        {"screenshot", "FILE.png", "write the last frame to FILE.png on exit", ""},
+        {"exposure", "X", "linear exposure before tone mapping", "1"},
+        {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
+        {"validate", "", "enable the Khronos validation layer; any message fails the run", ""}};
+    // The same GI and material-filtering switches as `render`, so the window can compare them live.
+    for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
+    for (Option& option : giOptions()) options.push_back(std::move(option));
+    return CommandSpec("demo", "Opens a window and shows the frame live (WASD + mouse drag, Esc quits).",
+                       options);
+}
+
 const CommandSpec& demoSpec() {
-    static const CommandSpec spec(
-        "demo", "Opens a window and shows the frame live (WASD + mouse drag, Esc quits).",
-        {{"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
-         {"size", "WxH", "initial window size", "1280x720"},
-         {"frames", "N", "quit after N frames, advancing the scene 1/60 s per frame (0: run until closed)",
-          "0"},
-         {"screenshot", "FILE.png", "write the last frame to FILE.png on exit", ""},
-         {"exposure", "X", "linear exposure before tone mapping", "1"},
-         {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
-         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""}});
+    static const CommandSpec spec = makeDemoSpec();
     return spec;
 }
 
@@ -38,7 +46,7 @@ constexpr double kTitleInterval = 0.5;  // seconds between title updates: readab
 
 // Keys held and mouse drags since the last frame, as fly-camera input.
 class InputReader {
-public:
+  public:
     explicit InputReader(GLFWwindow* window) : window_(window) {
         // A key pressed and released between two polls (Esc at a few fps on a CPU device) still counts.
         glfwSetInputMode(window, GLFW_STICKY_KEYS, GLFW_TRUE);
@@ -64,7 +72,7 @@ public:
         return input;
     }
 
-private:
+  private:
     bool down(int key) const { return glfwGetKey(window_, key) == GLFW_PRESS; }
     float axis(int positive, int negative) const { return float(down(positive)) - float(down(negative)); }
 
@@ -171,8 +179,9 @@ int runDemoCommand(int argc, char** argv, int first) {
         Session session(options);
         Swapchain swapchain(session.context(), window);
 
-        std::printf("controls: W/A/S/D move, Q/E down/up, Shift faster, "
-                    "drag with a mouse button to look, Esc quits\n");
+        std::printf(
+            "controls: W/A/S/D move, Q/E down/up, Shift faster, "
+            "drag with a mouse button to look, Esc quits\n");
         std::fflush(stdout);
         const uint32_t frames = runLoop(window, session, swapchain, frameLimit);
 
