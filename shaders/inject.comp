@@ -6,6 +6,7 @@
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
+#include "lib/lights.glsl"
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
 
@@ -26,30 +27,6 @@ float shadowVisibility(vec3 p) {
     const vec2 uv = ndc.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z >= 1.0) return 1.0;
     return texture(shadowMap, vec3(uv, ndc.z));
-}
-
-// Radiance arriving at p from a KHR_lights_punctual light and the direction towards it (as in direct.comp).
-vec3 incidentLight(GpuLight light, vec3 p, out vec3 towardsLight) {
-    const int type = int(light.directionType.w);
-    if (type == VCT_LIGHT_DIRECTIONAL) {
-        towardsLight = -light.directionType.xyz;
-        return light.colorIntensity.rgb;
-    }
-    const vec3 delta = light.positionRange.xyz - p;
-    const float distance2 = max(dot(delta, delta), 1e-8);
-    towardsLight = delta * inversesqrt(distance2);
-    float attenuation = 1.0 / distance2;
-    const float range = light.positionRange.w;
-    if (range > 0.0) {
-        const float ratio = sqrt(distance2) / range;
-        attenuation *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
-    }
-    if (type == VCT_LIGHT_SPOT) {
-        const float cd = dot(light.directionType.xyz, -towardsLight);
-        const float spot = clamp(cd * light.spotScaleOffset.x + light.spotScaleOffset.y, 0.0, 1.0);
-        attenuation *= spot * spot;
-    }
-    return light.colorIntensity.rgb * attenuation;
 }
 
 void main() {
