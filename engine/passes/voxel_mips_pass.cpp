@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "vk/barrier.h"
+
 namespace vct {
 
 VoxelMipsPass::VoxelMipsPass(const vk::Context& context, VoxelGrid& grid) : grid_(grid) {
@@ -24,14 +26,8 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
     for (uint32_t level = 1; level < grid_.mipCount(); ++level) {
         if (level > 1) {
             // Level `level − 1`, written by the previous dispatch, is this dispatch's source.
-            VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-            barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-            barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-            barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-            VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dependency.memoryBarrierCount = 1;
-            dependency.pMemoryBarriers = &barrier;
-            vkCmdPipelineBarrier2(cmd, &dependency);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
         }
         vk::DescriptorWriter()
             .storage(VCT_MIPS_BINDING_SOURCE, radiance.mipView(level - 1))
