@@ -38,9 +38,16 @@ vec3 safeNormalize(vec3 v, vec3 fallback) {
     return (len2 > 1e-20 && !isinf(len2) && !isnan(len2)) ? v * inversesqrt(len2) : fallback;
 }
 
+// A material texture: mip-mapped (and anisotropic where the sampler is), or level 0 only when
+// materialParams.z is set, so that a supersampled, box-filtered render shows the unfiltered material: the
+// ground truth that mip filtering and Toksvig approximate (tests/toksvig_test.cpp). The condition is uniform.
+vec4 materialTexture(sampler2D map, vec2 uv) {
+    return frame.materialParams.z > 0.5 ? textureLod(map, uv, 0.0) : texture(map, uv);
+}
+
 void main() {
     const GpuMaterial material = materials[draw.indices.y];
-    const vec4 baseColor = material.baseColorFactor * texture(baseColorTexture, inUv);
+    const vec4 baseColor = material.baseColorFactor * materialTexture(baseColorTexture, inUv);
     if (material.flags.x == VCT_ALPHA_MASK && baseColor.a < material.metallicRoughnessCutoffAo.z) discard;
 
     // Geometric frame; back faces of double-sided surfaces see the flipped normal.
@@ -54,16 +61,16 @@ void main() {
 
     // Tangent-space normal (glTF: scaled in x, y). The texel's length is kept until here: mips of a normal
     // map average unit normals, and |N̄| < 1 tells how much they disagreed (Toksvig, below).
-    const vec3 mapped = texture(normalTexture, inUv).xyz * 2.0 - 1.0;
+    const vec3 mapped = materialTexture(normalTexture, inUv).xyz * 2.0 - 1.0;
     const float normalScale = material.emissiveNormalScale.w;
     const vec3 scaled = vec3(mapped.xy * normalScale, mapped.z);
     const vec3 shadingNormal = safeNormalize(tangent * scaled.x + bitangent * scaled.y + normal * scaled.z, normal);
 
-    const vec4 mr = texture(metallicRoughnessTexture, inUv);
+    const vec4 mr = materialTexture(metallicRoughnessTexture, inUv);
     const float metallic = clamp(material.metallicRoughnessCutoffAo.x * mr.b, 0.0, 1.0);
     const float perceptualRoughness = clamp(material.metallicRoughnessCutoffAo.y * mr.g, 0.0, 1.0);
-    const vec3 emissive = material.emissiveNormalScale.rgb * texture(emissiveTexture, inUv).rgb;
-    const float occlusion = 1.0 + material.metallicRoughnessCutoffAo.w * (texture(occlusionTexture, inUv).r - 1.0);
+    const vec3 emissive = material.emissiveNormalScale.rgb * materialTexture(emissiveTexture, inUv).rgb;
+    const float occlusion = 1.0 + material.metallicRoughnessCutoffAo.w * (materialTexture(occlusionTexture, inUv).r - 1.0);
 
     // Normal filtering widens the GGX lobe: α'² from α² (α = perceptual²), written back as perceptual √α'.
     const float alpha = alphaFromPerceptual(perceptualRoughness);

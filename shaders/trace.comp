@@ -1,14 +1,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// trace: one thread per LOW-res pixel (x, y), traced at full-res pixel (s·x, s·y) (jitter comes later) from the
-// full-res G-buffer: 6 diffuse cones around n and 1 specular cone along reflect(−v, n) through the voxel grid.
-// Outputs are demodulated (lib/cone.glsl): diffuse = cosine-weighted mean incoming radiance (albedo divided
-// out), specular = incoming radiance along the cone (specular colour / DFG divided out).
+// trace: one thread per LOW-res pixel (x, y), traced at the jittered full-res pixel s·(x, y) + o_k (DESIGN
+// §3.5: o_k cycles through the s×s offsets, so s² frames visit every full-res pixel) from the full-res
+// G-buffer there: 6 diffuse cones around n and 1 specular cone along reflect(−v, n) through the voxel grid.
+// Outputs are demodulated (lib/cone.glsl); the upsample pass knows o_k and reads the same G-buffer texels.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
 #include "lib/cone.glsl"
 #include "lib/gbuffer_read.glsl"
+#include "lib/upsample_weights.glsl"
+#include "lib/upsample_guide.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
@@ -18,72 +20,33 @@ layout(set = 0, binding = VCT_TRACE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D 
 layout(set = 0, binding = VCT_TRACE_BINDING_VOXELS) uniform sampler3D voxels;
 layout(set = 0, binding = VCT_TRACE_BINDING_DIFFUSE, rgba16f) uniform writeonly image2D diffuseImage;
 layout(set = 0, binding = VCT_TRACE_BINDING_SPECULAR, rgba16f) uniform writeonly image2D specularImage;
+layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_POSITION, rgba32f) uniform writeonly image2D guidePositionImage;
+layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_NORMAL, rgba16f) uniform writeonly image2D guideNormalImage;
+layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_AXIS, rgba16f) uniform writeonly image2D guideAxisImage;
 
-// Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
-// Light that leaves the grid unoccluded sees the environment, the constant ambient radiance (the background
-// shows the same value, so the two agree).
-vec4 traceCone(vec3 origin, vec3 dir, float tanHalfAngle) {
-    const vec3 gridOrigin = frame.voxelOrigin.xyz;
-    const float v0 = frame.voxelOrigin.w;
-    const float gridSize = frame.voxelParams.x * v0;
-    const float maxMip = max(frame.voxelParams.y - 1.0, 0.0);
-    vec4 acc = vec4(0.0);
-    // Start one voxel out: the cone's first footprint then lies beside the surface, not on it.
-    float t = v0;
-    // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
-    const int maxSteps = int(4.0 * frame.voxelParams.x) + 8;
-    for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
-        const float d = coneDiameter(tanHalfAngle, t, v0);
-        const vec3 uvw = (origin + dir * t - gridOrigin) / gridSize;
-        // The axis leaves the grid: the grid is padded around the scene bounds, so nothing lies beyond. (No
-        // margin that grows with d: wide cones would then never leave, and t would overflow.)
-        if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
-        const float mip = min(coneMip(d, v0), maxMip);
-        const vec4 s = textureLod(voxels, uvw, mip);
-        const float dt = coneStep(d);
-        // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
-        acc = coneComposite(acc, s, dt, v0 * exp2(mip));
-        t += dt;
-    }
-    acc.rgb += (1.0 - saturate(acc.a)) * frame.ambient.rgb;
-    return acc;
-}
+#include "lib/cone_trace.glsl"
 
 void main() {
     const ivec2 lowPixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(lowPixel, imageSize(diffuseImage)))) return;
     const int scale = max(int(frame.voxelParams.w), 1);
-    const ivec2 size = ivec2(frame.imageSize.xy);
-    const ivec2 pixel = min(lowPixel * scale, size - 1);
+    // Clamped at the right and bottom edges (the low-res image rounds up); upsample clamps the same way.
+    const ivec2 pixel = min(lowPixel * scale + frame.traceJitter.xy, ivec2(frame.imageSize.xy) - 1);
+    const IndirectSample s = tracePixel(voxels, depthTexture, normalRoughnessTexture, pixel);
+    imageStore(diffuseImage, lowPixel, vec4(s.diffuse, 1.0));
+    imageStore(specularImage, lowPixel, vec4(s.specular, 1.0));
 
+    // The sample's guide for the upsample weights, computed once here rather than by every pixel it serves.
     const float depth = texelFetch(depthTexture, pixel, 0).r;
-    if (isBackground(depth) || frame.voxelOrigin.w <= 0.0) {
-        // Background (nothing to light) or no grid yet: no indirect light.
-        imageStore(diffuseImage, lowPixel, vec4(0.0));
-        imageStore(specularImage, lowPixel, vec4(0.0));
+    if (isBackground(depth)) {
+        imageStore(guidePositionImage, lowPixel, vec4(0.0));
         return;
     }
     const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
-    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
-    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
-    const float nLength = length(normalRoughness.xyz);
-    const vec3 n = nLength > 1e-6 ? normalRoughness.xyz / nLength : vec3(0.0, 1.0, 0.0);
-    const vec3 v = normalize(frame.cameraPosition.xyz - p);
-    const float v0 = frame.voxelOrigin.w;
-    const vec3 origin = p + n * (v0 * CONE_START_OFFSET);
-
-    vec3 diffuse = vec3(0.0);
-    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        diffuse += diffuseConeWeight(i) * traceCone(origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
-
-    // Back-facing shading normals (normal maps, grazing views): reflect about n with n·v clamped to ≥ 0 so the
-    // cone never points into the surface.
-    const float NoV = max(dot(n, v), 0.0);
-    vec3 r = 2.0 * NoV * n - v;
-    r = dot(r, r) > 1e-12 ? normalize(r) : n;
-    const float alpha = alphaFromPerceptual(normalRoughness.w);
-    const vec3 specular = traceCone(origin, r, specularConeTanHalf(alpha)).rgb;
-
-    imageStore(diffuseImage, lowPixel, vec4(diffuse, 1.0));
-    imageStore(specularImage, lowPixel, vec4(specular, 1.0));
+    const Guide g = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0),
+                                     worldFromDepth(frame.invViewProj, uv, depth), frame.cameraPosition.xyz,
+                                     frame.upsampleParams.y);
+    imageStore(guidePositionImage, lowPixel, vec4(g.p, 1.0));
+    imageStore(guideNormalImage, lowPixel, vec4(g.n, g.specularSharpness));
+    imageStore(guideAxisImage, lowPixel, vec4(g.specularAxis, 0.0));
 }

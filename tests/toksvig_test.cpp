@@ -1,13 +1,12 @@
 // Normal-map filtering (shaders/lib/toksvig.glsl, DESIGN §3.2): the CPU properties of Toksvig's roughness and
 // of geometric specular AA, and the measurement that decides whether Toksvig helps: the `plane` scene rendered
-// at 4× the resolution without filtering and box-filtered down is the reference; the 1× render with Toksvig
-// must be closer to it (MSE on linear HDR) than the 1× render without.
+// at 4× the resolution with the normal map read at level 0 (--texture-lod0: unfiltered, so each sample is a
+// point sample of the true surface) and box-filtered down is the reference; the 1× render with Toksvig must be
+// closer to it (MSE on linear HDR) than the 1× render without.
 //
-// The supersampling factor must be 16, not 4: the reference samples the normal map's mips too, and 4× only
-// lowers the mip level by 2. The plane's bumps (8-texel period) are averaged away from level 2 on, so a 4×
-// reference still shows the flat-mirror highlight and agrees with Toksvig off (measured at 160x90, exact
-// variant: 4× reference MSE on 559, off 58.7; 8×: on 102, off 687; 16×: on 6.16, off 782; small-angle
-// variant: 561 / 103 / 6.34). The 4× numbers are printed too, for the record.
+// Before --texture-lod0 the reference sampled the normal map's mips too (at 4× only 2 levels finer, and the
+// bumps are averaged flat from level 2 on), so it was no ground truth; see CloserToTheSupersampledReference
+// for the size the 4× reference needs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -101,15 +100,31 @@ TEST(SpecularAA, ZeroDerivativesAddNothingAndTheAdditionIsBounded) {
 
 // ---- GPU: the supersampling measurement ----
 
-constexpr uint32_t kWidth = 160, kHeight = 90, kFactor = 16;
-
-ImageRgba32f renderPlane(const std::string& name, uint32_t factor, bool toksvig) {
+// Every render of the measurement: one frame of the `plane` scene, geometric specular AA off in all of them so
+// that only Toksvig differs between the 1× renders (specular AA would widen the lobe from the normals'
+// screen-space derivatives, a second filter that would blur which one helps), and GI off: the plane reflects
+// nothing but the constant environment, which GI off gives too, and the large reference renders 8× faster.
+ImageRgba32f renderPlane(const std::string& name, uint32_t width, uint32_t height,
+                         const std::vector<std::string>& extra) {
     const fs::path dir = test::freshOutputDir("toksvig/" + name);
-    const std::string size = std::to_string(kWidth * factor) + "x" + std::to_string(kHeight * factor);
-    test::RunResult run = test::runVct({"render", "--scene", "plane", "--size", size, "--frames", "2", "--out",
-                                        dir.string(), "--toksvig", toksvig ? "on" : "off", "--specular-aa", "off"});
+    std::vector<std::string> args = {"render", "--scene", "plane", "--size",
+                                     std::to_string(width) + "x" + std::to_string(height), "--frames", "1",
+                                     "--out", dir.string(), "--specular-aa", "off", "--gi", "off"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    test::RunResult run = test::runVct(args);
     EXPECT_TRUE(run.exited() && run.exitCode == 0) << run.describe();
-    return readExr(dir / "final.exr");
+    ImageRgba32f image = readExr(dir / "final.exr");
+    EXPECT_EQ(image.width, width);
+    EXPECT_EQ(image.height, height);
+    EXPECT_EQ(test::countNonFinite(image.pixels), 0u) << name;
+    return image;
+}
+
+// The ground truth: `factor`× the resolution, every material texture read at level 0 (--texture-lod0: no
+// mips, so no Toksvig input either; Toksvig off), i.e. point samples of the unfiltered normal map.
+ImageRgba32f renderReference(uint32_t width, uint32_t height) {
+    return renderPlane("reference-" + std::to_string(width) + "x" + std::to_string(height), width, height,
+                       {"--toksvig", "off", "--texture-lod0"});
 }
 
 // factor × factor box filter of the RGB channels.
@@ -125,6 +140,8 @@ std::vector<float> boxDown(const ImageRgba32f& image, uint32_t factor) {
 }
 
 double mse(const std::vector<float>& reference, const ImageRgba32f& image) {
+    EXPECT_EQ(reference.size(), size_t(image.width) * image.height * 3);
+    if (reference.size() != size_t(image.width) * image.height * 3) return 0.0;
     double sum = 0.0;
     for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
         for (size_t c = 0; c < 3; ++c) {
@@ -134,23 +151,48 @@ double mse(const std::vector<float>& reference, const ImageRgba32f& image) {
     return sum / double(image.width * image.height * 3);
 }
 
+struct Errors {
+    double on, off;
+};
+
+// The 1× renders at width × height with Toksvig on and off against `reference` (already box-filtered).
+Errors compare(const std::vector<float>& reference, uint32_t width, uint32_t height, uint32_t factor,
+               const char* note = "") {
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    const ImageRgba32f on = renderPlane("on-" + size, width, height, {"--toksvig", "on"});
+    const ImageRgba32f off = renderPlane("off-" + size, width, height, {"--toksvig", "off"});
+    const Errors errors{mse(reference, on), mse(reference, off)};
+    std::printf("plane %s vs %ux box-filtered level-0 reference: MSE toksvig on %.6g, off %.6g%s\n", size.c_str(),
+                factor, errors.on, errors.off, note);
+    return errors;
+}
+
+// Acceptance (issue 3 item 4): 640x360 against 2560x1440, and 160x90 against the same 2560x1440 (16×).
+//
+// The 1× size is 640x360, not smaller, because a 4× reference is only ground truth where 4× resolves the
+// bumps: 8 texels of 2 mm, 15.6 mm, while a 640x360 pixel at the highlight (3.35 m away, 26.6° above the
+// plane) spans ~17 mm along the view direction, so 4× gives ~3.6 samples per bump period. At 160x90 the 4×
+// reference (640x360) gets ~1.1 samples per period along the view: below Nyquist, it aliases into moiré bands
+// that show the flat-mirror highlight, and it is not converged: box-filtered to 160x90 its mean is 3.23 where
+// 8× gives 1.89, 16× 1.09 and 32× 1.12 (MSE against the 32× one: 4× 774, 8× 55, 16× 8.0), so it sides with
+// Toksvig off (on 771, off 85.3, printed below for the record, not asserted). At 640x360 the 4× reference is
+// within MSE 29 of an 8× one (5120x2880): its remaining error is the glints of the 0.15-roughness lobe.
+// Measured (lavapipe): 640x360 vs 4×: on 23.7, off 676; 160x90 vs 16×: on 6.17, off 782.
 TEST(ToksvigGpu, CloserToTheSupersampledReference) {
-    const ImageRgba32f on = renderPlane("on", 1, true), off = renderPlane("off", 1, false);
-    ASSERT_EQ(on.width, kWidth);
-    ASSERT_EQ(off.width, kWidth);
-    EXPECT_EQ(test::countNonFinite(on.pixels) + test::countNonFinite(off.pixels), 0u);
-    for (uint32_t factor : {4u, kFactor}) {
-        const ImageRgba32f big = renderPlane("reference" + std::to_string(factor), factor, false);
-        ASSERT_EQ(big.width, kWidth * factor);
-        EXPECT_EQ(test::countNonFinite(big.pixels), 0u);
-        const std::vector<float> reference = boxDown(big, factor);
-        const double errorOn = mse(reference, on), errorOff = mse(reference, off);
-        std::printf("plane %ux%u vs %ux box-filtered reference: MSE toksvig on %.6g, off %.6g\n", kWidth, kHeight,
-                    factor, errorOn, errorOff);
-        if (factor == kFactor) {
-            EXPECT_LT(errorOn, errorOff);
-        }
-    }
+    constexpr uint32_t kWidth = 640, kHeight = 360, kFactor = 4;
+    const ImageRgba32f big = renderReference(kWidth * kFactor, kHeight * kFactor);
+    if (big.width != kWidth * kFactor || big.height != kHeight * kFactor) return;  // reported above
+
+    const Errors at4 = compare(boxDown(big, kFactor), kWidth, kHeight, kFactor);
+    EXPECT_LT(at4.on, at4.off);
+    const Errors at16 = compare(boxDown(big, 16), kWidth / 4, kHeight / 4, 16);
+    EXPECT_LT(at16.on, at16.off);
+
+    // For the record: 160x90 against its own 4× reference, which aliases (see above).
+    const ImageRgba32f small = renderReference(kWidth, kHeight);
+    if (small.width == kWidth && small.height == kHeight)
+        compare(boxDown(small, kFactor), kWidth / 4, kHeight / 4, kFactor,
+                " (reference aliased at this size: not asserted)");
 }
 
 // Roughness-0 materials (MetalRoughSpheresNoTextures' first column) with Toksvig and specular AA on: every

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "app/upsample_views.h"
 #include "io/image_io.h"
 #include "render/shader_math.h"
 
@@ -55,8 +56,11 @@ AuxView parseAuxView(const std::string& value) {
     if (value == "specular") return AuxView::Specular;
     if (value == "normals") return AuxView::Normals;
     if (value == "roughness") return AuxView::Roughness;
-    if (value == "voxels") throw UsageError("--view voxels: not available yet");
-    throw UsageError("--view '" + value + "': expected final, direct, diffuse, specular, normals or roughness");
+    if (value == "voxels") return AuxView::Voxels;
+    if (value == "resample") return AuxView::Resample;
+    if (value == "weights") return AuxView::Weights;
+    throw UsageError("--view '" + value +
+                     "': expected final, direct, diffuse, specular, normals, roughness, voxels, resample or weights");
 }
 
 std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesystem::path& dir) {
@@ -88,11 +92,14 @@ std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesyste
     std::vector<float> depth = renderer.readFloatImage(t.depth);
     toGrey(depth, 0);
     write("depth.exr", std::move(depth));
+    for (std::string& name : writeUpsampleAux(renderer, dir)) written.push_back(std::move(name));
     return written;
 }
 
-std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view) {
+std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view, uint32_t voxelMip) {
     if (view == AuxView::Final) return renderer.readLdr();
+    if (view == AuxView::Resample) return resampleOverlay(renderer);
+    if (view == AuxView::Weights) return weightHeatMap(renderer);
     FrameTargets& t = renderer.targets();
     vk::Image* source = &t.direct;
     if (view == AuxView::Diffuse || view == AuxView::Specular) {
@@ -102,6 +109,7 @@ std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view) {
                         ": the renderer has no indirect-light buffer yet");
     }
     if (view == AuxView::Normals || view == AuxView::Roughness) source = &t.normalRoughness;
+    if (view == AuxView::Voxels) source = &renderer.renderVoxelView(voxelMip);  // radiance: tone mapped below
     const std::vector<float> rgba = renderer.readFloatImage(*source);
     // A buffer at a reduced resolution (indirect light traced at 1/traceScale) is shown nearest-neighbour.
     const uint32_t sw = source->width(), sh = source->height();

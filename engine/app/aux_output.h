@@ -10,7 +10,9 @@
 namespace vct {
 
 // What final.png shows: the composited frame or one intermediate buffer.
-enum class AuxView { Final, Direct, Diffuse, Specular, Normals, Roughness };
+// Voxels: the voxel grid ray-marched at one mip (Renderer::renderVoxelView), not a buffer of the frame.
+// Resample and Weights: the upsampling's re-traced pixels and sum of weights (app/upsample_views.h).
+enum class AuxView { Final, Direct, Diffuse, Specular, Normals, Roughness, Voxels, Resample, Weights };
 
 // Parses a --view value; throws UsageError for unknown ones and for those not implemented yet.
 AuxView parseAuxView(const std::string& value);
@@ -21,6 +23,7 @@ std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesyste
 
 // RGBA8 for final.png: the LDR frame for AuxView::Final, else the buffer encoded for display (radiance
 // exposed, tone mapped and sRGB-encoded like the composite; normals as n·0.5 + 0.5; roughness grey).
-std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view);
+// AuxView::Voxels renders the voxel view at `voxelMip` first (valid mips: see Renderer::renderVoxelView).
+std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view, uint32_t voxelMip = 0);
 
 }  // namespace vct

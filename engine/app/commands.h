@@ -7,5 +7,8 @@ namespace vct {
 int runRenderCommand(int argc, char** argv, int first);
 int runDemoCommand(int argc, char** argv, int first);
 int runScenesCommand(int argc, char** argv, int first);
+int runVoxelizeCommand(int argc, char** argv, int first);
+int runCompareCommand(int argc, char** argv, int first);
+int runBenchmarkCommand(int argc, char** argv, int first);
 
 }  // namespace vct

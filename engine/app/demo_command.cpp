@@ -32,6 +32,7 @@ CommandSpec makeDemoSpec() {
     // The same GI and material-filtering switches as `render`, so the window can compare them live.
     for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
     for (Option& option : giOptions()) options.push_back(std::move(option));
+    for (Option& option : upsampleOptions()) options.push_back(std::move(option));
     return CommandSpec("demo", "Opens a window and shows the frame live (WASD + mouse drag, Esc quits).",
                        options);
 }

@@ -15,7 +15,10 @@ const char* kUsage =
     "commands:\n"
     "  render   render frames headless; write final.png, final.exr, timings.json\n"
     "  demo     open a window and show the frame live (WASD + mouse, Esc quits)\n"
-    "  scenes   list the built-in scenes\n\n"
+    "  scenes   list the built-in scenes\n"
+    "  voxelize voxelize the scene at t = 0 into OpenVDB grids (a cache for --voxel-cache)\n"
+    "  benchmark  per-pass timings and error of the upsampling configurations, in one run\n"
+    "  compare  error metrics of an EXR image against a reference\n\n"
     "Run 'vct COMMAND --help' for a command's options.\n";
 
 // Messages are one line whatever their source (tinygltf, the driver, ...).
@@ -39,6 +42,9 @@ int dispatch(int argc, char** argv) {
     if (command == "render") return vct::runRenderCommand(argc, argv, 2);
     if (command == "demo") return vct::runDemoCommand(argc, argv, 2);
     if (command == "scenes") return vct::runScenesCommand(argc, argv, 2);
+    if (command == "voxelize") return vct::runVoxelizeCommand(argc, argv, 2);
+    if (command == "compare") return vct::runCompareCommand(argc, argv, 2);
+    if (command == "benchmark") return vct::runBenchmarkCommand(argc, argv, 2);
     throw vct::UsageError("unknown command '" + command + "' (see vct --help)");
 }
 

@@ -1,6 +1,9 @@
 // vct render: headless frames at a fixed 1/60 s step from t = 0; writes the last frame and the timings.
+#include <bit>
 #include <cstdio>
 #include <filesystem>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "app/aux_output.h"
 #include "app/cli.h"
@@ -22,11 +25,14 @@ std::vector<Option> renderOptions() {
          {"out", "DIR", "output directory (created if missing)", "out"},
          {"exposure", "X", "linear exposure before tone mapping", "1"},
          {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
+         {"camera-cut", "K", "from frame K on, the camera jumps to another view (a camera cut: no history)", ""},
          {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
          {"aux", "", "also write every buffer as EXR: direct, normal, roughness, albedo, depth (and indirect)", ""},
-         {"view", "BUFFER", "what final.png shows: final, direct, diffuse, specular, normals, roughness", "final"}};
+         {"view", "BUFFER", "what final.png shows: final, direct, diffuse, specular, normals, roughness, voxels, resample (re-traced pixels in red), weights (sum of upsampling weights)", "final"},
+         {"voxel-mip", "M", "--view voxels: ray-march the voxel grid at mip M (0 .. log2(N))", "0"}};
     for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
     for (Option& option : giOptions()) options.push_back(std::move(option));
+    for (Option& option : upsampleOptions()) options.push_back(std::move(option));
     return options;
 }
 
@@ -35,6 +41,15 @@ const CommandSpec& renderSpec() {
         "render", "Renders frames headless (no window) and writes DIR/final.png, DIR/final.exr, DIR/timings.json.",
         renderOptions());
     return spec;
+}
+
+// The view after a camera cut: the camera turned 25° about the vertical axis through itself and moved a
+// little to the side, so most of the image changes but the scene stays in view.
+CameraView cutCamera(CameraView camera) {
+    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::mat4 step = glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, 0.0f));
+    camera.view = step * turn * camera.view;  // applied in camera space
+    return camera;
 }
 
 }  // namespace
@@ -48,6 +63,14 @@ int runRenderCommand(int argc, char** argv, int first) {
     const uint32_t warmup = args.has("warmup") ? args.getUint("warmup", 0, frames - 1) : std::min(10u, frames / 4);
     const std::filesystem::path outDir = args.get("out");
     const AuxView view = parseAuxView(args.get("view"));
+    const uint32_t cutFrame = args.has("camera-cut") ? args.getUint("camera-cut", 1, frames - 1) : frames;
+    // --voxel-mip M: 0 .. mipCount − 1 of the grid (log2(N) + 1 mips), checked before any frame is rendered.
+    if (args.has("voxel-mip") && view != AuxView::Voxels) throw UsageError("--voxel-mip: only with --view voxels");
+    if (view == AuxView::Voxels && !options.settings.gi)
+        throw UsageError("--view voxels: there is no voxel grid with --gi off");
+    auto voxelMip = [&](uint32_t mipCount) { return args.getUint("voxel-mip", 0, mipCount - 1); };
+    if (view == AuxView::Voxels && options.settings.voxelResolution != 0)
+        voxelMip(uint32_t(std::bit_width(options.settings.voxelResolution)));
 
     {
         Session session(options);
@@ -56,18 +79,20 @@ int runRenderCommand(int argc, char** argv, int first) {
         if (error) throw Error("cannot create output directory '" + outDir.string() + "': " + error.message());
 
         Renderer& renderer = session.renderer();
+        const uint32_t mip = view == AuxView::Voxels ? voxelMip(renderer.voxelGrid()->mipCount()) : 0;
         for (uint32_t frame = 0; frame < frames; ++frame) {
             const float time = float(frame) / 60.0f;
             FrameInput input;
             input.camera = sceneCamera(session.scene(), time);
             input.timeSeconds = time;
-            input.cut = frame == 0;
+            input.cut = frame == 0 || frame == cutFrame;
+            if (frame >= cutFrame) input.camera = cutCamera(input.camera);
             input.recordTimings = frame >= warmup;
             renderer.render(input);
         }
 
         const uint32_t w = renderer.settings().width, h = renderer.settings().height;
-        writePng(outDir / "final.png", w, h, viewImage(renderer, view));
+        writePng(outDir / "final.png", w, h, viewImage(renderer, view, mip));
         writeExr(outDir / "final.exr", w, h, renderer.readFloatImage(renderer.targets().hdr));
 
         TimingReport report;
@@ -78,6 +103,7 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.warmup = warmup;
         report.passes = renderer.timer().passStats();
         report.frame = renderer.timer().frameStats();
+        report.resampledFraction = renderer.resampledFraction();
         writeTimingsJson(outDir / "timings.json", report);
         if (args.has("aux"))
             for (const std::string& name : writeAuxImages(renderer, outDir))

@@ -27,6 +27,7 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
     };
     options.settings.toksvig = onOff("toksvig", options.settings.toksvig);
     options.settings.specularAA = onOff("specular-aa", options.settings.specularAA);
+    options.settings.textureLod0 = args.has("texture-lod0");
     // Global illumination (DESIGN §3.6), likewise only where declared (giOptions).
     options.settings.gi = onOff("gi", options.settings.gi);
     if (args.has("trace-scale")) {
@@ -35,25 +36,72 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
             throw UsageError("--trace-scale '" + value + "': expected 1, 2 or 4");
         options.settings.traceScale = uint32_t(std::stoul(value));
     }
+    applyUpsampleOptions(args, options.settings);
     // 0 (flag absent) lets the renderer choose from the device (render/voxel_grid.h); N must be a power of two.
     if (args.has("voxels")) {
         options.settings.voxelResolution = args.getUint("voxels", 32, 256);
         if ((options.settings.voxelResolution & (options.settings.voxelResolution - 1)) != 0)
             throw UsageError("--voxels " + args.get("voxels") + ": expected a power of two (32, 64, 128 or 256)");
     }
+    // The static voxelization from `vct voxelize --out FILE.vdb`; the file is read and checked by the renderer.
+    if (args.has("voxel-cache")) {
+        options.settings.voxelCache = args.get("voxel-cache");
+        if (options.settings.voxelCache.empty()) throw UsageError("--voxel-cache: expected a file name");
+        if (!options.settings.gi) throw UsageError("--voxel-cache needs --gi on (the voxels are for cone tracing)");
+    }
     return options;
+}
+
+void applyUpsampleOptions(const ParsedArgs& args, RenderSettings& settings) {
+    // Spatio-temporal upsampling and adaptive re-tracing (DESIGN §3.3–3.5), where declared (upsampleOptions).
+    if (args.has("weights")) {
+        const std::string value = args.get("weights");
+        if (value == "bilinear") settings.weights = RenderSettings::Weights::Bilinear;
+        else if (value == "normal") settings.weights = RenderSettings::Weights::Normal;
+        else if (value == "sg") settings.weights = RenderSettings::Weights::Sg;
+        else throw UsageError("--weights '" + value + "': expected bilinear, normal or sg");
+    }
+    if (args.has("beta")) settings.beta = args.getFloat("beta", 0.01f, 1000.0f);
+    if (args.has("kappa")) settings.kappa = args.getFloat("kappa", 0.01f, 1e6f);
+    if (args.has("sigma-n")) settings.sigmaN = args.getFloat("sigma-n", 1e-3f, 10.0f);
+    if (args.has("gamma")) settings.gamma = args.getFloat("gamma", 0.0f, 1.0f);
+    if (args.has("tau")) settings.tau = args.getFloat("tau", 1e-6f, 1000.0f);
+    auto onOff = [&](const std::string& name, bool fallback) {
+        if (!args.has(name)) return fallback;
+        const std::string value = args.get(name);
+        if (value == "on") return true;
+        if (value == "off") return false;
+        throw UsageError("--" + name + " '" + value + "': expected on or off");
+    };
+    settings.temporal = onOff("temporal", settings.temporal);
+    settings.adaptive = onOff("adaptive", settings.adaptive);
+}
+
+std::vector<Option> upsampleOptions() {
+    return {{"weights", "bilinear|normal|sg", "upsampling guide: none, depth x normal, depth x SG lobe (DESIGN 3.4)", "sg"},
+            {"beta", "B", "SG lobe weight exponent", "20"},
+            {"kappa", "K", "SG smoothing kernel sharpness (bounds every lobe's sharpness)", "100"},
+            {"sigma-n", "S", "normal weight width sigma_n (--weights normal; sigma_n^2 = 0.01)", "0.1"},
+            {"gamma", "G", "temporal history decay per frame (0..1)", "0.9"},
+            {"temporal", "on|off", "reproject and accumulate last frame's indirect light", "on"},
+            {"tau", "T", "re-trace pixels whose sum of upsampling weights is below T", "0.25"},
+            {"adaptive", "on|off", "adaptive re-tracing of low-weight pixels at full resolution", "on"}};
 }
 
 std::vector<Option> materialFilterOptions() {
     return {{"toksvig", "on|off", "Toksvig roughness from normal-map mips (DESIGN 3.2)", "on"},
-            {"specular-aa", "on|off", "geometric specular anti-aliasing from normal derivatives", "on"}};
+            {"specular-aa", "on|off", "geometric specular anti-aliasing from normal derivatives", "on"},
+            {"texture-lod0", "", "diagnostic: sample material textures at level 0 only (supersampled references)",
+             ""}};
 }
 
 std::vector<Option> giOptions() {
     return {{"gi", "on|off", "cone-traced indirect light; off: the constant ambient term instead", "on"},
             {"trace-scale", "1|2|4", "trace indirect light at 1/S of the resolution per axis", "1"},
             {"voxels", "N", "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
-             ""}};
+             ""},
+            {"voxel-cache", "FILE.vdb",
+             "load the static voxelization from FILE (written by vct voxelize) instead of computing it", ""}};
 }
 
 Session::Session(const SessionOptions& options) {

@@ -18,15 +18,20 @@ struct SessionOptions {
     vk::ContextOptions context;
 };
 
-// Reads --scene, --size, --exposure, --device and --validate; --toksvig and --specular-aa (on|off) when the
-// command declares them.
+// Reads --scene, --size, --exposure, --device and --validate; --toksvig, --specular-aa (on|off) and
+// --texture-lod0 when the command declares them.
 SessionOptions sessionOptions(const ParsedArgs& args);
 
-// The --toksvig and --specular-aa options, for a command's CommandSpec (both default on).
+// The --toksvig and --specular-aa options (both default on) and the diagnostic --texture-lod0 switch, for a
+// command's CommandSpec.
 std::vector<Option> materialFilterOptions();
 
 // The --gi (on|off) and --trace-scale (1|2|4) options, for a command's CommandSpec.
 std::vector<Option> giOptions();
+// The upsampling and adaptive re-tracing flags (--weights, --beta, --kappa, --sigma-n, --gamma, --temporal,
+// --tau, --adaptive), and how they set RenderSettings (called by sessionOptions).
+std::vector<Option> upsampleOptions();
+void applyUpsampleOptions(const ParsedArgs& args, RenderSettings& settings);
 
 class Session {
 public:

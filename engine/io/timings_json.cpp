@@ -18,7 +18,8 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                            {"frames", report.frames},
                            {"warmup", report.warmup},
                            {"passes", passes},
-                           {"frame_median_ms", report.frame.medianMs}};
+                           {"frame_median_ms", report.frame.medianMs},
+                           {"resampled_fraction", report.resampledFraction}};
     std::ofstream file(path);
     if (!file) throw Error("cannot write '" + path.string() + "'");
     file << json.dump(2) << "\n";
@@ -37,6 +38,9 @@ std::string formatTimingTable(const TimingReport& report) {
     }
     std::snprintf(line, sizeof(line), "%-12s %10.3f %10.3f %10.3f\n", "frame", report.frame.medianMs,
                   report.frame.p95Ms, report.frame.minMs);
+    table += line;
+    std::snprintf(line, sizeof(line), "re-traced    %9.2f%% of the pixels (last frame)\n",
+                  100.0 * report.resampledFraction);
     table += line;
     return table;
 }

@@ -15,6 +15,7 @@ struct TimingReport {
     uint32_t frames = 0, warmup = 0;
     std::vector<vk::PassTiming> passes;
     vk::PassTiming frame;
+    float resampledFraction = 0.0f;  // share of the pixels re-traced in the last frame (adaptive re-tracing)
 };
 
 void writeTimingsJson(const std::filesystem::path& path, const TimingReport& report);

@@ -14,7 +14,10 @@ TracePass::TracePass(const vk::Context& context) : device_(context.device()) {
                                        {VCT_TRACE_BINDING_NORMAL_ROUGHNESS, sampled, cs},
                                        {VCT_TRACE_BINDING_VOXELS, sampled, cs},
                                        {VCT_TRACE_BINDING_DIFFUSE, storage, cs},
-                                       {VCT_TRACE_BINDING_SPECULAR, storage, cs}},
+                                       {VCT_TRACE_BINDING_SPECULAR, storage, cs},
+                                       {VCT_TRACE_BINDING_GUIDE_POSITION, storage, cs},
+                                       {VCT_TRACE_BINDING_GUIDE_NORMAL, storage, cs},
+                                       {VCT_TRACE_BINDING_GUIDE_AXIS, storage, cs}},
                                       0);
 
     // The stand-in grid: 2³ transparent black voxels (3D needs depth > 1), cleared once.
@@ -48,7 +51,10 @@ std::vector<ImageUse> TracePass::uses(FrameTargets& t) {
             {&t.normalRoughness, vk::ImageAccess::Sampled},
             {voxels().radiance, vk::ImageAccess::Sampled},
             {&t.diffuseIndirectLow, vk::ImageAccess::StorageWrite},
-            {&t.specularIndirectLow, vk::ImageAccess::StorageWrite}};
+            {&t.specularIndirectLow, vk::ImageAccess::StorageWrite},
+            {&t.guidePosition, vk::ImageAccess::StorageWrite},
+            {&t.guideNormal, vk::ImageAccess::StorageWrite},
+            {&t.guideAxis, vk::ImageAccess::StorageWrite}};
 }
 
 void TracePass::execute(const FrameContext& frame) {
@@ -64,6 +70,9 @@ void TracePass::execute(const FrameContext& frame) {
         .sampled(VCT_TRACE_BINDING_VOXELS, grid.radiance->view(), grid.sampler)
         .storage(VCT_TRACE_BINDING_DIFFUSE, t.diffuseIndirectLow.view())
         .storage(VCT_TRACE_BINDING_SPECULAR, t.specularIndirectLow.view())
+        .storage(VCT_TRACE_BINDING_GUIDE_POSITION, t.guidePosition.view())
+        .storage(VCT_TRACE_BINDING_GUIDE_NORMAL, t.guideNormal.view())
+        .storage(VCT_TRACE_BINDING_GUIDE_AXIS, t.guideAxis.view())
         .push(frame.context, frame.cmd, pipeline_);
     vkCmdDispatch(frame.cmd, tileCount(t.diffuseIndirectLow.width()), tileCount(t.diffuseIndirectLow.height()), 1);
 }

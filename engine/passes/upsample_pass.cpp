@@ -1,5 +1,7 @@
 #include "passes/upsample_pass.h"
 
+#include "vk/barrier.h"
+
 namespace vct {
 
 UpsamplePass::UpsamplePass(const vk::Context& context) {
@@ -11,28 +13,82 @@ UpsamplePass::UpsamplePass(const vk::Context& context) {
                                        {VCT_UPSAMPLE_BINDING_DIFFUSE_LOW, sampled, cs},
                                        {VCT_UPSAMPLE_BINDING_SPECULAR_LOW, sampled, cs},
                                        {VCT_UPSAMPLE_BINDING_DIFFUSE, storage, cs},
-                                       {VCT_UPSAMPLE_BINDING_SPECULAR, storage, cs}},
+                                       {VCT_UPSAMPLE_BINDING_SPECULAR, storage, cs},
+                                       {VCT_UPSAMPLE_BINDING_DEPTH, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_MOTION, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_PREV_DEPTH, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_WEIGHT_SUM, storage, cs},
+                                       {VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+                                       {VCT_UPSAMPLE_BINDING_GUIDE_POSITION, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_GUIDE_NORMAL, sampled, cs},
+                                       {VCT_UPSAMPLE_BINDING_GUIDE_AXIS, sampled, cs}},
                                       0);
 }
 
 std::vector<ImageUse> UpsamplePass::uses(FrameTargets& t) {
     return {{&t.diffuseIndirectLow, vk::ImageAccess::Sampled},
             {&t.specularIndirectLow, vk::ImageAccess::Sampled},
+            {&t.guidePosition, vk::ImageAccess::Sampled},
+            {&t.guideNormal, vk::ImageAccess::Sampled},
+            {&t.guideAxis, vk::ImageAccess::Sampled},
+            {&t.depth, vk::ImageAccess::Sampled},
+            {&t.normalRoughness, vk::ImageAccess::Sampled},
+            {&t.motion, vk::ImageAccess::Sampled},
+            {&t.prevDepth, vk::ImageAccess::Sampled},
+            {&t.prevNormalRoughness, vk::ImageAccess::Sampled},
+            {&t.diffuseHistory, vk::ImageAccess::Sampled},
+            {&t.specularHistory, vk::ImageAccess::Sampled},
             {&t.diffuseIndirect, vk::ImageAccess::StorageWrite},
-            {&t.specularIndirect, vk::ImageAccess::StorageWrite}};
+            {&t.specularIndirect, vk::ImageAccess::StorageWrite},
+            {&t.weightSum, vk::ImageAccess::StorageWrite}};
 }
 
 void UpsamplePass::execute(const FrameContext& frame) {
     FrameTargets& t = frame.targets;
+    const Samplers& s = frame.samplers;
+    // An empty resample list whose indirect dispatch is (0, 1, 1) groups; the shader counts x up.
+    const gpu::ResampleListHeader empty{{0, 0, 0, 0}, {0, 1, 1, 0}};
+    vk::memoryBarrier(frame.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
+                                     VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    vkCmdUpdateBuffer(frame.cmd, t.resampleList.handle(), 0, sizeof(empty), &empty);
+    vk::memoryBarrier(frame.cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+
     pipeline_.bind(frame.cmd);
+    constexpr VkImageLayout depthRead = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
     vk::DescriptorWriter()
         .uniform(VCT_BINDING_FRAME, frame.frameUniforms)
-        .sampled(VCT_UPSAMPLE_BINDING_DIFFUSE_LOW, t.diffuseIndirectLow.view(), frame.samplers.linearClamp)
-        .sampled(VCT_UPSAMPLE_BINDING_SPECULAR_LOW, t.specularIndirectLow.view(), frame.samplers.linearClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_DIFFUSE_LOW, t.diffuseIndirectLow.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_SPECULAR_LOW, t.specularIndirectLow.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_GUIDE_POSITION, t.guidePosition.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_GUIDE_NORMAL, t.guideNormal.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_GUIDE_AXIS, t.guideAxis.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_DEPTH, t.depth.view(), s.nearestClamp, depthRead)
+        .sampled(VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS, t.normalRoughness.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_MOTION, t.motion.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_PREV_DEPTH, t.prevDepth.view(), s.nearestClamp, depthRead)
+        .sampled(VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS, t.prevNormalRoughness.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY, t.diffuseHistory.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY, t.specularHistory.view(), s.nearestClamp)
         .storage(VCT_UPSAMPLE_BINDING_DIFFUSE, t.diffuseIndirect.view())
         .storage(VCT_UPSAMPLE_BINDING_SPECULAR, t.specularIndirect.view())
+        .storage(VCT_UPSAMPLE_BINDING_WEIGHT_SUM, t.weightSum.view())
+        .storageBuffer(VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, t.resampleList.handle())
         .push(frame.context, frame.cmd, pipeline_);
     vkCmdDispatch(frame.cmd, tileCount(t.width), tileCount(t.height), 1);
+    // The list feeds the resample pass's indirect dispatch and its shader, and the count's copy to the host.
+    vk::memoryBarrier(frame.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                          VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                          VK_ACCESS_2_TRANSFER_READ_BIT);
 }
 
 }  // namespace vct

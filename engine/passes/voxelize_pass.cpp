@@ -11,6 +11,9 @@ using vk::memoryBarrier;
 
 constexpr VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
 constexpr VkAccessFlags2 kStorageRW = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+// Clearing the accumulators, and the copy of a voxel cache into the static one.
+constexpr VkPipelineStageFlags2 kTransfer = VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+constexpr VkAccessFlags2 kTransferWrite = VK_ACCESS_2_TRANSFER_WRITE_BIT;
 
 }  // namespace
 
@@ -89,18 +92,28 @@ void VoxelizePass::voxelizeInstances(const FrameContext& frame, bool moving, VkB
 void VoxelizePass::execute(const FrameContext& frame) {
     VkCommandBuffer cmd = frame.cmd;
     const bool voxelizeStatic = !grid_.staticVoxelized();
+    // A voxel cache (--voxel-cache) stands in for voxelizing the static instances: its upload is recorded
+    // here, in the first frame, in this pass's timer scope. Its staging buffer goes once that frame is done
+    // (the renderer waits for every frame before the next is recorded).
+    if (!voxelizeStatic && grid_.hasStaticCache()) grid_.releaseStaticCache();
+    const bool fromCache = voxelizeStatic && grid_.hasStaticCache();
     const bool moving = grid_.hasMovingInstances();
     // A static scene's volumes, once resolved, never change: the scope stays (near zero) but does nothing.
     if (!voxelizeStatic && !moving && resolved_) return;
     resolved_ = true;
     if (voxelizeStatic || moving) {
         // The last frame's resolve may still read the accumulator being cleared.
-        memoryBarrier(cmd, kCompute, kStorageRW, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        memoryBarrier(cmd, kCompute, kStorageRW, kTransfer, kTransferWrite);
         if (voxelizeStatic) vkCmdFillBuffer(cmd, grid_.staticAccumulator(), 0, VK_WHOLE_SIZE, 0);
         if (moving) vkCmdFillBuffer(cmd, grid_.dynamicAccumulator(), 0, VK_WHOLE_SIZE, 0);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCompute, kStorageRW);
+        if (fromCache) {
+            // The cached voxels over the cleared buffer (write after write); the empty ones stay zero.
+            memoryBarrier(cmd, kTransfer, kTransferWrite, kTransfer, kTransferWrite);
+            grid_.recordStaticCacheUpload(cmd);
+        }
+        memoryBarrier(cmd, kTransfer, kTransferWrite, kCompute, kStorageRW);
         if (voxelizeStatic) {
-            voxelizeInstances(frame, false, grid_.staticAccumulator());
+            if (!fromCache) voxelizeInstances(frame, false, grid_.staticAccumulator());
             grid_.markStaticVoxelized();
         }
         if (moving) voxelizeInstances(frame, true, grid_.dynamicAccumulator());

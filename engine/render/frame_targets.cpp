@@ -1,5 +1,9 @@
 #include "render/frame_targets.h"
 
+#include <utility>
+
+#include "lib/shared.h"
+
 namespace vct {
 
 void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, uint32_t shadowMapSize,
@@ -30,10 +34,36 @@ void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, ui
     const uint32_t lowW = (w + traceScale - 1) / traceScale, lowH = (h + traceScale - 1) / traceScale;
     diffuseIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
     specularIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
+    guidePosition = make(lowW, lowH, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
+    guideNormal = make(lowW, lowH, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
+    guideAxis = make(lowW, lowH, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
     diffuseIndirect = make(w, h, kRadianceFormat, storage);
     specularIndirect = make(w, h, kRadianceFormat, storage);
+    diffuseHistory = make(w, h, kRadianceFormat, storage);
+    specularHistory = make(w, h, kRadianceFormat, storage);
+    prevDepth = make(w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
+    prevNormalRoughness = make(w, h, kNormalRoughnessFormat, attachment);
+    weightSum = make(w, h, kRadianceFormat, storage);
+    resampleList = vk::Buffer(context, sizeof(gpu::ResampleListHeader) + VkDeviceSize(w) * h * sizeof(uint32_t),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              vk::MemoryUsage::DeviceLocal);
+    resampleCount = vk::Buffer(context, sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               vk::MemoryUsage::HostVisible);
+    *static_cast<uint32_t*>(resampleCount.mapped()) = 0;
     hdr = make(w, h, kHdrFormat, storage);
     ldr = make(w, h, kLdrFormat, storage);
+}
+
+}  // namespace vct
+
+namespace vct {
+
+void FrameTargets::swapHistory() {
+    std::swap(diffuseIndirect, diffuseHistory);
+    std::swap(specularIndirect, specularHistory);
+    std::swap(depth, prevDepth);
+    std::swap(normalRoughness, prevNormalRoughness);
 }
 
 }  // namespace vct

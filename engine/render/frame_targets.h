@@ -1,6 +1,7 @@
 // The images one frame renders into, sized from the output size (and the shadow map's own size).
 #pragma once
 
+#include "vk/buffer.h"
 #include "vk/context.h"
 #include "vk/image.h"
 
@@ -27,8 +28,22 @@ struct FrameTargets {
     // in composite), specular = incoming radiance along the specular cone (× DFG in composite).
     vk::Image diffuseIndirectLow;   // trace output, ceil(w/s) × ceil(h/s) for trace scale s
     vk::Image specularIndirectLow;
-    vk::Image diffuseIndirect;      // upsample output, full res
+    // Per low-res sample, what the upsample weights compare (written by trace, lib/upsample_guide.glsl).
+    vk::Image guidePosition;        // RGBA32F world position, w: 1 (0 background)
+    vk::Image guideNormal;          // RGBA16F unit normal, w: smoothed specular lobe sharpness
+    vk::Image guideAxis;            // RGBA16F specular lobe axis
+    vk::Image diffuseIndirect;      // upsample output, full res; alpha: accumulated weight A (DESIGN §3.5)
     vk::Image specularIndirect;
+    // Last frame's upsample outputs and G-buffer, for the temporal history (swapped in by swapHistory()).
+    vk::Image diffuseHistory;
+    vk::Image specularHistory;
+    vk::Image prevDepth;
+    vk::Image prevNormalRoughness;
+    vk::Image weightSum;          // upsample: sum of weights, r diffuse, g specular; b: 1 where re-traced
+    // Pixels to re-trace (lib/shared.h ResampleListHeader + one packed pixel per entry), written by upsample,
+    // read by resample's indirect dispatch; and the entry count of the last frame, copied back to the host.
+    vk::Buffer resampleList;
+    vk::Buffer resampleCount;
     vk::Image hdr;                // final linear HDR (what final.exr holds)
     vk::Image ldr;                // final tone-mapped sRGB (what final.png holds and the window shows)
 
@@ -37,6 +52,8 @@ struct FrameTargets {
 
     void create(const vk::Context& context, uint32_t width, uint32_t height, uint32_t shadowMapSize,
                 uint32_t traceScale = 1);
+    // Start of a frame: this frame's outputs and G-buffer become last frame's (no copies, the images swap).
+    void swapHistory();
 };
 
 }  // namespace vct

@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <glm/gtc/packing.hpp>
@@ -8,11 +9,14 @@
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/inject_pass.h"
+#include "passes/resample_pass.h"
 #include "passes/shadow_pass.h"
 #include "passes/trace_pass.h"
 #include "passes/upsample_pass.h"
 #include "passes/voxel_mips_pass.h"
+#include "passes/voxel_view_pass.h"
 #include "passes/voxelize_pass.h"
+#include "render/shader_math.h"
 #include "vk/check.h"
 
 namespace vct {
@@ -37,6 +41,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         // The voxel grid and its light (DESIGN §3.6); inject reads the shadow map drawn just before.
         voxelGrid_ = std::make_unique<VoxelGrid>(context, scene, chooseVoxelResolution(context, settings));
         settings_.voxelResolution = voxelGrid_->resolution();
+        // The static voxelization from a file (vct voxelize) instead of computing it; validated here.
+        if (!settings.voxelCache.empty()) voxelGrid_->loadStaticCache(settings.voxelCache);
         passes_.push_back(std::make_unique<VoxelizePass>(context, *voxelGrid_));
         passes_.push_back(std::make_unique<InjectPass>(context, *voxelGrid_));
         passes_.push_back(std::make_unique<VoxelMipsPass>(context, *voxelGrid_));
@@ -50,6 +56,10 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         tracePass_->setVoxels({&voxelGrid_->radiance(), voxelGrid_->sampler()});
         passes_.push_back(std::move(trace));
         passes_.push_back(std::make_unique<UpsamplePass>(context));
+        // Adaptive re-tracing only where something is traced at low resolution.
+        if (settings.traceScale > 1 && settings.adaptive)
+            passes_.push_back(std::make_unique<ResamplePass>(
+                context, VoxelSource{&voxelGrid_->radiance(), voxelGrid_->sampler()}));
     }
     passes_.push_back(std::make_unique<CompositePass>(context));
 
@@ -112,19 +122,41 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     u.ambient = glm::vec4(settings_.ambient, settings_.exposure);
     u.shadowParams = glm::vec4(gpuScene_.shadowTexelWorldSize(), 1.0f / float(VCT_SHADOW_MAP_SIZE),
                                float(gpuScene_.lightCount()), float(gpuScene_.shadowLightIndex()));
-    u.materialParams = glm::vec4(settings_.toksvig ? 1.0f : 0.0f, settings_.specularAA ? 1.0f : 0.0f, 0.0f, 0.0f);
+    u.materialParams = glm::vec4(settings_.toksvig ? 1.0f : 0.0f, settings_.specularAA ? 1.0f : 0.0f,
+                                 settings_.textureLod0 ? 1.0f : 0.0f, 0.0f);
     if (voxelGrid_) u.voxelOrigin = voxelGrid_->originSize();
     u.voxelParams = glm::vec4(voxelGrid_ ? float(voxelGrid_->resolution()) : 0.0f,
                               voxelGrid_ ? float(voxelGrid_->mipCount()) : 0.0f, settings_.gi ? 1.0f : 0.0f,
                               float(settings_.traceScale));
+
+    // Spatio-temporal upsampling (DESIGN §3.5): weights, history and this frame's trace offset o_k.
+    const bool history = settings_.temporal && !input.cut && hasPrevious_;
+    u.prevInvViewProj = history ? previousInvViewProj_ : u.invViewProj;
+    u.prevCameraPosition = history ? previousCameraPosition_ : u.cameraPosition;
+    u.upsampleParams = glm::vec4(settings_.beta, settings_.kappa, settings_.sigmaN * settings_.sigmaN,
+                                 settings_.gamma);
+    const float weights = settings_.weights == RenderSettings::Weights::Bilinear ? VCT_WEIGHTS_BILINEAR
+                          : settings_.weights == RenderSettings::Weights::Normal ? VCT_WEIGHTS_NORMAL
+                                                                                   : VCT_WEIGHTS_SG;
+    const bool adaptive = settings_.adaptive && settings_.traceScale > 1;
+    u.upsampleMode = glm::vec4(weights, history ? 1.0f : 0.0f, adaptive ? resampleThreshold(settings_) : 0.0f,
+                               kHistoryWeightCap);
+    const glm::ivec2 jitter = glsl::jitterOffset(frameIndex_, int(settings_.traceScale));
+    u.traceJitter = glm::ivec4(jitter, int(frameIndex_), 0);
+
     std::memcpy(frameUniforms_.mapped(), &u, sizeof(u));
     previousViewProj_ = u.viewProj;
+    previousInvViewProj_ = u.invViewProj;
+    previousCameraPosition_ = u.cameraPosition;
     hasPrevious_ = true;
 }
 
 void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     gpuScene_.update(input.timeSeconds, input.cut || !hasPrevious_);
+    // Last frame's indirect light and G-buffer become the history (before the uniforms say whether it is valid).
+    if (hasPrevious_) targets_.swapHistory();
     writeFrameUniforms(input);
+    ++frameIndex_;
 
     VK_CHECK(vkResetCommandBuffer(cmd_, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -225,10 +257,28 @@ std::vector<float> Renderer::readFloatImage(vk::Image& image) {
     return rgba;
 }
 
+float Renderer::resampledFraction() const {
+    const uint32_t count = *static_cast<const uint32_t*>(targets_.resampleCount.mapped());
+    return float(count) / float(std::max<uint64_t>(uint64_t(targets_.width) * targets_.height, 1));
+}
+
 std::vector<uint8_t> Renderer::readLdr() {
     vk::Buffer staging = copyToHost(targets_.ldr);
     const auto* src = static_cast<const uint8_t*>(staging.mapped());
     return std::vector<uint8_t>(src, src + size_t(targets_.width) * targets_.height * 4);
+}
+
+vk::Image& Renderer::renderVoxelView(uint32_t mip) {
+    if (!voxelGrid_) throw Error("the voxel view needs the voxel grid, which GI off does not build");
+    if (!voxelView_) voxelView_ = std::make_unique<VoxelViewPass>(context_, *voxelGrid_);
+    voxelView_->prepare(mip, targets_.width, targets_.height);
+    // The frame uniforms still hold the last frame's camera and grid placement.
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        FrameContext frame{context_, cmd, gpuScene_, targets_, frameUniforms_.handle(), settings_, samplers_};
+        for (const ImageUse& use : voxelView_->uses(targets_)) use.image->use(cmd, use.access);
+        voxelView_->execute(frame);
+    });
+    return voxelView_->output();
 }
 
 }  // namespace vct

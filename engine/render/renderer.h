@@ -33,6 +33,7 @@ struct FrameSubmit {
 };
 
 class TracePass;
+class VoxelViewPass;
 
 class Renderer {
 public:
@@ -51,6 +52,13 @@ public:
     const GpuScene& gpuScene() const { return gpuScene_; }
     // The voxel grid of cone tracing; null when GI is off.
     VoxelGrid* voxelGrid() { return voxelGrid_.get(); }
+    // The voxel grid ray-marched at `mip` (0 .. mipCount − 1) from the last frame's camera: radiance, RGBA16F at
+    // the frame's size (passes/voxel_view_pass.h). On demand, in a submit of its own after render(): not part
+    // of the frame or its timings. Throws when GI is off (no grid) or the mip is out of range.
+    vk::Image& renderVoxelView(uint32_t mip);
+
+    // Fraction of the pixels the resample pass re-traced in the last frame (0 without adaptive re-tracing).
+    float resampledFraction() const;
 
     // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones).
     std::vector<float> readFloatImage(vk::Image& image);
@@ -71,9 +79,13 @@ private:
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
     TracePass* tracePass_ = nullptr;  // in passes_ when GI is on; reads the voxel grid
+    std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
     glm::mat4 previousViewProj_{1.0f};
+    glm::mat4 previousInvViewProj_{1.0f};
+    glm::vec4 previousCameraPosition_{0.0f};
+    uint32_t frameIndex_ = 0;  // frames rendered: picks the trace offset o_k
     bool hasPrevious_ = false;
 };
 

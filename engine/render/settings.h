@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -23,10 +24,36 @@ struct RenderSettings {
     bool gi = true;                // false: the constant ambient term instead of cone-traced indirect light
     uint32_t voxelResolution = 0;  // N for the N³ grid (32..256); 0 = chosen from the scene
     uint32_t traceScale = 1;       // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
+    std::string voxelCache;        // OpenVDB file holding the static voxelization (vct voxelize); empty: compute it
+
+    // ---- spatio-temporal upsampling and adaptive re-tracing (DESIGN §3.3–3.5) ----
+    enum class Weights { Bilinear, Normal, Sg };
+    Weights weights = Weights::Sg;  // bilateral guide: none, depth × normal, depth × SG lobe
+    float beta = 20.0f;             // SG lobe weight exponent β
+    float kappa = 100.0f;           // SG smoothing kernel sharpness κ
+    float sigmaN = 0.1f;            // normal weight σ_n (σ_n² = 0.01)
+    float gamma = 0.9f;             // temporal history decay γ
+    bool temporal = true;           // reproject and accumulate last frame's result
+    float tau = 0.0f;               // re-trace pixels whose sum of weights is below τ (0: the default for s)
+    bool adaptive = true;           // adaptive re-tracing of low-weight pixels at full resolution
 
     // ---- material filtering ----
     bool toksvig = true;     // normal-map mip length → effective roughness (DESIGN §3.2)
     bool specularAA = true;  // geometric specular anti-aliasing from normal derivatives (seed 000)
+    // Diagnostic: sample every material texture at level 0 (bilinear, no mips, no anisotropy). A render
+    // supersampled this way and box-filtered down is the ground truth that texture filtering approximates.
+    bool textureLod0 = false;
 };
+
+// Cap A_max on the accumulated history weight (DESIGN §3.5), in units of one fully agreeing spatial
+// neighbourhood (the spatial kernel sums to 1): the history never outweighs this many frames of new samples,
+// so it follows changing light within a few frames.
+constexpr float kHistoryWeightCap = 8.0f;
+// Default τ: re-trace where the weights kept less than this share of one full neighbourhood, history included.
+constexpr float kDefaultResampleThreshold = 0.25f;
+
+inline float resampleThreshold(const RenderSettings& settings) {
+    return settings.tau > 0.0f ? settings.tau : kDefaultResampleThreshold;
+}
 
 }  // namespace vct

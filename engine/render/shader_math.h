@@ -9,4 +9,5 @@ using namespace glm;
 #include "lib/color.glsl"
 #include "lib/cone.glsl"
 #include "lib/toksvig.glsl"
+#include "lib/upsample_weights.glsl"
 }  // namespace vct::glsl

@@ -2,16 +2,24 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <cstring>
+#include <sstream>
 #include <string>
+
+#include <glm/gtc/packing.hpp>
 
 #include "core/error.h"
 #include "lib/shared.h"
+#include "vk/barrier.h"
 #include "vk/check.h"
 
 namespace vct {
 
 uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings& settings) {
     uint32_t n = settings.voxelResolution;
+    // A voxel cache fixes N: without --voxels, take the file's (its metadata only; loadStaticCache checks it).
+    if (n == 0 && !settings.voxelCache.empty()) n = readVoxelFileInfo(settings.voxelCache).resolution;
     if (n == 0) {
         // A software rasterizer pays for every voxel on the CPU each frame (resolve, inject, mips), so it
         // gets 64³ (8× fewer voxels); GPUs get 128³, enough for room-sized scenes at 1–2 voxels per 10 cm.
@@ -60,7 +68,9 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     emission_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
 
     const VkDeviceSize accumBytes = VkDeviceSize(resolution) * resolution * resolution * VCT_VOXEL_ACCUM_STRIDE * 4;
-    constexpr VkBufferUsageFlags accumUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    // TRANSFER_DST: cleared, and filled from a voxel cache; TRANSFER_SRC: read back for `vct voxelize`.
+    constexpr VkBufferUsageFlags accumUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                              VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     staticAccum_ = vk::Buffer(context, accumBytes, accumUsage, vk::MemoryUsage::DeviceLocal);
     // Only scenes with animated instances pay for the second accumulator.
     bool moving = false;
@@ -79,5 +89,137 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
 }
 
 VoxelGrid::~VoxelGrid() { vkDestroySampler(context_.device(), sampler_, nullptr); }
+
+namespace {
+
+constexpr VkDeviceSize kAccumVoxelBytes = VCT_VOXEL_ACCUM_STRIDE * sizeof(uint32_t);
+
+std::string formatVec3(glm::vec3 v) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+    return s.str();
+}
+
+}  // namespace
+
+void VoxelGrid::loadStaticCache(const std::filesystem::path& path) {
+    const VoxelFile file = readVoxelFile(path, /*frame=*/false);
+    const VoxelFileInfo& info = file.info;
+    const std::string name = "voxel cache '" + path.string() + "'";
+    if (info.resolution != resolution_)
+        throw Error(name + " holds a " + std::to_string(info.resolution) + "^3 grid but this run uses " +
+                    std::to_string(resolution_) + "^3 (--voxels " + std::to_string(info.resolution) +
+                    " or leave --voxels out)");
+    // The same scene gives the very same floats (voxelGridFit on the same bounds); the tolerance only
+    // forgives last-bit differences between builds. Anything more is another scene (or another version of it).
+    const float tolerance = 1e-5f * voxelSize();
+    const bool sameBounds = std::abs(info.voxelSize - voxelSize()) <= tolerance &&
+                            glm::all(glm::lessThanEqual(glm::abs(info.origin - origin()), glm::vec3(tolerance)));
+    if (!sameBounds)
+        throw Error(name + " was voxelized for other grid bounds (scene '" + info.scene + "': origin " +
+                    formatVec3(info.origin) + ", voxel size " + std::to_string(info.voxelSize) +
+                    ") than this scene's (origin " + formatVec3(origin()) + ", voxel size " +
+                    std::to_string(voxelSize()) + ")");
+
+    // Pack the voxels back to back; one copy region per run of consecutive linear indices.
+    staticCache_ = vk::Buffer(context_, std::max<VkDeviceSize>(1, file.staticAccum.size()) * kAccumVoxelBytes,
+                              VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::HostVisible);
+    staticCacheRegions_.clear();
+    auto* dst = static_cast<uint8_t*>(staticCache_.mapped());
+    uint64_t previous = 0;
+    for (size_t i = 0; i < file.staticAccum.size(); ++i) {
+        const StaticAccumVoxel& voxel = file.staticAccum[i];
+        const uint64_t index = voxelFileIndex(voxel.ijk, resolution_);  // sorted and in the grid (readVoxelFile)
+        std::memcpy(dst + i * kAccumVoxelBytes, voxel.accum.data(), kAccumVoxelBytes);
+        if (i > 0 && index == previous + 1)
+            staticCacheRegions_.back().size += kAccumVoxelBytes;
+        else
+            staticCacheRegions_.push_back({i * kAccumVoxelBytes, index * kAccumVoxelBytes, kAccumVoxelBytes});
+        previous = index;
+    }
+}
+
+void VoxelGrid::recordStaticCacheUpload(VkCommandBuffer cmd) const {
+    if (!staticCacheRegions_.empty())
+        vkCmdCopyBuffer(cmd, staticCache_.handle(), staticAccum_.handle(), uint32_t(staticCacheRegions_.size()),
+                        staticCacheRegions_.data());
+}
+
+void VoxelGrid::releaseStaticCache() {
+    staticCache_.reset();
+    staticCacheRegions_ = {};
+}
+
+std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
+    const uint32_t size = std::max(1u, resolution_ >> mip);
+    const size_t texels = size_t(size) * size * size;
+    const VkFormat format = volume.format();
+    if (format != VK_FORMAT_R8G8B8A8_UNORM && format != VK_FORMAT_R16G16B16A16_SFLOAT)
+        throw Error("readVolume: only RGBA8 and RGBA16F volumes are supported");
+    const uint32_t texelBytes = vk::bytesPerPixel(format);
+    vk::Buffer staging(context_, texels * texelBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::HostVisible);
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        // Put the volume back the way the passes left it, so the next frame's barriers stay right (a pure
+        // write would discard the contents on the way back: read-write keeps them).
+        vk::ImageAccess previous = volume.lastAccess();
+        if (previous == vk::ImageAccess::StorageWrite) previous = vk::ImageAccess::StorageReadWrite;
+        volume.use(cmd, vk::ImageAccess::TransferSrc);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
+        region.imageExtent = {size, size, size};
+        vkCmdCopyImageToBuffer(cmd, volume.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
+                               &region);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        if (previous != vk::ImageAccess::Undefined) volume.use(cmd, previous);
+    });
+    std::vector<glm::vec4> texelsOut(texels);
+    const auto* src = static_cast<const uint8_t*>(staging.mapped());
+    for (size_t i = 0; i < texels; ++i) {
+        for (int c = 0; c < 4; ++c) {
+            if (format == VK_FORMAT_R8G8B8A8_UNORM) {
+                texelsOut[i][c] = float(src[i * 4 + size_t(c)]) / 255.0f;
+            } else {
+                uint16_t bits;
+                std::memcpy(&bits, src + (i * 4 + size_t(c)) * 2, 2);
+                texelsOut[i][c] = glm::unpackHalf1x16(bits);
+            }
+        }
+    }
+    return texelsOut;
+}
+
+std::vector<StaticAccumVoxel> VoxelGrid::readStaticAccumulator() {
+    // In slabs of z-slices (at most ~64 MiB of staging each): 256³ voxels would take 640 MiB at once.
+    const uint64_t n = resolution_;
+    const VkDeviceSize sliceBytes = n * n * kAccumVoxelBytes;
+    const uint64_t slicesPerSlab = std::max<uint64_t>(1, (VkDeviceSize(64) << 20) / sliceBytes);
+    vk::Buffer staging(context_, sliceBytes * std::min(n, slicesPerSlab), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                       vk::MemoryUsage::HostVisible);
+    std::vector<StaticAccumVoxel> voxels;
+    for (uint64_t z0 = 0; z0 < n; z0 += slicesPerSlab) {
+        const uint64_t slices = std::min(slicesPerSlab, n - z0);
+        context_.submitAndWait([&](VkCommandBuffer cmd) {
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                              VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+            VkBufferCopy region{z0 * sliceBytes, 0, slices * sliceBytes};
+            vkCmdCopyBuffer(cmd, staticAccum_.handle(), staging.handle(), 1, &region);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        });
+        const auto* src = static_cast<const uint32_t*>(staging.mapped());
+        for (uint64_t i = 0; i < slices * n * n; ++i) {
+            const uint32_t* accum = src + i * VCT_VOXEL_ACCUM_STRIDE;
+            if (accum[VCT_VOXEL_ACCUM_STRIDE - 1] == 0) continue;  // no sample: empty
+            const uint64_t index = z0 * n * n + i;
+            StaticAccumVoxel voxel;
+            voxel.ijk = glm::ivec3(int(index % n), int((index / n) % n), int(index / (n * n)));
+            std::memcpy(voxel.accum.data(), accum, kAccumVoxelBytes);
+            voxels.push_back(voxel);
+        }
+    }
+    return voxels;
+}
 
 }  // namespace vct

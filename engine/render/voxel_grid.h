@@ -16,9 +16,12 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
+#include <vector>
 
 #include <glm/glm.hpp>
 
+#include "io/vdb_io.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
@@ -34,7 +37,8 @@ using namespace glm;
 
 namespace vct {
 
-// The N the grid gets for these settings on this device (validated: a power of two in 32..256).
+// The N the grid gets for these settings on this device (validated: a power of two in 32..256). Without
+// --voxels but with a voxel cache, the cache's N.
 uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings& settings);
 
 // World bounds the grid must cover: every instance over the scene's animation (sampled), so that moving
@@ -75,6 +79,25 @@ public:
     bool staticVoxelized() const { return staticVoxelized_; }
     void markStaticVoxelized() { staticVoxelized_ = true; }
 
+    // ---- voxel cache (vct voxelize → OpenVDB file → --voxel-cache; io/vdb_io.h) ----
+    // Reads the static accumulator from `path` and stages it for upload. Throws vct::Error (one line naming
+    // the file) when it is missing, not a vct voxel file, or made for another resolution or grid bounds.
+    // The upload itself is recorded by the voxelize pass in the first frame, in place of voxelizing the
+    // static instances, so it is timed in the frame where it happens.
+    void loadStaticCache(const std::filesystem::path& path);
+    bool hasStaticCache() const { return staticCache_.handle() != VK_NULL_HANDLE; }
+    // Copies the staged voxels into the (already cleared) static accumulator; transfer stage.
+    void recordStaticCacheUpload(VkCommandBuffer cmd) const;
+    // Frees the staging buffer; only once the frame that recorded the upload has completed.
+    void releaseStaticCache();
+
+    // ---- readback (host copies; call between frames) ----
+    // Level `mip` of a volume (albedo, normal, emission or radiance) as RGBA floats, x fastest then y then z
+    // (voxelLinearIndex order), max(1, N >> mip)³ of them. RGBA8 reads as value / 255.
+    std::vector<glm::vec4> readVolume(vk::Image& volume, uint32_t mip = 0);
+    // The static accumulator's voxels with at least one sample, in linear-index order.
+    std::vector<StaticAccumVoxel> readStaticAccumulator();
+
 private:
     const vk::Context& context_;
     uint32_t resolution_ = 0;
@@ -84,6 +107,10 @@ private:
     vk::Buffer staticAccum_, dynamicAccum_;
     VkSampler sampler_ = VK_NULL_HANDLE;
     bool staticVoxelized_ = false;
+    // Voxel cache staged for upload: the cached voxels packed back to back, and one copy region per run of
+    // consecutive voxels (the accumulator is cleared first, empty voxels need no bytes).
+    vk::Buffer staticCache_;
+    std::vector<VkBufferCopy> staticCacheRegions_;
 };
 
 }  // namespace vct

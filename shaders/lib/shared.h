@@ -10,6 +10,7 @@ namespace vct::gpu {
 using glm::mat4;
 using glm::uvec4;
 using glm::vec4;
+using glm::ivec4;
 #endif
 
 // Compute passes over the image run in 8x8 tiles.
@@ -31,8 +32,20 @@ struct FrameUniforms {
                            // z: number of lights, w: main light index or -1 when none is shadowed
     vec4 voxelOrigin;      // xyz: world position of the voxel grid's min corner, w: voxel size (world units)
     vec4 voxelParams;      // x: resolution N (N³ voxels), y: mip count, z: 1 when GI is on, w: trace scale
-    vec4 materialParams;   // x: 1 when Toksvig roughness is on, y: 1 when geometric specular AA is on
+    vec4 materialParams;   // x: 1 when Toksvig roughness is on, y: 1 when geometric specular AA is on,
+                           // z: 1 to sample material textures at level 0 only (supersampled references)
+    // ---- spatio-temporal upsampling (DESIGN §3.5) ----
+    mat4 prevInvViewProj;  // last frame's inverse view-projection (history positions from the previous depth)
+    vec4 prevCameraPosition;  // xyz last frame's camera position (history view vectors)
+    vec4 upsampleParams;   // x: β, y: κ, z: σ_n², w: γ (history decay)
+    vec4 upsampleMode;     // x: weights (VCT_WEIGHTS_*), y: 1 when the history is valid (temporal on, no cut),
+                           // z: τ (re-trace below this sum of weights; 0 = no adaptive), w: A_max
+    ivec4 traceJitter;     // xy: this frame's low-res sample offset o_k in full-res pixels, z: frame index
 };
+
+#define VCT_WEIGHTS_BILINEAR 0
+#define VCT_WEIGHTS_NORMAL 1
+#define VCT_WEIGHTS_SG 2
 
 #define VCT_LIGHT_DIRECTIONAL 0
 #define VCT_LIGHT_POINT 1
@@ -105,12 +118,41 @@ struct DrawPushConstants {
 #define VCT_TRACE_BINDING_VOXELS 3    // radiance (premultiplied rgb) + opacity, 3D with mips
 #define VCT_TRACE_BINDING_DIFFUSE 4   // out: low-res cosine-weighted incoming radiance
 #define VCT_TRACE_BINDING_SPECULAR 5  // out: low-res incoming radiance along the specular cone
+// out: what the upsample weights compare, per low-res sample (lib/upsample_guide.glsl)
+#define VCT_TRACE_BINDING_GUIDE_POSITION 6  // rgba32f: world position, w: 1 (0: background)
+#define VCT_TRACE_BINDING_GUIDE_NORMAL 7    // rgba16f: unit normal, w: smoothed specular sharpness λ̄
+#define VCT_TRACE_BINDING_GUIDE_AXIS 8      // rgba16f: specular lobe axis
 
-// upsample
+// upsample (spatial joint-bilateral + temporal history; flags low-weight pixels for resample)
 #define VCT_UPSAMPLE_BINDING_DIFFUSE_LOW 1
 #define VCT_UPSAMPLE_BINDING_SPECULAR_LOW 2
-#define VCT_UPSAMPLE_BINDING_DIFFUSE 3
+#define VCT_UPSAMPLE_BINDING_DIFFUSE 3           // out: rgb radiance, a: accumulated weight A
 #define VCT_UPSAMPLE_BINDING_SPECULAR 4
+#define VCT_UPSAMPLE_BINDING_DEPTH 5
+#define VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS 6
+#define VCT_UPSAMPLE_BINDING_MOTION 7
+#define VCT_UPSAMPLE_BINDING_PREV_DEPTH 8
+#define VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS 9
+#define VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY 10  // last frame's outputs (rgb, a: A)
+#define VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY 11
+#define VCT_UPSAMPLE_BINDING_WEIGHT_SUM 12       // out: r sum of weights (diffuse), g (specular), b: 1 re-traced
+#define VCT_UPSAMPLE_BINDING_RESAMPLE_LIST 13    // out: ResampleList (count, indirect dispatch, pixels)
+#define VCT_UPSAMPLE_BINDING_GUIDE_POSITION 14   // the trace's per-sample guides (VCT_TRACE_BINDING_GUIDE_*)
+#define VCT_UPSAMPLE_BINDING_GUIDE_NORMAL 15
+#define VCT_UPSAMPLE_BINDING_GUIDE_AXIS 16
+
+// resample (full-res cone tracing of the listed pixels; same trace bindings 1–3)
+#define VCT_RESAMPLE_BINDING_LIST 6
+#define VCT_RESAMPLE_BINDING_DIFFUSE 4           // in/out: the upsample outputs (trace bindings' numbers)
+#define VCT_RESAMPLE_BINDING_SPECULAR 5
+#define VCT_RESAMPLE_GROUP_SIZE 64
+
+// The compacted list of pixels to re-trace: header, then one packed pixel (x | y << 16) per entry. The
+// header's dispatch is the resample pass's indirect dispatch, counted up as entries are appended.
+struct ResampleListHeader {
+    uvec4 counts;    // x: entries, yzw: unused
+    uvec4 dispatch;  // xyz: VkDispatchIndirectCommand (groups of VCT_RESAMPLE_GROUP_SIZE), w: unused
+};
 
 // voxelize (triangles → fixed-point accumulators) and its resolve (accumulators → albedo/normal/emission)
 #define VCT_VOXEL_GROUP_SIZE 64        // voxelize: triangles per workgroup
@@ -139,6 +181,16 @@ struct DrawPushConstants {
 #define VCT_MIPS_BINDING_SOURCE 1
 #define VCT_MIPS_BINDING_DEST 2
 
+// voxel view (`vct render --view voxels`: the grid ray-marched at one mip, on demand after the frame)
+#define VCT_VOXEL_VIEW_BINDING_VOXELS 1  // radiance (premultiplied rgb) + opacity, 3D with mips
+#define VCT_VOXEL_VIEW_BINDING_OUTPUT 2  // out: rgba16f radiance seen through the grid, full res
+struct VoxelViewPushConstants {
+    uvec4 params;  // x: mip level marched
+};
+#ifdef __cplusplus
+static_assert(sizeof(VoxelViewPushConstants) == 16);
+#endif
+
 // Push constants of voxelize (one dispatch per instance × primitive) and resolve.
 struct VoxelizePushConstants {
     uvec4 draw;    // x: instance, y: material, z: first index, w: triangle count
@@ -146,7 +198,8 @@ struct VoxelizePushConstants {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameUniforms) == 6 * 64 + 7 * 16);
+static_assert(sizeof(FrameUniforms) == 7 * 64 + 11 * 16);
+static_assert(sizeof(ResampleListHeader) == 32);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(GpuInstance) == 192);

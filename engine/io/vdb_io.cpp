@@ -1,0 +1,341 @@
+#include "io/vdb_io.h"
+
+#include <algorithm>
+#include <bit>
+#include <mutex>
+#include <sstream>
+#include <system_error>
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+
+#include "core/error.h"
+
+namespace vct {
+
+namespace {
+
+static_assert(VCT_VOXEL_ACCUM_STRIDE == 10, "static_* grids assume albedo rgb, normal xyz, emission rgb, count");
+
+// Grid names, in file order.
+constexpr const char* kAlbedo = "albedo";
+constexpr const char* kNormal = "normal";
+constexpr const char* kEmission = "emission";
+constexpr const char* kOpacity = "opacity";
+constexpr const char* kRadiance = "radiance";
+constexpr const char* kStaticCount = "static_count";
+constexpr const char* kStaticAlbedo = "static_albedo_sum";
+constexpr const char* kStaticNormal = "static_normal_sum";
+constexpr const char* kStaticEmission = "static_emission_sum";
+
+constexpr const char* kIndexToWorld =
+    "index (i,j,k) is the voxel centred at vct_grid_origin + (ijk + 0.5) * vct_voxel_size (OpenVDB's cell-centred "
+    "convention); vct_grid_origin is the grid's min corner; active voxels lie in [0, vct_resolution)^3";
+
+void initializeOpenVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+
+// OpenVDB's messages about a damaged file may quote its bytes (NULs, kilobytes of padding): printable
+// characters only, runs of blanks folded, at most 160 characters.
+std::string what(const std::exception& e) {
+    std::string text;
+    for (const char* p = e.what(); *p && text.size() < 160; ++p) {
+        const unsigned char c = static_cast<unsigned char>(*p);
+        const bool blank = c <= ' ' || c >= 0x7f;
+        if (blank && (text.empty() || text.back() == ' ')) continue;
+        text += blank ? ' ' : char(c);
+    }
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+openvdb::Coord coord(glm::ivec3 v) { return openvdb::Coord(v.x, v.y, v.z); }
+glm::ivec3 ivec(const openvdb::Coord& c) { return glm::ivec3(c.x(), c.y(), c.z()); }
+openvdb::Vec3s vec3s(glm::vec3 v) { return openvdb::Vec3s(v.x, v.y, v.z); }
+glm::vec3 vec3(const openvdb::Vec3s& v) { return glm::vec3(v.x(), v.y(), v.z()); }
+// The accumulator's uints keep their bits in the int32 grids (normal sums are two's complement anyway).
+openvdb::Vec3i vec3i(const uint32_t* u) {
+    return openvdb::Vec3i(std::bit_cast<int32_t>(u[0]), std::bit_cast<int32_t>(u[1]), std::bit_cast<int32_t>(u[2]));
+}
+void fromVec3i(const openvdb::Vec3i& v, uint32_t* u) {
+    for (int c = 0; c < 3; ++c) u[c] = std::bit_cast<uint32_t>(v[c]);
+}
+
+bool inGrid(glm::ivec3 ijk, uint32_t n) {
+    return glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(int(n))));
+}
+
+void insertCommonMeta(openvdb::MetaMap& meta, const VoxelFileInfo& info) {
+    meta.insertMeta("vct_format", openvdb::StringMetadata(kVoxelFileFormat));
+    meta.insertMeta("vct_scene", openvdb::StringMetadata(info.scene));
+    meta.insertMeta("vct_resolution", openvdb::Int32Metadata(int32_t(info.resolution)));
+    meta.insertMeta("vct_grid_origin", openvdb::Vec3SMetadata(vec3s(info.origin)));
+    meta.insertMeta("vct_voxel_size", openvdb::FloatMetadata(info.voxelSize));
+    meta.insertMeta("vct_index_to_world", openvdb::StringMetadata(kIndexToWorld));
+    meta.insertMeta("vct_time", openvdb::FloatMetadata(info.time));
+}
+
+template <typename GridT>
+typename GridT::Ptr makeGrid(const char* name, const char* description, const VoxelFileInfo& info,
+                             const openvdb::math::Transform::Ptr& transform) {
+    typename GridT::Ptr grid = GridT::create(typename GridT::ValueType(openvdb::zeroVal<typename GridT::ValueType>()));
+    grid->setName(name);
+    grid->setTransform(transform);
+    insertCommonMeta(*grid, info);
+    grid->insertMeta("vct_description", openvdb::StringMetadata(description));
+    return grid;
+}
+
+template <typename T>
+T requireMeta(const openvdb::MetaMap& meta, const char* name, const std::filesystem::path& path) {
+    typename openvdb::TypedMetadata<T>::ConstPtr value = meta.getMetadata<openvdb::TypedMetadata<T>>(name);
+    if (!value)
+        throw Error("voxel file " + quoted(path) + " has no " + name +
+                    " metadata (not written by vct voxelize)");
+    return value->value();
+}
+
+VoxelFileInfo readInfo(const openvdb::MetaMap& meta, const std::filesystem::path& path) {
+    openvdb::StringMetadata::ConstPtr format = meta.getMetadata<openvdb::StringMetadata>("vct_format");
+    if (!format) throw Error("voxel file " + quoted(path) + " is an OpenVDB file but not one written by vct voxelize");
+    if (format->value() != kVoxelFileFormat)
+        throw Error("voxel file " + quoted(path) + " has format '" + format->value() + "', expected '" +
+                    kVoxelFileFormat + "'");
+    VoxelFileInfo info;
+    const int32_t n = requireMeta<int32_t>(meta, "vct_resolution", path);
+    if (n < 1 || n > 4096)
+        throw Error("voxel file " + quoted(path) + ": bad vct_resolution " + std::to_string(n));
+    info.resolution = uint32_t(n);
+    info.origin = vec3(requireMeta<openvdb::Vec3s>(meta, "vct_grid_origin", path));
+    info.voxelSize = requireMeta<float>(meta, "vct_voxel_size", path);
+    if (!(info.voxelSize > 0.0f))
+        throw Error("voxel file " + quoted(path) + ": bad vct_voxel_size " + std::to_string(info.voxelSize));
+    info.scene = requireMeta<std::string>(meta, "vct_scene", path);
+    info.time = requireMeta<float>(meta, "vct_time", path);
+    return info;
+}
+
+// Opens `path` for reading (no delayed loading: the file may be replaced while the program runs).
+void openFile(openvdb::io::File& file, const std::filesystem::path& path) {
+    std::error_code error;
+    if (!std::filesystem::exists(path, error)) throw Error("voxel file " + quoted(path) + " does not exist");
+    if (std::filesystem::is_directory(path, error)) throw Error("voxel file " + quoted(path) + " is a directory");
+    try {
+        file.open(/*delayedLoad=*/false);
+    } catch (const std::exception& e) {
+        throw Error("voxel file " + quoted(path) + " is not a readable OpenVDB file (" + what(e) + ")");
+    }
+}
+
+template <typename GridT>
+typename GridT::Ptr readGrid(openvdb::io::File& file, const char* name, const std::filesystem::path& path) {
+    if (!file.hasGrid(name)) throw Error("voxel file " + quoted(path) + " has no '" + name + "' grid");
+    openvdb::GridBase::Ptr base;
+    try {
+        base = file.readGrid(name);
+    } catch (const std::exception& e) {
+        throw Error("voxel file " + quoted(path) + ": cannot read grid '" + name + "' (" + what(e) + ")");
+    }
+    typename GridT::Ptr grid = openvdb::gridPtrCast<GridT>(base);
+    if (!grid)
+        throw Error("voxel file " + quoted(path) + ": grid '" + name + "' holds " + base->valueType() + ", expected " +
+                    openvdb::typeNameAsString<typename GridT::ValueType>());
+    // Files from other tools may store uniform blocks as tiles: make every active value a voxel.
+    grid->tree().voxelizeActiveTiles();
+    return grid;
+}
+
+// The active voxels of `grid` (which decides what is occupied), sorted by linear index, checked to lie in
+// the grid.
+template <typename GridT>
+std::vector<glm::ivec3> activeVoxels(const GridT& grid, uint32_t n, const std::filesystem::path& path) {
+    std::vector<glm::ivec3> voxels;
+    voxels.reserve(size_t(grid.activeVoxelCount()));
+    for (auto it = grid.cbeginValueOn(); it; ++it) {
+        const glm::ivec3 ijk = ivec(it.getCoord());
+        if (!inGrid(ijk, n)) {
+            std::ostringstream message;
+            message << "voxel file " << quoted(path) << ": grid '" << grid.getName() << "' has a voxel at (" << ijk.x
+                    << ", " << ijk.y << ", " << ijk.z << "), outside the " << n << "^3 grid";
+            throw Error(message.str());
+        }
+        voxels.push_back(ijk);
+    }
+    std::sort(voxels.begin(), voxels.end(),
+              [n](glm::ivec3 a, glm::ivec3 b) { return voxelFileIndex(a, n) < voxelFileIndex(b, n); });
+    return voxels;
+}
+
+}  // namespace
+
+uint64_t denseVoxelBytes(uint32_t resolution) {
+    // albedo, normal, emission, radiance (vec3s) + opacity (float) + static_count (int32) + 3 sums (vec3i).
+    constexpr uint64_t perVoxel = 4 * sizeof(openvdb::Vec3s) + sizeof(float) + sizeof(int32_t) + 3 * sizeof(openvdb::Vec3i);
+    return uint64_t(resolution) * resolution * resolution * perVoxel;
+}
+
+std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, const VoxelFile& data) {
+    initializeOpenVdb();
+    const VoxelFileInfo& info = data.info;
+    const uint32_t n = info.resolution;
+    if (n < 1 || n > 4096 || !(info.voxelSize > 0.0f))
+        throw Error("cannot write voxel file " + quoted(path) + ": bad grid (resolution " + std::to_string(n) +
+                    ", voxel size " + std::to_string(info.voxelSize) + ")");
+
+    // Index → world: scale by the voxel size, then move index 0 to the centre of the min-corner voxel.
+    openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(double(info.voxelSize));
+    const glm::dvec3 firstCentre = glm::dvec3(info.origin) + 0.5 * double(info.voxelSize);
+    transform->postTranslate(openvdb::Vec3d(firstCentre.x, firstCentre.y, firstCentre.z));
+
+    auto albedo = makeGrid<openvdb::Vec3SGrid>(
+        kAlbedo, "resolved albedo (linear RGB) of the frame at vct_time: static + moving instances", info, transform);
+    auto normal = makeGrid<openvdb::Vec3SGrid>(
+        kNormal, "averaged surface normal (world space, not renormalised: shorter where surfaces disagree)", info,
+        transform);
+    auto emission = makeGrid<openvdb::Vec3SGrid>(kEmission, "emitted radiance (linear RGB)", info, transform);
+    auto opacity = makeGrid<openvdb::FloatGrid>(kOpacity, "coverage: 1 where any surface touches the voxel", info,
+                                                transform);
+    auto radiance = makeGrid<openvdb::Vec3SGrid>(
+        kRadiance,
+        "injected outgoing radiance of mip 0 at vct_time (direct light + emission), premultiplied by opacity", info,
+        transform);
+    auto count = makeGrid<openvdb::Int32Grid>(
+        kStaticCount, "voxelize samples of static geometry (the accumulator's count; the voxel cache)", info, transform);
+    auto albedoSum = makeGrid<openvdb::Vec3IGrid>(
+        kStaticAlbedo, "static geometry: sum of albedo x 1023 over static_count samples (uint32 bits)", info, transform);
+    auto normalSum = makeGrid<openvdb::Vec3IGrid>(
+        kStaticNormal, "static geometry: sum of normal x 1023 over static_count samples (two's complement)", info,
+        transform);
+    auto emissionSum = makeGrid<openvdb::Vec3IGrid>(
+        kStaticEmission, "static geometry: sum of emission x 256 over static_count samples (uint32 bits)", info,
+        transform);
+    opacity->setGridClass(openvdb::GRID_FOG_VOLUME);
+    normal->setVectorType(openvdb::VEC_COVARIANT);
+
+    auto outside = [&](glm::ivec3 ijk) {
+        std::ostringstream message;
+        message << "cannot write voxel file " << quoted(path) << ": voxel (" << ijk.x << ", " << ijk.y << ", "
+                << ijk.z << ") is outside the " << n << "^3 grid";
+        return Error(message.str());
+    };
+    {
+        auto a = albedo->getAccessor();
+        auto nr = normal->getAccessor();
+        auto e = emission->getAccessor();
+        auto o = opacity->getAccessor();
+        auto r = radiance->getAccessor();
+        for (const VoxelSample& v : data.voxels) {
+            if (!inGrid(v.ijk, n)) throw outside(v.ijk);
+            const openvdb::Coord c = coord(v.ijk);
+            a.setValueOn(c, vec3s(v.albedo));
+            nr.setValueOn(c, vec3s(v.normal));
+            e.setValueOn(c, vec3s(v.emission));
+            o.setValueOn(c, v.opacity);
+            r.setValueOn(c, vec3s(v.radiance));
+        }
+    }
+    {
+        auto c = count->getAccessor();
+        auto a = albedoSum->getAccessor();
+        auto nr = normalSum->getAccessor();
+        auto e = emissionSum->getAccessor();
+        for (const StaticAccumVoxel& v : data.staticAccum) {
+            if (!inGrid(v.ijk, n)) throw outside(v.ijk);
+            const openvdb::Coord ijk = coord(v.ijk);
+            a.setValueOn(ijk, vec3i(&v.accum[0]));
+            nr.setValueOn(ijk, vec3i(&v.accum[3]));
+            e.setValueOn(ijk, vec3i(&v.accum[6]));
+            c.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[9]));
+        }
+    }
+
+    openvdb::GridPtrVec grids{albedo, normal, emission, opacity, radiance, count, albedoSum, normalSum, emissionSum};
+    openvdb::MetaMap fileMeta;
+    insertCommonMeta(fileMeta, info);
+    fileMeta.insertMeta("vct_grids",
+                        openvdb::StringMetadata("albedo, normal, emission, opacity, radiance: the frame at vct_time; "
+                                                "static_*: the static geometry's exact voxelize accumulator (the "
+                                                "voxel cache read by vct render --voxel-cache)"));
+    try {
+        openvdb::io::File file(path.string());
+        file.write(grids, fileMeta);
+        file.close();
+    } catch (const std::exception& e) {
+        throw Error("cannot write voxel file " + quoted(path) + " (" + what(e) + ")");
+    }
+
+    std::vector<VoxelGridSummary> summary;
+    for (const openvdb::GridBase::Ptr& grid : grids)
+        summary.push_back({grid->getName(), grid->valueType(), uint64_t(grid->activeVoxelCount())});
+    return summary;
+}
+
+VoxelFileInfo readVoxelFileInfo(const std::filesystem::path& path) {
+    initializeOpenVdb();
+    openvdb::io::File file(path.string());
+    openFile(file, path);
+    VoxelFileInfo info = readInfo(*file.getMetadata(), path);
+    file.close();
+    return info;
+}
+
+VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame) {
+    initializeOpenVdb();
+    openvdb::io::File file(path.string());
+    openFile(file, path);
+    VoxelFile data;
+    data.info = readInfo(*file.getMetadata(), path);
+    const uint32_t n = data.info.resolution;
+
+    {
+        auto count = readGrid<openvdb::Int32Grid>(file, kStaticCount, path);
+        auto albedoSum = readGrid<openvdb::Vec3IGrid>(file, kStaticAlbedo, path);
+        auto normalSum = readGrid<openvdb::Vec3IGrid>(file, kStaticNormal, path);
+        auto emissionSum = readGrid<openvdb::Vec3IGrid>(file, kStaticEmission, path);
+        auto c = count->getConstAccessor();
+        auto a = albedoSum->getConstAccessor();
+        auto nr = normalSum->getConstAccessor();
+        auto e = emissionSum->getConstAccessor();
+        for (glm::ivec3 ijk : activeVoxels(*count, n, path)) {
+            StaticAccumVoxel v;
+            v.ijk = ijk;
+            const openvdb::Coord x = coord(ijk);
+            fromVec3i(a.getValue(x), &v.accum[0]);
+            fromVec3i(nr.getValue(x), &v.accum[3]);
+            fromVec3i(e.getValue(x), &v.accum[6]);
+            v.accum[9] = std::bit_cast<uint32_t>(c.getValue(x));
+            data.staticAccum.push_back(v);
+        }
+    }
+    if (frame) {
+        auto opacity = readGrid<openvdb::FloatGrid>(file, kOpacity, path);
+        auto albedo = readGrid<openvdb::Vec3SGrid>(file, kAlbedo, path);
+        auto normal = readGrid<openvdb::Vec3SGrid>(file, kNormal, path);
+        auto emission = readGrid<openvdb::Vec3SGrid>(file, kEmission, path);
+        auto radiance = readGrid<openvdb::Vec3SGrid>(file, kRadiance, path);
+        auto o = opacity->getConstAccessor();
+        auto a = albedo->getConstAccessor();
+        auto nr = normal->getConstAccessor();
+        auto e = emission->getConstAccessor();
+        auto r = radiance->getConstAccessor();
+        for (glm::ivec3 ijk : activeVoxels(*opacity, n, path)) {
+            VoxelSample v;
+            v.ijk = ijk;
+            const openvdb::Coord x = coord(ijk);
+            v.opacity = o.getValue(x);
+            v.albedo = vec3(a.getValue(x));
+            v.normal = vec3(nr.getValue(x));
+            v.emission = vec3(e.getValue(x));
+            v.radiance = vec3(r.getValue(x));
+            data.voxels.push_back(v);
+        }
+    }
+    file.close();
+    return data;
+}
+
+}  // namespace vct

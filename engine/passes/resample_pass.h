@@ -1,0 +1,24 @@
+// resample: adaptive re-tracing (DESIGN §3.5). Traces, at full resolution, only the pixels the upsample pass
+// listed (sum of weights < τ), through an indirect dispatch sized by that list, and overwrites their
+// upsampled indirect light; then copies the list's length back for `resampled_fraction`.
+#pragma once
+
+#include "passes/trace_pass.h"
+#include "render/pass.h"
+#include "vk/pipeline.h"
+
+namespace vct {
+
+class ResamplePass : public Pass {
+public:
+    ResamplePass(const vk::Context& context, const VoxelSource& voxels);
+    const char* name() const override { return "resample"; }
+    std::vector<ImageUse> uses(FrameTargets& targets) override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    vk::Pipeline pipeline_;
+    VoxelSource voxels_;
+};
+
+}  // namespace vct

@@ -1,0 +1,71 @@
+// Cone tracing of one full-res pixel through the voxel grid (DESIGN §3.6): shared by trace.comp (one low-res
+// sample per thread) and resample.comp (the listed full-res pixels). GLSL only: it marches a sampler3D.
+// Expects before inclusion: `frame` (FrameUniforms), lib/constants, brdf, cone and gbuffer_read.
+#ifndef VCT_CONE_TRACE_GLSL
+#define VCT_CONE_TRACE_GLSL
+
+// Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
+// Light that leaves the grid unoccluded sees the environment, the constant ambient radiance (the background
+// shows the same value, so the two agree).
+vec4 traceCone(sampler3D voxels, vec3 origin, vec3 dir, float tanHalfAngle) {
+    const vec3 gridOrigin = frame.voxelOrigin.xyz;
+    const float v0 = frame.voxelOrigin.w;
+    const float gridSize = frame.voxelParams.x * v0;
+    const float maxMip = max(frame.voxelParams.y - 1.0, 0.0);
+    vec4 acc = vec4(0.0);
+    // Start one voxel out: the cone's first footprint then lies beside the surface, not on it.
+    float t = v0;
+    // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
+    const int maxSteps = int(4.0 * frame.voxelParams.x) + 8;
+    for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
+        const float d = coneDiameter(tanHalfAngle, t, v0);
+        const vec3 uvw = (origin + dir * t - gridOrigin) / gridSize;
+        // The axis leaves the grid: the grid is padded around the scene bounds, so nothing lies beyond. (No
+        // margin that grows with d: wide cones would then never leave, and t would overflow.)
+        if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
+        const float mip = min(coneMip(d, v0), maxMip);
+        const vec4 s = textureLod(voxels, uvw, mip);
+        const float dt = coneStep(d);
+        // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
+        acc = coneComposite(acc, s, dt, v0 * exp2(mip));
+        t += dt;
+    }
+    acc.rgb += (1.0 - saturate(acc.a)) * frame.ambient.rgb;
+    return acc;
+}
+
+// Demodulated indirect light at full-res `pixel` (lib/cone.glsl): diffuse = cosine-weighted mean incoming
+// radiance of the 6 diffuse cones, specular = incoming radiance along the specular cone. Background pixels
+// and a missing grid give 0.
+struct IndirectSample {
+    vec3 diffuse;
+    vec3 specular;
+};
+
+IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D normalRoughnessTexture, ivec2 pixel) {
+    IndirectSample result = IndirectSample(vec3(0.0), vec3(0.0));
+    const float depth = texelFetch(depthTexture, pixel, 0).r;
+    if (isBackground(depth) || frame.voxelOrigin.w <= 0.0) return result;
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
+    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
+    const float nLength = length(normalRoughness.xyz);
+    const vec3 n = nLength > 1e-6 ? normalRoughness.xyz / nLength : vec3(0.0, 1.0, 0.0);
+    const vec3 v = normalize(frame.cameraPosition.xyz - p);
+    const vec3 origin = p + n * (frame.voxelOrigin.w * CONE_START_OFFSET);
+
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+        result.diffuse += diffuseConeWeight(i) *
+                          traceCone(voxels, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
+
+    // Back-facing shading normals (normal maps, grazing views): reflect about n with n·v clamped to ≥ 0 so the
+    // cone never points into the surface.
+    const float NoV = max(dot(n, v), 0.0);
+    vec3 r = 2.0 * NoV * n - v;
+    r = dot(r, r) > 1e-12 ? normalize(r) : n;
+    const float alpha = alphaFromPerceptual(normalRoughness.w);
+    result.specular = traceCone(voxels, origin, r, specularConeTanHalf(alpha)).rgb;
+    return result;
+}
+
+#endif  // VCT_CONE_TRACE_GLSL

@@ -1,0 +1,31 @@
+// What the upsample weights compare at one pixel (DESIGN §3.4): its position, camera distance, normal and the
+// specular lobe (axis ξ, κ-smoothed sharpness λ̄). The diffuse lobe is the normal with a fixed sharpness.
+// trace.comp computes it once per low-res sample and stores it (VCT_TRACE_BINDING_GUIDE_*); upsample.comp
+// computes it for its own pixel and for the history's texels from the G-buffers. GLSL only; expects
+// lib/brdf.glsl and lib/upsample_weights.glsl.
+#ifndef VCT_UPSAMPLE_GUIDE_GLSL
+#define VCT_UPSAMPLE_GUIDE_GLSL
+
+struct Guide {
+    vec3 p;
+    float cameraDistance;
+    vec3 n;
+    float specularSharpness;  // λ̄ of the specular lobe
+    vec3 specularAxis;
+};
+
+Guide guideFromGBuffer(vec4 normalRoughness, vec3 p, vec3 cameraPosition, float kappa) {
+    Guide g;
+    g.p = p;
+    const vec3 toCamera = cameraPosition - p;
+    g.cameraDistance = length(toCamera);
+    const float nLength = length(normalRoughness.xyz);
+    g.n = nLength > 1e-6 ? normalRoughness.xyz / nLength : vec3(0.0, 1.0, 0.0);
+    const vec3 v = g.cameraDistance > 0.0 ? toCamera / g.cameraDistance : g.n;
+    const vec4 lobe = specularLobe(g.n, v, alphaFromPerceptual(normalRoughness.w));
+    g.specularAxis = lobe.xyz;
+    g.specularSharpness = smoothedSharpness(lobe.w, kappa);
+    return g;
+}
+
+#endif  // VCT_UPSAMPLE_GUIDE_GLSL

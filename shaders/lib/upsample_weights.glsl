@@ -1,0 +1,118 @@
+// The weights of the spatio-temporal upsampling (DESIGN §3.3–3.5, seed 004 §4): spherical-Gaussian (SG)
+// approximations of each pixel's specular and diffuse lobes, the lobe-aware weight that compares two of them,
+// the normal-aware baseline it replaces, the geometric (plane-distance) weight and the spatial kernel.
+// Shared by GLSL (upsample.comp) and C++ (tests/upsample_weights_test.cpp) through lib/cpp_glsl.h: pure
+// functions, `f` literals.
+//
+// A lobe is a vec4: xyz the unit axis ξ, w the INVERSE sharpness 1/λ of G(ω) = exp(λ(ω·ξ − 1)). The inverse
+// form keeps a mirror (α = 0, λ = ∞) finite: 1/λ = 0, and the κ-smoothed sharpness below is then exactly κ.
+#ifndef VCT_UPSAMPLE_WEIGHTS_GLSL
+#define VCT_UPSAMPLE_WEIGHTS_GLSL
+
+#include "lib/constants.glsl"
+
+// Seed 004's parameters: β sharpens the lobe weight, κ is the sharpness of the smoothing kernel that bounds
+// every lobe's sharpness (λ̄ ≤ κ), so no two lobes are "infinitely" different.
+const float SG_DEFAULT_BETA = 20.0f;
+const float SG_DEFAULT_KAPPA = 100.0f;
+// The normal-aware baseline: σ_n² = 0.01.
+const float NORMAL_WEIGHT_DEFAULT_SIGMA2 = 0.01f;
+// Diffuse lobe sharpness λ_d: the cosine lobe max(n·ω, 0) is best fitted by an SG of sharpness ≈ 2.
+const float SG_DIFFUSE_SHARPNESS = 2.0f;
+// n·v floor in the specular lobe. The warped lobe sharpens as n·v → 0 (1/λ ∝ n·v); the floor keeps grazing and
+// back-facing views (normal maps) of rough surfaces from turning into mirror lobes.
+const float SG_MIN_NOV = 1e-4f;
+
+// Specular lobe of a pixel (DESIGN §3.3): the GGX NDF as an SG around n with λ_h = 2/α², warped into the
+// reflected direction ξ = 2(n·v)n − v with λ = λ_h / (4 n·v), i.e. 1/λ = 2α²·max(n·v, ε).
+// n, v unit; alpha the effective (Toksvig, AA) GGX roughness α = perceptual².
+VCT_INLINE vec4 specularLobe(vec3 n, vec3 v, float alpha) {
+    const float NoV = max(dot(n, v), 0.0f);
+    vec3 axis = 2.0f * NoV * n - v;
+    const float len2 = dot(axis, axis);
+    // |axis| = |v| = 1 for unit v (also with n·v clamped to 0); the fallback only guards degenerate input.
+    axis = len2 > 1e-12f ? axis * inversesqrt(len2) : n;
+    const float a = clamp(alpha, 0.0f, 1.0f);
+    return vec4(axis, 2.0f * a * a * max(NoV, SG_MIN_NOV));
+}
+
+// Diffuse lobe: the clamped cosine around n, one fixed sharpness.
+VCT_INLINE vec4 diffuseLobe(vec3 n) { return vec4(n, 1.0f / SG_DIFFUSE_SHARPNESS); }
+
+// Sharpness after convolution with the smoothing kernel of sharpness κ: λ̄ = λκ/(λ+κ) = κ / (1 + κ/λ).
+// In [0, κ]: κ for a mirror (1/λ = 0), → 0 as 1/λ → ∞.
+VCT_INLINE float smoothedSharpness(float invLambda, float kappa) {
+    return kappa / (1.0f + kappa * max(invLambda, 0.0f));
+}
+
+// Lobe-aware weight of seed 004 §4.2 between lobes a and b, in [0, 1], symmetric, 1 for identical lobes:
+//   w = ( 2√(λ̄a λ̄b) / (λ̄a + λ̄b) )^β · exp( β · λ̄a λ̄b / (λ̄a + λ̄b) · (ξa·ξb − 1) ).
+// The first factor penalises a sharpness mismatch, the second the angle between the axes. ξa·ξb − 1 is taken
+// as −½‖ξa − ξb‖², exact for unit axes and free of the cancellation of 1 − cos near 0. The exponent reaches
+// about −βκ (−2000): exp underflows to 0, which is the right answer.
+// The same from the axes and the smoothed sharpnesses λ̄ (smoothedSharpness), for callers that keep λ̄ per
+// sample. Evaluated as one exp: exp(β·(ln ratio + h·(ξa·ξb − 1))); ln 0 is avoided by a floor whose β-th power
+// is 0 in float anyway.
+VCT_INLINE float lobeWeightSmoothed(vec3 axisA, float la, vec3 axisB, float lb, float beta) {
+    const float sum = la + lb;
+    // Both lobes uniform (λ̄ = 0, only reached in the limit 1/λ → ∞): identical whatever their axes.
+    if (!(sum > 0.0f)) return 1.0f;
+    // 2√(λ̄a λ̄b)/(λ̄a + λ̄b) = 2√r/(1 + r) with r = min/max: no product of two tiny λ̄ to underflow, exactly 1
+    // for equal sharpness, exactly symmetric.
+    const float r = min(la, lb) / max(la, lb);
+    const float ratio = clamp(2.0f * sqrt(r) / (1.0f + r), 1e-30f, 1.0f);
+    const vec3 d = axisA - axisB;
+    const float cosMinusOne = -0.5f * dot(d, d);
+    return exp(beta * (log(ratio) + (la * lb / sum) * cosMinusOne));
+}
+
+VCT_INLINE float lobeWeight(vec4 a, vec4 b, float beta, float kappa) {
+    return lobeWeightSmoothed(vec3(a), smoothedSharpness(a.w, kappa), vec3(b), smoothedSharpness(b.w, kappa), beta);
+}
+
+// Normal-aware baseline: w_n = exp((na·nb − 1) / σ_n²), again with na·nb − 1 = −½‖na − nb‖².
+VCT_INLINE float normalWeight(vec3 na, vec3 nb, float sigma2) {
+    const vec3 d = na - nb;
+    return exp(-0.5f * dot(d, d) / max(sigma2, 1e-8f));
+}
+
+// Geometric weight: distance of sample point q from the tangent plane of pixel p (unit normal n), relative to
+// p's distance from the camera (so the tolerance follows the depth precision and the pixel footprint):
+//   w_z = exp(−(|n·(q − p)| / (σ_z·dist))²). Slanted surfaces keep their neighbours (a plain depth difference
+// would reject them); a step in depth (another object, a fold) is rejected.
+const float PLANE_WEIGHT_SIGMA = 0.02f;
+VCT_INLINE float planeWeight(vec3 n, vec3 p, vec3 q, float cameraDistance) {
+    const float d = abs(dot(n, q - p)) / (PLANE_WEIGHT_SIGMA * max(cameraDistance, 1e-6f));
+    return exp(-d * d);
+}
+
+// Spatial kernel f: a separable tent of radius r (in low-res texels) normalised by 1/r per axis, so that on a
+// regular grid of samples with integer r the weights sum to 1 (partition of unity): the sum of weights of the
+// spatial part then reads as "the fraction of a full neighbourhood that agreed". r = 1 is bilinear.
+VCT_INLINE float tentKernel(vec2 offsetLowTexels, float radius) {
+    const vec2 t = max(vec2(1.0f) - abs(offsetLowTexels) / radius, vec2(0.0f)) / radius;
+    return t.x * t.y;
+}
+
+// Low-res sample offsets o_k (DESIGN §3.5): frame k traces low-res pixel (x, y) at full-res pixel
+// s·(x, y) + o_k. The sequence visits all s×s offsets every s² frames in an order that spreads consecutive
+// offsets apart (the 2×2 and 4×4 Bayer matrices' ranks), so a partial history already covers the block evenly.
+VCT_INLINE ivec2 jitterOffset(uint frameIndex, int scale) {
+    if (scale <= 1) return ivec2(0);
+    // Inverse of the Bayer order: rank k → position, recursively over 2×2 quadrants, least significant first.
+    const uint cells = uint(scale * scale);
+    uint k = frameIndex % cells;
+    ivec2 o = ivec2(0);
+    int bit = scale / 2;
+    for (int level = 0; level < 2 && bit > 0; ++level) {
+        // Rank within a 2×2 Bayer block: 0 → (0,0), 1 → (1,1), 2 → (1,0), 3 → (0,1).
+        const uint r = k % 4u;
+        const ivec2 step = r == 0u ? ivec2(0, 0) : (r == 1u ? ivec2(1, 1) : (r == 2u ? ivec2(1, 0) : ivec2(0, 1)));
+        o += step * bit;
+        k /= 4u;
+        bit /= 2;
+    }
+    return o;
+}
+
+#endif  // VCT_UPSAMPLE_WEIGHTS_GLSL

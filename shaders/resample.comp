@@ -1,0 +1,36 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// resample: adaptive re-tracing (DESIGN §3.5, seed 004 §5.4). The pixels the upsample pass could not
+// reconstruct (sum of weights < τ) are on a compacted list; this pass, dispatched indirectly with one thread
+// per entry, traces each of them at full resolution and overwrites the upsampled result with a fresh sample
+// of weight 1 (so next frame's history trusts it like one full low-res sample).
+#include "lib/shared.h"
+#include "lib/constants.glsl"
+#include "lib/brdf.glsl"
+#include "lib/cone.glsl"
+#include "lib/gbuffer_read.glsl"
+
+layout(local_size_x = VCT_RESAMPLE_GROUP_SIZE) in;
+
+layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = VCT_TRACE_BINDING_DEPTH) uniform sampler2D depthTexture;
+layout(set = 0, binding = VCT_TRACE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = VCT_TRACE_BINDING_VOXELS) uniform sampler3D voxels;
+layout(set = 0, binding = VCT_RESAMPLE_BINDING_DIFFUSE, rgba16f) uniform writeonly image2D diffuseImage;
+layout(set = 0, binding = VCT_RESAMPLE_BINDING_SPECULAR, rgba16f) uniform writeonly image2D specularImage;
+layout(set = 0, binding = VCT_RESAMPLE_BINDING_LIST, std430) readonly buffer ResampleList {
+    ResampleListHeader header;
+    uint pixels[];
+} resampleList;
+
+#include "lib/cone_trace.glsl"
+
+void main() {
+    const uint index = gl_GlobalInvocationID.x;
+    if (index >= resampleList.header.counts.x) return;
+    const uint packed = resampleList.pixels[index];
+    const ivec2 pixel = ivec2(packed & 0xffffu, packed >> 16);
+    const IndirectSample s = tracePixel(voxels, depthTexture, normalRoughnessTexture, pixel);
+    imageStore(diffuseImage, pixel, vec4(s.diffuse, 1.0));
+    imageStore(specularImage, pixel, vec4(s.specular, 1.0));
+}

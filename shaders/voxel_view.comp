@@ -1,0 +1,122 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// voxel view (`vct render --view voxels --voxel-mip M`): one thread per pixel marches the camera ray through the
+// voxel grid's radiance texture at mip M with a 3D DDA over that level's texels (Amanatides & Woo), reading
+// each texel it crosses unfiltered (texelFetch, so the voxels show as cubes) and compositing its premultiplied
+// radiance + opacity front to back, the opacity corrected for the length of ray inside the texel. It stops at
+// opacity ≥ VOXEL_VIEW_MAX_OPACITY or where the ray leaves the grid; what is left sees the environment (the
+// constant ambient radiance, as the trace's cones do).
+//
+// Unlit voxels (in shadow, never injected) have no radiance and would be invisible against a dark background,
+// so each texel also shows VOXEL_VIEW_GREY × opacity of grey radiance, shaded by the axis of the texel face the
+// ray entered through (x 0.7, y 1.0, z 0.45: the three face orientations of the cubes tell apart). This is a
+// display aid only; it is not part of the grid.
+#include "lib/shared.h"
+#include "lib/constants.glsl"
+#include "lib/gbuffer_read.glsl"
+
+layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
+
+layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = VCT_VOXEL_VIEW_BINDING_VOXELS) uniform sampler3D voxels;
+layout(set = 0, binding = VCT_VOXEL_VIEW_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(push_constant) uniform Push { VoxelViewPushConstants push; };
+
+const float VOXEL_VIEW_MAX_OPACITY = 0.99;
+const float VOXEL_VIEW_GREY = 0.15;
+const vec3 VOXEL_VIEW_FACE_SHADE = vec3(0.7, 1.0, 0.45);
+
+void main() {
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    const ivec2 size = imageSize(outputImage);
+    if (any(greaterThanEqual(pixel, size))) return;
+    const vec3 ambient = frame.ambient.rgb;
+    const float v0 = frame.voxelOrigin.w;
+    if (v0 <= 0.0) {  // no grid
+        imageStore(outputImage, pixel, vec4(ambient, 1.0));
+        return;
+    }
+
+    // The camera ray through the pixel centre.
+    const vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
+    const vec3 eye = frame.cameraPosition.xyz;
+    const vec3 dir = normalize(worldFromDepth(frame.invViewProj, uv, 1.0) - eye);
+
+    // In units of one texel of level `mip`: the grid is [0, cells)³.
+    const int mip = int(push.params.x);
+    const int cells = max(int(frame.voxelParams.x) >> mip, 1);
+    const float cellSize = v0 * float(int(frame.voxelParams.x) / cells);
+    const vec3 o = (eye - frame.voxelOrigin.xyz) / cellSize;
+
+    // Slab test against the grid's box. An axis the ray (nearly) runs parallel to never steps and only limits
+    // the ray if the eye is outside the grid's slab on it.
+    const bvec3 moves = greaterThanEqual(abs(dir), vec3(1e-12));
+    const vec3 invDir = 1.0 / mix(vec3(1.0), dir, moves);
+    vec3 tNear = vec3(-1e30), tFar = vec3(1e30);
+    for (int k = 0; k < 3; ++k) {
+        if (moves[k]) {
+            const float ta = -o[k] * invDir[k], tb = (float(cells) - o[k]) * invDir[k];
+            tNear[k] = min(ta, tb);
+            tFar[k] = max(ta, tb);
+        } else if (o[k] < 0.0 || o[k] >= float(cells)) {
+            tFar[k] = -1e30;  // parallel outside: no hit
+        }
+    }
+    const float tEnter = max(max(tNear.x, tNear.y), tNear.z);
+    const float tExit = min(min(tFar.x, tFar.y), tFar.z);
+    // The march starts where the ray leaves the level-0 voxel the eye is in: a camera close to a surface sits in
+    // that surface's voxel (cornell's at N = 32, 0.1 m from the front wall in 0.13 m voxels), which would
+    // otherwise veil the whole view. In level-0 units: the first boundary ahead on each axis (the eye exactly on
+    // a boundary is in the voxel the ray goes into).
+    const float texelsPerCell = float(int(frame.voxelParams.x) / cells);
+    const vec3 o0 = o * texelsPerCell;
+    float tSkip = 0.0;
+    if (all(greaterThanEqual(o0, vec3(0.0))) && all(lessThan(o0, vec3(frame.voxelParams.x)))) {
+        float exit0 = 1e30;
+        for (int k = 0; k < 3; ++k) {
+            const float boundary = dir[k] > 0.0 ? floor(o0[k]) + 1.0 : ceil(o0[k]) - 1.0;
+            if (moves[k]) exit0 = min(exit0, (boundary - o0[k]) * invDir[k]);
+        }
+        tSkip = exit0 / texelsPerCell;
+    }
+    vec4 acc = vec4(0.0);
+    if (tExit > max(tEnter, tSkip)) {
+        float t = max(tEnter, 0.0);
+        // The face the ray entered the grid through (outside the grid); from inside, the view faces no face.
+        int axis = -1;
+        if (tEnter > 0.0) axis = tNear.x == tEnter ? 0 : (tNear.y == tEnter ? 1 : 2);
+        // The first texel: the one the entry point (nudged inside) lies in.
+        const vec3 start = o + dir * t;
+        ivec3 cell = clamp(ivec3(floor(start + dir * 1e-4)), ivec3(0), ivec3(cells - 1));
+        const ivec3 stepDir = ivec3(sign(dir)) * ivec3(moves);
+        const vec3 tDelta = abs(invDir);
+        // t at which the ray crosses the next texel boundary on each axis (never on one it does not move along).
+        vec3 tMax = (vec3(cell) + vec3(greaterThan(dir, vec3(0.0))) - o) * invDir;
+        tMax = mix(vec3(1e30), tMax, moves);
+
+        // At most 3·cells crossings; bounded even if rounding keeps a crossing from advancing.
+        for (int i = 0; i < 3 * cells + 3 && acc.a < VOXEL_VIEW_MAX_OPACITY; ++i) {
+            const float tNext = min(min(tMax.x, tMax.y), tMax.z);
+            // Texel lengths of ray inside this texel (none of it before tSkip).
+            const float len = min(tNext, tExit) - max(t, tSkip);
+            if (len > 0.0) {
+                const vec4 s = texelFetch(voxels, cell, mip);
+                const float a = saturate(s.a);
+                // Opacity a is for one texel length; over `len`: 1 − (1 − a)^len, colour scaled alike.
+                const float aLen = 1.0 - pow(1.0 - min(a, 0.999999), len);
+                const float scale = a > 1e-5 ? aLen / a : len;
+                const float shade = axis < 0 ? 1.0 : VOXEL_VIEW_FACE_SHADE[axis];
+                const vec3 rgb = max(s.rgb, vec3(0.0)) + VOXEL_VIEW_GREY * shade * a;
+                acc.rgb += (1.0 - acc.a) * rgb * scale;
+                acc.a += (1.0 - acc.a) * aLen;
+            }
+            if (tNext >= tExit) break;
+            axis = tMax.x == tNext ? 0 : (tMax.y == tNext ? 1 : 2);
+            cell[axis] += stepDir[axis];
+            tMax[axis] += tDelta[axis];
+            t = tNext;
+            if (cell[axis] < 0 || cell[axis] >= cells) break;
+        }
+    }
+    imageStore(outputImage, pixel, vec4(acc.rgb + (1.0 - saturate(acc.a)) * ambient, 1.0));
+}
