@@ -7,6 +7,19 @@
 
 namespace vct {
 
+namespace {
+
+// An on|off flag's value, or `fallback` when the flag is absent (or not declared by the command).
+bool onOff(const ParsedArgs& args, const std::string& name, bool fallback) {
+    if (!args.has(name)) return fallback;
+    const std::string value = args.get(name);
+    if (value == "on") return true;
+    if (value == "off") return false;
+    throw UsageError("--" + name + " '" + value + "': expected on or off");
+}
+
+}  // namespace
+
 SessionOptions sessionOptions(const ParsedArgs& args) {
     SessionOptions options;
     options.scene = args.get("scene");
@@ -18,18 +31,11 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
     options.context.deviceSubstring = args.get("device");
     options.context.validation = args.has("validate");
     // Material filtering (DESIGN §3.2): only commands that declare the flags (materialFilterOptions) see them.
-    auto onOff = [&](const std::string& name, bool fallback) {
-        if (!args.has(name)) return fallback;
-        const std::string value = args.get(name);
-        if (value == "on") return true;
-        if (value == "off") return false;
-        throw UsageError("--" + name + " '" + value + "': expected on or off");
-    };
-    options.settings.toksvig = onOff("toksvig", options.settings.toksvig);
-    options.settings.specularAA = onOff("specular-aa", options.settings.specularAA);
+    options.settings.toksvig = onOff(args, "toksvig", options.settings.toksvig);
+    options.settings.specularAA = onOff(args, "specular-aa", options.settings.specularAA);
     options.settings.textureLod0 = args.has("texture-lod0");
     // Global illumination (DESIGN §3.6), likewise only where declared (giOptions).
-    options.settings.gi = onOff("gi", options.settings.gi);
+    options.settings.gi = onOff(args, "gi", options.settings.gi);
     if (args.has("trace-scale")) {
         const std::string value = args.get("trace-scale");
         if (value != "1" && value != "2" && value != "4")
@@ -66,15 +72,8 @@ void applyUpsampleOptions(const ParsedArgs& args, RenderSettings& settings) {
     if (args.has("sigma-n")) settings.sigmaN = args.getFloat("sigma-n", 1e-3f, 10.0f);
     if (args.has("gamma")) settings.gamma = args.getFloat("gamma", 0.0f, 1.0f);
     if (args.has("tau")) settings.tau = args.getFloat("tau", 1e-6f, 1000.0f);
-    auto onOff = [&](const std::string& name, bool fallback) {
-        if (!args.has(name)) return fallback;
-        const std::string value = args.get(name);
-        if (value == "on") return true;
-        if (value == "off") return false;
-        throw UsageError("--" + name + " '" + value + "': expected on or off");
-    };
-    settings.temporal = onOff("temporal", settings.temporal);
-    settings.adaptive = onOff("adaptive", settings.adaptive);
+    settings.temporal = onOff(args, "temporal", settings.temporal);
+    settings.adaptive = onOff(args, "adaptive", settings.adaptive);
 }
 
 std::vector<Option> upsampleOptions() {
