@@ -34,8 +34,7 @@ vec3 indirect(ivec2 pixel) {
     const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
     const float occlusion = texelFetch(emissiveOcclusionTexture, pixel, 0).a;
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
-    const float nLength = length(normalRoughness.xyz);
-    const vec3 n = nLength > 1e-6 ? normalRoughness.xyz / nLength : vec3(0.0, 1.0, 0.0);
+    const vec3 n = gbufferNormal(normalRoughness);
     const vec3 v = normalize(frame.cameraPosition.xyz - p);
     const float NoV = max(dot(n, v), MIN_N_DOT_V);
     // Table texel centres are at (i + 0.5)/size for both axes, so (n·v, roughness) is the uv directly.

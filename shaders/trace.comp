@@ -32,20 +32,25 @@ void main() {
     const int scale = max(int(frame.voxelParams.w), 1);
     // Clamped at the right and bottom edges (the low-res image rounds up); upsample clamps the same way.
     const ivec2 pixel = min(lowPixel * scale + frame.traceJitter.xy, ivec2(frame.imageSize.xy) - 1);
-    const IndirectSample s = tracePixel(voxels, depthTexture, normalRoughnessTexture, pixel);
-    imageStore(diffuseImage, lowPixel, vec4(s.diffuse, 1.0));
-    imageStore(specularImage, lowPixel, vec4(s.specular, 1.0));
-
-    // The sample's guide for the upsample weights, computed once here rather than by every pixel it serves.
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     if (isBackground(depth)) {
+        // Nothing to light; the guide marks the sample as background for the upsample.
+        imageStore(diffuseImage, lowPixel, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(specularImage, lowPixel, vec4(0.0, 0.0, 0.0, 1.0));
         imageStore(guidePositionImage, lowPixel, vec4(0.0));
         return;
     }
     const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
-    const Guide g = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0),
-                                     worldFromDepth(frame.invViewProj, uv, depth), frame.cameraPosition.xyz,
-                                     frame.upsampleParams.y);
+    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
+    // The sample's guide for the upsample weights, computed once here rather than by every pixel it serves.
+    const Guide g = guideFromGBuffer(normalRoughness, worldFromDepth(frame.invViewProj, uv, depth),
+                                     frame.cameraPosition.xyz, frame.upsampleParams.y);
+    // No grid yet: no indirect light.
+    IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
+    if (frame.voxelOrigin.w > 0.0)
+        s = traceSurface(voxels, g.p, g.n, normalize(frame.cameraPosition.xyz - g.p), normalRoughness.w);
+    imageStore(diffuseImage, lowPixel, vec4(s.diffuse, 1.0));
+    imageStore(specularImage, lowPixel, vec4(s.specular, 1.0));
     imageStore(guidePositionImage, lowPixel, vec4(g.p, 1.0));
     imageStore(guideNormalImage, lowPixel, vec4(g.n, g.specularSharpness));
     imageStore(guideAxisImage, lowPixel, vec4(g.specularAxis, 0.0));

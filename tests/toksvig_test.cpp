@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "io/image_io.h"
+#include "io/image_metrics.h"
 #include "render/shader_math.h"
 #include "test_util.h"
 
@@ -127,28 +128,17 @@ ImageRgba32f renderReference(uint32_t width, uint32_t height) {
                        {"--toksvig", "off", "--texture-lod0"});
 }
 
-// factor × factor box filter of the RGB channels.
-std::vector<float> boxDown(const ImageRgba32f& image, uint32_t factor) {
-    const uint32_t w = image.width / factor, h = image.height / factor;
-    std::vector<float> out(size_t(w) * h * 3, 0.0f);
+// factor × factor box filter of the RGB channels (alpha 1).
+ImageRgba32f boxDown(const ImageRgba32f& image, uint32_t factor) {
+    ImageRgba32f out{image.width / factor, image.height / factor, {}};
+    out.pixels.assign(size_t(out.width) * out.height * 4, 0.0f);
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x)
             for (size_t c = 0; c < 3; ++c)
-                out[(size_t(y / factor) * w + x / factor) * 3 + c] +=
+                out.pixels[(size_t(y / factor) * out.width + x / factor) * 4 + c] +=
                     image.pixels[(size_t(y) * image.width + x) * 4 + c] / float(factor * factor);
+    for (size_t i = 3; i < out.pixels.size(); i += 4) out.pixels[i] = 1.0f;
     return out;
-}
-
-double mse(const std::vector<float>& reference, const ImageRgba32f& image) {
-    EXPECT_EQ(reference.size(), size_t(image.width) * image.height * 3);
-    if (reference.size() != size_t(image.width) * image.height * 3) return 0.0;
-    double sum = 0.0;
-    for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
-        for (size_t c = 0; c < 3; ++c) {
-            const double d = double(image.pixels[i * 4 + c]) - reference[i * 3 + c];
-            sum += d * d;
-        }
-    return sum / double(image.width * image.height * 3);
 }
 
 struct Errors {
@@ -156,12 +146,12 @@ struct Errors {
 };
 
 // The 1× renders at width × height with Toksvig on and off against `reference` (already box-filtered).
-Errors compare(const std::vector<float>& reference, uint32_t width, uint32_t height, uint32_t factor,
+Errors compare(const ImageRgba32f& reference, uint32_t width, uint32_t height, uint32_t factor,
                const char* note = "") {
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
     const ImageRgba32f on = renderPlane("on-" + size, width, height, {"--toksvig", "on"});
     const ImageRgba32f off = renderPlane("off-" + size, width, height, {"--toksvig", "off"});
-    const Errors errors{mse(reference, on), mse(reference, off)};
+    const Errors errors{compareImages(reference, on).mse, compareImages(reference, off).mse};
     std::printf("plane %s vs %ux box-filtered level-0 reference: MSE toksvig on %.6g, off %.6g%s\n", size.c_str(),
                 factor, errors.on, errors.off, note);
     return errors;

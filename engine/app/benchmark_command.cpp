@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <memory>
 
 #include <nlohmann/json.hpp>
@@ -108,12 +107,7 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         for (Config& config : configs) config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
 
         for (uint32_t frame = 0; frame < frames; ++frame) {
-            const float time = float(frame) / 60.0f;
-            FrameInput input;
-            input.camera = sceneCamera(scene, time);
-            input.timeSeconds = time;
-            input.cut = frame == 0;
-            input.recordTimings = frame >= warmup;
+            const FrameInput input = fixedStepFrame(scene, frame, warmup);
             for (Config& config : configs) config.renderer->render(input);
         }
 

@@ -81,13 +81,9 @@ int runRenderCommand(int argc, char** argv, int first) {
         Renderer& renderer = session.renderer();
         const uint32_t mip = view == AuxView::Voxels ? voxelMip(renderer.voxelGrid()->mipCount()) : 0;
         for (uint32_t frame = 0; frame < frames; ++frame) {
-            const float time = float(frame) / 60.0f;
-            FrameInput input;
-            input.camera = sceneCamera(session.scene(), time);
-            input.timeSeconds = time;
-            input.cut = frame == 0 || frame == cutFrame;
+            FrameInput input = fixedStepFrame(session.scene(), frame, warmup);
+            if (frame == cutFrame) input.cut = true;
             if (frame >= cutFrame) input.camera = cutCamera(input.camera);
-            input.recordTimings = frame >= warmup;
             renderer.render(input);
         }
 

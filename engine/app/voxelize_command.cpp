@@ -99,10 +99,7 @@ int runVoxelizeCommand(int argc, char** argv, int first) {
     {
         Session session(options);
         Renderer& renderer = session.renderer();
-        FrameInput input;
-        input.camera = sceneCamera(session.scene(), 0.0f);
-        input.timeSeconds = 0.0f;
-        input.cut = true;
+        const FrameInput input = fixedStepFrame(session.scene(), 0, /*warmup=*/1);  // t = 0, untimed
         renderer.render(input);
 
         VoxelGrid& grid = *renderer.voxelGrid();

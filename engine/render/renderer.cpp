@@ -51,15 +51,15 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     passes_.push_back(std::make_unique<DirectPass>(context));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (DESIGN §3.5, §3.6).
+        const VoxelSource voxels{&voxelGrid_->radiance(), voxelGrid_->sampler()};
         auto trace = std::make_unique<TracePass>(context);
         tracePass_ = trace.get();
-        tracePass_->setVoxels({&voxelGrid_->radiance(), voxelGrid_->sampler()});
+        tracePass_->setVoxels(voxels);
         passes_.push_back(std::move(trace));
         passes_.push_back(std::make_unique<UpsamplePass>(context));
         // Adaptive re-tracing only where something is traced at low resolution.
         if (settings.traceScale > 1 && settings.adaptive)
-            passes_.push_back(std::make_unique<ResamplePass>(
-                context, VoxelSource{&voxelGrid_->radiance(), voxelGrid_->sampler()}));
+            passes_.push_back(std::make_unique<ResamplePass>(context, voxels));
     }
     passes_.push_back(std::make_unique<CompositePass>(context));
 
@@ -149,6 +149,15 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     previousInvViewProj_ = u.invViewProj;
     previousCameraPosition_ = u.cameraPosition;
     hasPrevious_ = true;
+}
+
+FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup) {
+    FrameInput input;
+    input.timeSeconds = float(index) / 60.0f;
+    input.camera = sceneCamera(scene, input.timeSeconds);
+    input.cut = index == 0;
+    input.recordTimings = index >= warmup;
+    return input;
 }
 
 void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {

@@ -102,7 +102,13 @@ VCT_INLINE float specularConeTanHalf(float alpha) {
     return min(2.0f * t / denominator, SPECULAR_CONE_MAX_TAN_HALF);
 }
 
-// Mirror direction of v about n: reflect(−v, n) = 2(n·v)n − v.
-VCT_INLINE vec3 specularConeDirection(vec3 n, vec3 v) { return 2.0f * dot(n, v) * n - v; }
+// Mirror direction of unit v about unit n, reflect(−v, n) = 2(n·v)n − v, with n·v clamped to ≥ 0: back-facing
+// shading normals (normal maps, grazing views) then reflect to −v's tangent part and never into the surface.
+// |result| = |v| = 1 even with the clamp; the fallback to n only guards degenerate input.
+VCT_INLINE vec3 specularConeDirection(vec3 n, vec3 v) {
+    const vec3 r = 2.0f * max(dot(n, v), 0.0f) * n - v;
+    const float len2 = dot(r, r);
+    return len2 > 1e-12f ? r * inversesqrt(len2) : n;
+}
 
 #endif  // VCT_CONE_GLSL

@@ -42,30 +42,26 @@ struct IndirectSample {
     vec3 specular;
 };
 
-IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D normalRoughnessTexture, ivec2 pixel) {
+// Both cone sets from surface point p with unit normal n, seen along unit v (towards the camera).
+IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness) {
     IndirectSample result = IndirectSample(vec3(0.0), vec3(0.0));
-    const float depth = texelFetch(depthTexture, pixel, 0).r;
-    if (isBackground(depth) || frame.voxelOrigin.w <= 0.0) return result;
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
-    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
-    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
-    const float nLength = length(normalRoughness.xyz);
-    const vec3 n = nLength > 1e-6 ? normalRoughness.xyz / nLength : vec3(0.0, 1.0, 0.0);
-    const vec3 v = normalize(frame.cameraPosition.xyz - p);
     const vec3 origin = p + n * (frame.voxelOrigin.w * CONE_START_OFFSET);
-
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
         result.diffuse += diffuseConeWeight(i) *
                           traceCone(voxels, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
-
-    // Back-facing shading normals (normal maps, grazing views): reflect about n with n·v clamped to ≥ 0 so the
-    // cone never points into the surface.
-    const float NoV = max(dot(n, v), 0.0);
-    vec3 r = 2.0 * NoV * n - v;
-    r = dot(r, r) > 1e-12 ? normalize(r) : n;
-    const float alpha = alphaFromPerceptual(normalRoughness.w);
-    result.specular = traceCone(voxels, origin, r, specularConeTanHalf(alpha)).rgb;
+    const float alpha = alphaFromPerceptual(perceptualRoughness);
+    result.specular = traceCone(voxels, origin, specularConeDirection(n, v), specularConeTanHalf(alpha)).rgb;
     return result;
+}
+
+IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D normalRoughnessTexture, ivec2 pixel) {
+    const float depth = texelFetch(depthTexture, pixel, 0).r;
+    if (isBackground(depth) || frame.voxelOrigin.w <= 0.0) return IndirectSample(vec3(0.0), vec3(0.0));
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
+    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
+    return traceSurface(voxels, p, gbufferNormal(normalRoughness), normalize(frame.cameraPosition.xyz - p),
+                        normalRoughness.w);
 }
 
 #endif  // VCT_CONE_TRACE_GLSL

@@ -11,4 +11,10 @@ vec3 worldFromDepth(mat4 invViewProj, vec2 uv, float depth) {
 
 bool isBackground(float depth) { return depth >= 1.0; }
 
+// The unit shading normal stored in a normalRoughness texel; straight up where it is degenerate (zero length).
+vec3 gbufferNormal(vec4 normalRoughness) {
+    const float len = length(normalRoughness.xyz);
+    return len > 1e-6 ? normalRoughness.xyz / len : vec3(0.0, 1.0, 0.0);
+}
+
 #endif

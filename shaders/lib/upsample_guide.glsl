@@ -2,7 +2,7 @@
 // specular lobe (axis ξ, κ-smoothed sharpness λ̄). The diffuse lobe is the normal with a fixed sharpness.
 // trace.comp computes it once per low-res sample and stores it (VCT_TRACE_BINDING_GUIDE_*); upsample.comp
 // computes it for its own pixel and for the history's texels from the G-buffers. GLSL only; expects
-// lib/brdf.glsl and lib/upsample_weights.glsl.
+// lib/brdf.glsl, lib/gbuffer_read.glsl and lib/upsample_weights.glsl.
 #ifndef VCT_UPSAMPLE_GUIDE_GLSL
 #define VCT_UPSAMPLE_GUIDE_GLSL
 
@@ -19,8 +19,7 @@ Guide guideFromGBuffer(vec4 normalRoughness, vec3 p, vec3 cameraPosition, float 
     g.p = p;
     const vec3 toCamera = cameraPosition - p;
     g.cameraDistance = length(toCamera);
-    const float nLength = length(normalRoughness.xyz);
-    g.n = nLength > 1e-6 ? normalRoughness.xyz / nLength : vec3(0.0, 1.0, 0.0);
+    g.n = gbufferNormal(normalRoughness);
     const vec3 v = g.cameraDistance > 0.0 ? toCamera / g.cameraDistance : g.n;
     const vec4 lobe = specularLobe(g.n, v, alphaFromPerceptual(normalRoughness.w));
     g.specularAxis = lobe.xyz;

@@ -10,6 +10,7 @@
 #define VCT_UPSAMPLE_WEIGHTS_GLSL
 
 #include "lib/constants.glsl"
+#include "lib/cone.glsl"
 
 // Seed 004's parameters: β sharpens the lobe weight, κ is the sharpness of the smoothing kernel that bounds
 // every lobe's sharpness (λ̄ ≤ κ), so no two lobes are "infinitely" different.
@@ -27,13 +28,9 @@ const float SG_MIN_NOV = 1e-4f;
 // reflected direction ξ = 2(n·v)n − v with λ = λ_h / (4 n·v), i.e. 1/λ = 2α²·max(n·v, ε).
 // n, v unit; alpha the effective (Toksvig, AA) GGX roughness α = perceptual².
 VCT_INLINE vec4 specularLobe(vec3 n, vec3 v, float alpha) {
-    const float NoV = max(dot(n, v), 0.0f);
-    vec3 axis = 2.0f * NoV * n - v;
-    const float len2 = dot(axis, axis);
-    // |axis| = |v| = 1 for unit v (also with n·v clamped to 0); the fallback only guards degenerate input.
-    axis = len2 > 1e-12f ? axis * inversesqrt(len2) : n;
+    // The axis is the specular cone's (lib/cone.glsl), so the lobe compared is the one the trace sampled.
     const float a = clamp(alpha, 0.0f, 1.0f);
-    return vec4(axis, 2.0f * a * a * max(NoV, SG_MIN_NOV));
+    return vec4(specularConeDirection(n, v), 2.0f * a * a * max(dot(n, v), SG_MIN_NOV));
 }
 
 // Diffuse lobe: the clamped cosine around n, one fixed sharpness.
