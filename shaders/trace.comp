@@ -14,6 +14,10 @@
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
+// Trace scale 1: every pixel traced, written straight into the full-res indirect targets with the weight of
+// one fresh sample; no upsample pass runs, so no guides are written (their images are 1×1 stand-ins).
+layout(constant_id = VCT_TRACE_SPEC_FULL_RESOLUTION) const bool FULL_RESOLUTION = false;
+
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = VCT_TRACE_BINDING_DEPTH) uniform sampler2D depthTexture;
 layout(set = 0, binding = VCT_TRACE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
@@ -37,7 +41,7 @@ void main() {
         // Nothing to light; the guide marks the sample as background for the upsample.
         imageStore(diffuseImage, lowPixel, vec4(0.0, 0.0, 0.0, 1.0));
         imageStore(specularImage, lowPixel, vec4(0.0, 0.0, 0.0, 1.0));
-        imageStore(guidePositionImage, lowPixel, vec4(0.0));
+        if (!FULL_RESOLUTION) imageStore(guidePositionImage, lowPixel, vec4(0.0));
         return;
     }
     const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
@@ -51,6 +55,7 @@ void main() {
         s = traceSurface(voxels, g.p, g.n, normalize(frame.cameraPosition.xyz - g.p), normalRoughness.w);
     imageStore(diffuseImage, lowPixel, vec4(s.diffuse, 1.0));
     imageStore(specularImage, lowPixel, vec4(s.specular, 1.0));
+    if (FULL_RESOLUTION) return;
     imageStore(guidePositionImage, lowPixel, vec4(g.p, 1.0));
     imageStore(guideNormalImage, lowPixel, vec4(g.n, g.specularSharpness));
     imageStore(guideAxisImage, lowPixel, vec4(g.specularAxis, 0.0));

@@ -4,7 +4,8 @@
 
 namespace vct {
 
-TracePass::TracePass(const vk::Context& context) : device_(context.device()) {
+TracePass::TracePass(const vk::Context& context, uint32_t traceScale)
+    : device_(context.device()), fullResolution_(traceScale <= 1) {
     constexpr VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
@@ -18,7 +19,7 @@ TracePass::TracePass(const vk::Context& context) : device_(context.device()) {
                                        {VCT_TRACE_BINDING_GUIDE_POSITION, storage, cs},
                                        {VCT_TRACE_BINDING_GUIDE_NORMAL, storage, cs},
                                        {VCT_TRACE_BINDING_GUIDE_AXIS, storage, cs}},
-                                      0);
+                                      0, {fullResolution_ ? 1u : 0u});
 
     // The stand-in grid: 2³ transparent black voxels (3D needs depth > 1), cleared once.
     vk::ImageDesc desc;
@@ -46,12 +47,19 @@ TracePass::~TracePass() {
     if (emptySampler_) vkDestroySampler(device_, emptySampler_, nullptr);
 }
 
+vk::Image& TracePass::diffuseOutput(FrameTargets& t) const {
+    return fullResolution_ ? t.diffuseIndirect : t.diffuseIndirectLow;
+}
+vk::Image& TracePass::specularOutput(FrameTargets& t) const {
+    return fullResolution_ ? t.specularIndirect : t.specularIndirectLow;
+}
+
 std::vector<ImageUse> TracePass::uses(FrameTargets& t) {
     return {{&t.depth, vk::ImageAccess::Sampled},
             {&t.normalRoughness, vk::ImageAccess::Sampled},
             {voxels().radiance, vk::ImageAccess::Sampled},
-            {&t.diffuseIndirectLow, vk::ImageAccess::StorageWrite},
-            {&t.specularIndirectLow, vk::ImageAccess::StorageWrite},
+            {&diffuseOutput(t), vk::ImageAccess::StorageWrite},
+            {&specularOutput(t), vk::ImageAccess::StorageWrite},
             {&t.guidePosition, vk::ImageAccess::StorageWrite},
             {&t.guideNormal, vk::ImageAccess::StorageWrite},
             {&t.guideAxis, vk::ImageAccess::StorageWrite}};
@@ -68,13 +76,13 @@ void TracePass::execute(const FrameContext& frame) {
                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
         .sampled(VCT_TRACE_BINDING_NORMAL_ROUGHNESS, t.normalRoughness.view(), s.nearestClamp)
         .sampled(VCT_TRACE_BINDING_VOXELS, grid.radiance->view(), grid.sampler)
-        .storage(VCT_TRACE_BINDING_DIFFUSE, t.diffuseIndirectLow.view())
-        .storage(VCT_TRACE_BINDING_SPECULAR, t.specularIndirectLow.view())
+        .storage(VCT_TRACE_BINDING_DIFFUSE, diffuseOutput(t).view())
+        .storage(VCT_TRACE_BINDING_SPECULAR, specularOutput(t).view())
         .storage(VCT_TRACE_BINDING_GUIDE_POSITION, t.guidePosition.view())
         .storage(VCT_TRACE_BINDING_GUIDE_NORMAL, t.guideNormal.view())
         .storage(VCT_TRACE_BINDING_GUIDE_AXIS, t.guideAxis.view())
         .push(frame.context, frame.cmd, pipeline_);
-    vkCmdDispatch(frame.cmd, tileCount(t.diffuseIndirectLow.width()), tileCount(t.diffuseIndirectLow.height()), 1);
+    vkCmdDispatch(frame.cmd, tileCount(diffuseOutput(t).width()), tileCount(diffuseOutput(t).height()), 1);
 }
 
 }  // namespace vct

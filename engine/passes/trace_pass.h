@@ -17,7 +17,8 @@ struct VoxelSource {
 
 class TracePass : public Pass {
 public:
-    explicit TracePass(const vk::Context& context);
+    // Trace scale 1 writes the full-res indirect targets directly (no upsample pass follows).
+    TracePass(const vk::Context& context, uint32_t traceScale);
     ~TracePass() override;
     const char* name() const override { return "trace"; }
     std::vector<ImageUse> uses(FrameTargets& targets) override;
@@ -29,7 +30,11 @@ public:
 private:
     VoxelSource voxels() { return source_.radiance ? source_ : VoxelSource{&emptyGrid_, emptySampler_}; }
 
+    vk::Image& diffuseOutput(FrameTargets& targets) const;
+    vk::Image& specularOutput(FrameTargets& targets) const;
+
     VkDevice device_ = VK_NULL_HANDLE;
+    bool fullResolution_ = false;
     vk::Pipeline pipeline_;
     VoxelSource source_;
     vk::Image emptyGrid_;

@@ -4,29 +4,41 @@
 
 namespace vct {
 
-UpsamplePass::UpsamplePass(const vk::Context& context) {
+UpsamplePass::UpsamplePass(const vk::Context& context) : context_(context) {}
+
+const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
+    const uint32_t weights = settings.weights == RenderSettings::Weights::Bilinear ? VCT_WEIGHTS_BILINEAR
+                             : settings.weights == RenderSettings::Weights::Normal ? VCT_WEIGHTS_NORMAL
+                                                                                     : VCT_WEIGHTS_SG;
+    // Indexed by constant_id (VCT_UPSAMPLE_SPEC_*).
+    const std::vector<uint32_t> constants = {settings.traceScale, weights, settings.temporal ? 1u : 0u,
+                                             settings.adaptive ? 1u : 0u};
+    const uint32_t key = constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17;
+    if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
     constexpr VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    pipeline_ = vk::Pipeline::compute(context, "upsample.comp",
-                                      {{VCT_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                                       {VCT_UPSAMPLE_BINDING_DIFFUSE_LOW, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_SPECULAR_LOW, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_DIFFUSE, storage, cs},
-                                       {VCT_UPSAMPLE_BINDING_SPECULAR, storage, cs},
-                                       {VCT_UPSAMPLE_BINDING_DEPTH, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_MOTION, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_PREV_DEPTH, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_WEIGHT_SUM, storage, cs},
-                                       {VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                                       {VCT_UPSAMPLE_BINDING_GUIDE_POSITION, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_GUIDE_NORMAL, sampled, cs},
-                                       {VCT_UPSAMPLE_BINDING_GUIDE_AXIS, sampled, cs}},
-                                      0);
+    vk::Pipeline pipeline = vk::Pipeline::compute(
+        context_, "upsample.comp",
+        {{VCT_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
+         {VCT_UPSAMPLE_BINDING_DIFFUSE_LOW, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_SPECULAR_LOW, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_DIFFUSE, storage, cs},
+         {VCT_UPSAMPLE_BINDING_SPECULAR, storage, cs},
+         {VCT_UPSAMPLE_BINDING_DEPTH, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_MOTION, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_PREV_DEPTH, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_WEIGHT_SUM, storage, cs},
+         {VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+         {VCT_UPSAMPLE_BINDING_GUIDE_POSITION, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_GUIDE_NORMAL, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_GUIDE_AXIS, sampled, cs}},
+        0, constants);
+    return pipelines_.emplace(key, std::move(pipeline)).first->second;
 }
 
 std::vector<ImageUse> UpsamplePass::uses(FrameTargets& t) {
@@ -61,7 +73,8 @@ void UpsamplePass::execute(const FrameContext& frame) {
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
-    pipeline_.bind(frame.cmd);
+    const vk::Pipeline& pipeline = pipelineFor(frame.settings);
+    pipeline.bind(frame.cmd);
     constexpr VkImageLayout depthRead = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
     vk::DescriptorWriter()
         .uniform(VCT_BINDING_FRAME, frame.frameUniforms)
@@ -81,8 +94,10 @@ void UpsamplePass::execute(const FrameContext& frame) {
         .storage(VCT_UPSAMPLE_BINDING_SPECULAR, t.specularIndirect.view())
         .storage(VCT_UPSAMPLE_BINDING_WEIGHT_SUM, t.weightSum.view())
         .storageBuffer(VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, t.resampleList.handle())
-        .push(frame.context, frame.cmd, pipeline_);
-    vkCmdDispatch(frame.cmd, tileCount(t.width), tileCount(t.height), 1);
+        .push(frame.context, frame.cmd, pipeline);
+    // One invocation per low-res cell of s×s pixels, from cell −1 (shaders/upsample.comp).
+    vkCmdDispatch(frame.cmd, tileCount(t.diffuseIndirectLow.width() + 1), tileCount(t.diffuseIndirectLow.height() + 1),
+                  1);
     // The list feeds the resample pass's indirect dispatch and its shader, and the count's copy to the host.
     vk::memoryBarrier(frame.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |

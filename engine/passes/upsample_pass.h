@@ -3,6 +3,8 @@
 // weights and lists the pixels whose sum is below τ for the resample pass (resetting that list first).
 #pragma once
 
+#include <map>
+
 #include "render/pass.h"
 #include "vk/pipeline.h"
 
@@ -16,7 +18,12 @@ public:
     void execute(const FrameContext& frame) override;
 
 private:
-    vk::Pipeline pipeline_;
+    // The pipeline specialized for this frame's trace scale, weights, temporal and adaptive settings
+    // (shaders/upsample.comp), compiled the first time that combination is used.
+    const vk::Pipeline& pipelineFor(const RenderSettings& settings);
+
+    const vk::Context& context_;
+    std::map<uint32_t, vk::Pipeline> pipelines_;
 };
 
 }  // namespace vct

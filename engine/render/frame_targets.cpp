@@ -32,11 +32,20 @@ void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, ui
     direct = make(w, h, kRadianceFormat, storage);
     // Low res rounds up, so that every full-res pixel has a low-res sample at or beyond it to filter with.
     const uint32_t lowW = (w + traceScale - 1) / traceScale, lowH = (h + traceScale - 1) / traceScale;
-    diffuseIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
-    specularIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
-    guidePosition = make(lowW, lowH, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
-    guideNormal = make(lowW, lowH, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
-    guideAxis = make(lowW, lowH, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
+    // At trace scale 1 the trace writes the full-res targets and nothing is upsampled: no low-res images, and
+    // 1×1 stand-ins for the guides the trace's scale-1 pipeline never writes (it still declares them).
+    const bool upsampled = traceScale > 1;
+    if (upsampled) {
+        diffuseIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
+        specularIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
+    } else {
+        diffuseIndirectLow = vk::Image();
+        specularIndirectLow = vk::Image();
+    }
+    const uint32_t guideW = upsampled ? lowW : 1, guideH = upsampled ? lowH : 1;
+    guidePosition = make(guideW, guideH, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
+    guideNormal = make(guideW, guideH, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
+    guideAxis = make(guideW, guideH, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
     diffuseIndirect = make(w, h, kRadianceFormat, storage);
     specularIndirect = make(w, h, kRadianceFormat, storage);
     diffuseHistory = make(w, h, kRadianceFormat, storage);

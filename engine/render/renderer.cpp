@@ -52,14 +52,16 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (DESIGN §3.5, §3.6).
         const VoxelSource voxels{&voxelGrid_->radiance(), voxelGrid_->sampler()};
-        auto trace = std::make_unique<TracePass>(context);
+        auto trace = std::make_unique<TracePass>(context, settings.traceScale);
         tracePass_ = trace.get();
         tracePass_->setVoxels(voxels);
         passes_.push_back(std::move(trace));
-        passes_.push_back(std::make_unique<UpsamplePass>(context));
-        // Adaptive re-tracing only where something is traced at low resolution.
-        if (settings.traceScale > 1 && settings.adaptive)
-            passes_.push_back(std::make_unique<ResamplePass>(context, voxels));
+        // Upsampling and adaptive re-tracing only where something is traced at low resolution: at scale 1 the
+        // trace writes the full-res targets itself.
+        if (settings.traceScale > 1) {
+            passes_.push_back(std::make_unique<UpsamplePass>(context));
+            if (settings.adaptive) passes_.push_back(std::make_unique<ResamplePass>(context, voxels));
+        }
     }
     passes_.push_back(std::make_unique<CompositePass>(context));
 

@@ -74,9 +74,14 @@ void Pipeline::createLayout(const Context& context, const std::vector<Binding>& 
 }
 
 Pipeline Pipeline::compute(const Context& context, const std::string& shader, const std::vector<Binding>& bindings,
-                           uint32_t pushConstantSize) {
+                           uint32_t pushConstantSize, const std::vector<uint32_t>& specialization) {
     Pipeline pipeline;
     pipeline.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t id = 0; id < specialization.size(); ++id)
+        entries.push_back({id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)});
+    const VkSpecializationInfo specializationInfo{uint32_t(entries.size()), entries.data(),
+                                                  specialization.size() * sizeof(uint32_t), specialization.data()};
     pipeline.createLayout(context, bindings, pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT);
     VkShaderModule module = loadShaderModule(context, shader);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -84,6 +89,7 @@ Pipeline Pipeline::compute(const Context& context, const std::string& shader, co
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
+    if (!specialization.empty()) info.stage.pSpecializationInfo = &specializationInfo;
     info.layout = pipeline.layout_;
     VkResult result = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline.pipeline_);
     vkDestroyShaderModule(context.device(), module, nullptr);

@@ -36,8 +36,9 @@ public:
     VkShaderStageFlags pushConstantStages() const { return pushStages_; }
     void reset();
 
+    // `specialization[i]` is the value of the shader's `layout(constant_id = i)` (32-bit: int, uint or bool).
     static Pipeline compute(const Context& context, const std::string& shader, const std::vector<Binding>& bindings,
-                            uint32_t pushConstantSize);
+                            uint32_t pushConstantSize, const std::vector<uint32_t>& specialization = {});
 
     struct GraphicsDesc {
         std::string vertexShader;

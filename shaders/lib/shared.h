@@ -122,6 +122,7 @@ struct DrawPushConstants {
 #define VCT_TRACE_BINDING_GUIDE_POSITION 6  // rgba32f: world position, w: 1 (0: background)
 #define VCT_TRACE_BINDING_GUIDE_NORMAL 7    // rgba16f: unit normal, w: smoothed specular sharpness λ̄
 #define VCT_TRACE_BINDING_GUIDE_AXIS 8      // rgba16f: specular lobe axis
+#define VCT_TRACE_SPEC_FULL_RESOLUTION 0    // specialization constant: trace scale 1 (writes the full-res targets)
 
 // upsample (spatial joint-bilateral + temporal history; flags low-weight pixels for resample)
 #define VCT_UPSAMPLE_BINDING_DIFFUSE_LOW 1
@@ -140,6 +141,11 @@ struct DrawPushConstants {
 #define VCT_UPSAMPLE_BINDING_GUIDE_POSITION 14   // the trace's per-sample guides (VCT_TRACE_BINDING_GUIDE_*)
 #define VCT_UPSAMPLE_BINDING_GUIDE_NORMAL 15
 #define VCT_UPSAMPLE_BINDING_GUIDE_AXIS 16
+// upsample's specialization constants (one pipeline per configuration)
+#define VCT_UPSAMPLE_SPEC_SCALE 0     // trace scale s (2 or 4)
+#define VCT_UPSAMPLE_SPEC_WEIGHTS 1   // VCT_WEIGHTS_*
+#define VCT_UPSAMPLE_SPEC_TEMPORAL 2  // bool: reproject the history
+#define VCT_UPSAMPLE_SPEC_ADAPTIVE 3  // bool: list low-weight pixels for the resample pass
 
 // resample (full-res cone tracing of the listed pixels; same trace bindings 1–3)
 #define VCT_RESAMPLE_BINDING_LIST 6

@@ -50,17 +50,43 @@ VCT_INLINE float smoothedSharpness(float invLambda, float kappa) {
 // The same from the axes and the smoothed sharpnesses λ̄ (smoothedSharpness), for callers that keep λ̄ per
 // sample. Evaluated as one exp: exp(β·(ln ratio + h·(ξa·ξb − 1))); ln 0 is avoided by a floor whose β-th power
 // is 0 in float anyway.
-VCT_INLINE float lobeWeightSmoothed(vec3 axisA, float la, vec3 axisB, float lb, float beta) {
-    const float sum = la + lb;
-    // Both lobes uniform (λ̄ = 0, only reached in the limit 1/λ → ∞): identical whatever their axes.
-    if (!(sum > 0.0f)) return 1.0f;
-    // 2√(λ̄a λ̄b)/(λ̄a + λ̄b) = 2√r/(1 + r) with r = min/max: no product of two tiny λ̄ to underflow, exactly 1
-    // for equal sharpness, exactly symmetric.
-    const float r = min(la, lb) / max(la, lb);
-    const float ratio = clamp(2.0f * sqrt(r) / (1.0f + r), 1e-30f, 1.0f);
+// The weights below come in two forms: the weight w and its logarithm ln w (the *LogWeight functions), so
+// that a caller multiplying several weights (plane × lobe) pays for one exp instead of one per factor — on a
+// CPU driver (lavapipe) the exps are a large part of the upsample's cost.
+// A smoothed sharpness λ̄ prepared for many lobe weights against it: (λ̄, ln λ̄, 1/λ̄), so that a pair costs one
+// log and one division (lobeLogWeightPrepared) instead of a square root, a log and three divisions. λ̄ is
+// floored at 1e-30 (λ̄ = 0 only in the limit 1/λ → ∞; its weights are those of the floor: 1 between two such
+// lobes). A NaN stays NaN and is caught by lobeLogWeightPrepared.
+VCT_INLINE vec3 preparedSharpness(float smoothed) {
+    const float l = smoothed < 1e-30f ? 1e-30f : smoothed;  // NaN < x is false: NaN stays
+    return vec3(l, log(l), 1.0f / l);
+}
+
+// ln w of the lobe-aware weight from prepared sharpnesses: with ln of the ratio term
+//   ln(2√(λ̄a λ̄b)/(λ̄a + λ̄b)) = ln 2 + ½(ln λ̄a + ln λ̄b) − ln(λ̄a + λ̄b)   (≤ 0; exactly 0 for equal λ̄)
+// and λ̄a λ̄b/(λ̄a + λ̄b) = 1/(1/λ̄a + 1/λ̄b), which cannot underflow to 0/0 for tiny λ̄. Exactly symmetric. A NaN
+// lobe (or axis) gives a weight of 0, never 1 or NaN: the result is floored at −1e30 (exp gives 0).
+VCT_INLINE float lobeLogWeightPrepared(vec3 axisA, vec3 a, vec3 axisB, vec3 b, float beta) {
+    const float logRatio = a.x == b.x ? 0.0f : min(0.6931472f + 0.5f * (a.y + b.y) - log(a.x + b.x), 0.0f);
     const vec3 d = axisA - axisB;
     const float cosMinusOne = -0.5f * dot(d, d);
-    return exp(beta * (log(ratio) + (la * lb / sum) * cosMinusOne));
+    const float result = beta * (logRatio + cosMinusOne / (a.z + b.z));
+    return result > -1e30f ? result : -1e30f;
+}
+
+VCT_INLINE float lobeLogWeightSmoothed(vec3 axisA, float la, vec3 axisB, float lb, float beta) {
+    return lobeLogWeightPrepared(axisA, preparedSharpness(la), axisB, preparedSharpness(lb), beta);
+}
+
+VCT_INLINE float lobeWeightSmoothed(vec3 axisA, float la, vec3 axisB, float lb, float beta) {
+    return exp(lobeLogWeightSmoothed(axisA, la, axisB, lb, beta));
+}
+
+// Two lobes of the same smoothed sharpness λ̄ (the diffuse lobes: one fixed λ_d): the ratio term is 1 and the
+// weight is exp(β·λ̄/2·(ξa·ξb − 1)), a normal weight with 1/σ² = β·λ̄/2.
+VCT_INLINE float equalLobeLogWeight(vec3 axisA, vec3 axisB, float smoothed, float beta) {
+    const vec3 d = axisA - axisB;
+    return -0.25f * beta * smoothed * dot(d, d);
 }
 
 VCT_INLINE float lobeWeight(vec4 a, vec4 b, float beta, float kappa) {
@@ -68,19 +94,23 @@ VCT_INLINE float lobeWeight(vec4 a, vec4 b, float beta, float kappa) {
 }
 
 // Normal-aware baseline: w_n = exp((na·nb − 1) / σ_n²), again with na·nb − 1 = −½‖na − nb‖².
-VCT_INLINE float normalWeight(vec3 na, vec3 nb, float sigma2) {
+VCT_INLINE float normalLogWeight(vec3 na, vec3 nb, float sigma2) {
     const vec3 d = na - nb;
-    return exp(-0.5f * dot(d, d) / max(sigma2, 1e-8f));
+    return -0.5f * dot(d, d) / max(sigma2, 1e-8f);
 }
+VCT_INLINE float normalWeight(vec3 na, vec3 nb, float sigma2) { return exp(normalLogWeight(na, nb, sigma2)); }
 
 // Geometric weight: distance of sample point q from the tangent plane of pixel p (unit normal n), relative to
 // p's distance from the camera (so the tolerance follows the depth precision and the pixel footprint):
 //   w_z = exp(−(|n·(q − p)| / (σ_z·dist))²). Slanted surfaces keep their neighbours (a plain depth difference
 // would reject them); a step in depth (another object, a fold) is rejected.
 const float PLANE_WEIGHT_SIGMA = 0.02f;
-VCT_INLINE float planeWeight(vec3 n, vec3 p, vec3 q, float cameraDistance) {
+VCT_INLINE float planeLogWeight(vec3 n, vec3 p, vec3 q, float cameraDistance) {
     const float d = abs(dot(n, q - p)) / (PLANE_WEIGHT_SIGMA * max(cameraDistance, 1e-6f));
-    return exp(-d * d);
+    return -d * d;
+}
+VCT_INLINE float planeWeight(vec3 n, vec3 p, vec3 q, float cameraDistance) {
+    return exp(planeLogWeight(n, p, q, cameraDistance));
 }
 
 // Spatial kernel f: a separable tent of radius r (in low-res texels) normalised by 1/r per axis, so that on a
