@@ -12,7 +12,8 @@
 //   sum of weights W = W_s + γT_w, kept per pixel; W < τ puts the pixel on the resample list (compacted,
 //             with the indirect dispatch of the resample pass counted up as entries are appended).
 // Diffuse and specular are weighted separately, each with its own lobe (lib/upsample_weights.glsl). Never a
-// division by a zero sum: with no weight at all the pixel takes its nearest valid sample (and is re-traced).
+// division by a zero sum: every valid sample keeps a floor weight of FALLBACK_SHARE × its kernel weight, so
+// where the guide rejects them all the pixel takes their kernel-weighted mean (and is re-traced).
 //
 // How it is made fast (measured on lavapipe, which runs 8 invocations per SIMD instruction, gathers per lane
 // from shared memory and images alike, and pays for code under a uniform branch; the same choices save
@@ -42,6 +43,7 @@ layout(constant_id = VCT_UPSAMPLE_SPEC_SCALE) const int SCALE = 4;  // trace sca
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHTS) const int WEIGHTS = VCT_WEIGHTS_SG;
 layout(constant_id = VCT_UPSAMPLE_SPEC_TEMPORAL) const bool TEMPORAL = true;  // --temporal
 layout(constant_id = VCT_UPSAMPLE_SPEC_ADAPTIVE) const bool ADAPTIVE = true;  // --adaptive (resample list)
+layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;  // write weightSumImage
 
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_DIFFUSE_LOW) uniform sampler2D diffuseLow;
@@ -66,6 +68,9 @@ layout(set = 0, binding = VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, std430) buffer Res
 
 // Tent radius in low-res texels: 1 (bilinear: the 2×2 nearest) without a guide; 2 (4×4) with one, so that the
 // guide has candidates left to choose from where it rejects some.
+// The floor weight of a valid sample, as a share of its kernel weight: far below any weight the guide keeps
+// (and below τ), it only decides the result where the guide rejects every sample (a branch-free fallback).
+const float FALLBACK_SHARE = 1e-6;
 const int RADIUS = WEIGHTS == VCT_WEIGHTS_BILINEAR ? 1 : 2;
 const int WINDOW = 2 * RADIUS;  // samples per axis around a cell
 // Arrays of samples have the largest window's size (a size from specialization constants is not valid SPIR-V
@@ -121,92 +126,56 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     // ---- spatial: the cell's low-res samples, each at its own jittered full-res position ----
     vec3 spatialDiffuse = vec3(0.0), spatialSpecular = vec3(0.0);
     vec2 spatialWeight = vec2(0.0);
-    // Fallback for a zero sum: the valid sample nearest the pixel (largest kernel weight).
-    vec3 nearestDiffuse = vec3(0.0), nearestSpecular = vec3(0.0);
-    float nearestKernel = -1.0;
     [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {
         const Sample j = samples[k];
         // Kernel × validity: 0 outside the image and on the background.
         const float f = tentKernel((vec2(pixel) - j.at) / float(SCALE), float(RADIUS)) * j.valid;
-        const bool nearer = j.valid > 0.0 && f > nearestKernel;
-        nearestKernel = nearer ? f : nearestKernel;
-        nearestDiffuse = nearer ? j.diffuse : nearestDiffuse;
-        nearestSpecular = nearer ? j.specular : nearestSpecular;
-        const vec2 w = f * exp(planeLogWeightFrom(here, j.p) +
-                               lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness));
+        const vec2 w = f * (exp(planeLogWeightFrom(here, j.p) +
+                                lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness)) +
+                            FALLBACK_SHARE);
         spatialDiffuse += w.x * j.diffuse;
         spatialSpecular += w.y * j.specular;
         spatialWeight += w;
     }
 
     // ---- temporal: last frame's output where this surface was, validated against last frame's G-buffer ----
-    // Bilinear over the 4 texels around the reprojected position; each tap is weighted by its bilinear share ×
-    // its plane distance (its own depth, exact per tap) × the weight it had accumulated (alpha), and all four by
-    // the lobe weight of the nearest tap's surface (one guide per pixel: rebuilding the lobe per tap measured
-    // 9 ms of 30 at 640×360 on lavapipe, and the lobe varies slowly over one texel of a surface the plane test
-    // accepted).
+    // The nearest texel to the reprojected position, weighted by the guide against last frame's G-buffer there
+    // × the weight it had accumulated (alpha). Nearest, not bilinear: indirect light is smooth, so the
+    // sub-texel shift costs little, while bilinear taps blur the history a little more with every moving frame,
+    // and 4 validated taps cost more than the 1/16-res trace on lavapipe (measured: 3.4 ms of 22 ms at
+    // 640×360). With a static camera the two are the same (the reprojection lands on texel centres).
     vec3 historyDiffuse = vec3(0.0), historySpecular = vec3(0.0);
     vec2 historyWeight = vec2(0.0);
     // Valid history (not the first frame, not a cut): uniform per frame, set by the renderer.
     if (TEMPORAL && frame.upsampleMode.y > 0.5) {
         const vec2 prevUv = uv - texelFetch(motionTexture, pixel, 0).xy;
-        const vec2 prevCoord = prevUv * frame.imageSize.xy - 0.5;  // texel-centre coordinates
-        const ivec2 prevBase = ivec2(floor(prevCoord));
-        const vec2 fraction = prevCoord - vec2(prevBase);
-        // World positions of the taps from last frame's depth: M·(x, y, d, 1) is linear in the texel (x, y) and
-        // the depth d, so one product at the base texel and per-tap additions replace a matrix per tap.
-        const mat4 m = frame.prevInvViewProj;
-        const vec2 baseClip = (vec2(prevBase) + 0.5) * frame.imageSize.zw * 2.0 - 1.0;
-        const vec4 baseH = m[0] * baseClip.x + m[1] * baseClip.y + m[3];
-        const vec4 stepX = m[0] * (2.0 * frame.imageSize.z), stepY = m[1] * (2.0 * frame.imageSize.w);
-        float planeLog[4];
-        float share[4];
-        vec3 tapPosition[4];
-        ivec2 tapTexel[4];
-        [[unroll]] for (int tap = 0; tap < 4; ++tap) {
-            const ivec2 offset = ivec2(tap & 1, tap >> 1);
-            const ivec2 texel = prevBase + offset;
-            const bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size));
-            tapTexel[tap] = clamp(texel, ivec2(0), size - 1);
-            const float prevDepth = texelFetch(prevDepthTexture, tapTexel[tap], 0).r;
-            const vec2 bilinear = mix(vec2(1.0) - fraction, fraction, vec2(offset));
-            share[tap] = inside && !isBackground(prevDepth) ? bilinear.x * bilinear.y : 0.0;
-            const vec4 h = baseH + stepX * float(offset.x) + stepY * float(offset.y) + m[2] * prevDepth;
-            tapPosition[tap] = h.xyz / h.w;
-            planeLog[tap] = planeLogWeightFrom(here, tapPosition[tap]);
-        }
-        // The nearest tap's surface, for the lobe weight.
-        const int nearest = (fraction.x >= 0.5 ? 1 : 0) + (fraction.y >= 0.5 ? 2 : 0);
-        vec2 lobe = vec2(1.0);
-        if (WEIGHTS != VCT_WEIGHTS_BILINEAR) {
-            const Guide then = guideFromGBuffer(texelFetch(prevNormalRoughnessTexture, tapTexel[nearest], 0),
-                                                tapPosition[nearest], frame.prevCameraPosition.xyz, kappa);
-            const vec3 thenSharpness =
-                WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(then.specularSharpness) : vec3(0.0);
-            lobe = exp(lobeLogWeights(here, hereSharpness, then.n, then.specularAxis, thenSharpness));
-        }
-        [[unroll]] for (int tap = 0; tap < 4; ++tap) {
-            const vec4 diffuseTexel = texelFetch(diffuseHistory, tapTexel[tap], 0);
-            const vec4 specularTexel = texelFetch(specularHistory, tapTexel[tap], 0);
-            // A rejected tap (share 0) may have a garbage position (a background texel's far plane): the select
-            // keeps its NaN out of the sums.
-            const vec2 w = share[tap] > 0.0
-                               ? share[tap] * exp(planeLog[tap]) * lobe * vec2(diffuseTexel.a, specularTexel.a)
-                               : vec2(0.0);
-            historyDiffuse += w.x * diffuseTexel.rgb;
-            historySpecular += w.y * specularTexel.rgb;
-            historyWeight += w;
-        }
+        const ivec2 texel = ivec2(floor(prevUv * frame.imageSize.xy));
+        const bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size));
+        const ivec2 at = clamp(texel, ivec2(0), size - 1);
+        const float prevDepth = texelFetch(prevDepthTexture, at, 0).r;
+        const vec2 atUv = (vec2(at) + 0.5) * frame.imageSize.zw;
+        const Guide then = guideFromGBuffer(texelFetch(prevNormalRoughnessTexture, at, 0),
+                                            worldFromDepth(frame.prevInvViewProj, atUv, prevDepth),
+                                            frame.prevCameraPosition.xyz, kappa);
+        const vec3 thenSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(then.specularSharpness) : vec3(0.0);
+        const vec4 diffuseTexel = texelFetch(diffuseHistory, at, 0);
+        const vec4 specularTexel = texelFetch(specularHistory, at, 0);
+        const vec2 guide =
+            exp(planeLogWeightFrom(here, then.p) + lobeLogWeights(here, hereSharpness, then.n, then.specularAxis,
+                                                                  thenSharpness));
+        // Outside last frame's image or on its background: no history (the select also keeps the garbage
+        // guide of a far-plane position out of the sums).
+        historyWeight = inside && !isBackground(prevDepth) ? guide * vec2(diffuseTexel.a, specularTexel.a) : vec2(0.0);
+        historyDiffuse = historyWeight.x * diffuseTexel.rgb;
+        historySpecular = historyWeight.y * specularTexel.rgb;
     }
 
     const float gamma = frame.upsampleParams.w;
     const vec2 weightSum = spatialWeight + gamma * historyWeight;
-    // The smallest sum worth dividing by: fp16 history and underflowing lobe weights leave denormal sums.
-    const float minSum = 1e-4;
-    vec3 diffuse = weightSum.x > minSum ? (spatialDiffuse + gamma * historyDiffuse) / max(weightSum.x, minSum)
-                                        : nearestDiffuse;
-    vec3 specular = weightSum.y > minSum ? (spatialSpecular + gamma * historySpecular) / max(weightSum.y, minSum)
-                                         : nearestSpecular;
+    // A sum below the floor has no valid sample and no history behind it (its numerator is as small): black.
+    const float minSum = 1e-20;
+    const vec3 diffuse = (spatialDiffuse + gamma * historyDiffuse) / max(weightSum.x, minSum);
+    const vec3 specular = (spatialSpecular + gamma * historySpecular) / max(weightSum.y, minSum);
     const float maxWeight = frame.upsampleMode.w;
     // Nothing to light on the background: no indirect light, never re-traced.
     const bool resample = ADAPTIVE && !background && min(weightSum.x, weightSum.y) < frame.upsampleMode.z;
@@ -215,7 +184,7 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     const vec4 weightOut = background ? vec4(0.0) : vec4(weightSum, resample ? 1.0 : 0.0, 0.0);
     imageStore(diffuseImage, pixel, diffuseOut);
     imageStore(specularImage, pixel, specularOut);
-    imageStore(weightSumImage, pixel, weightOut);
+    if (WEIGHT_SUM) imageStore(weightSumImage, pixel, weightOut);
 
     if (ADAPTIVE && resample) {
         const uint index = atomicAdd(resampleList.header.counts.x, 1u);

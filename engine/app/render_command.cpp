@@ -68,6 +68,8 @@ int runRenderCommand(int argc, char** argv, int first) {
     if (args.has("voxel-mip") && view != AuxView::Voxels) throw UsageError("--voxel-mip: only with --view voxels");
     if (view == AuxView::Voxels && !options.settings.gi)
         throw UsageError("--view voxels: there is no voxel grid with --gi off");
+    // The per-pixel sum of upsampling weights is an output of its own, written only when something shows it.
+    options.settings.writeWeightSum = args.has("aux") || view == AuxView::Weights || view == AuxView::Resample;
     auto voxelMip = [&](uint32_t mipCount) { return args.getUint("voxel-mip", 0, mipCount - 1); };
     if (view == AuxView::Voxels && options.settings.voxelResolution != 0)
         voxelMip(uint32_t(std::bit_width(options.settings.voxelResolution)));

@@ -14,6 +14,8 @@ std::vector<float> readWeightSum(Renderer& renderer) {
     if (!renderer.voxelGrid()) throw UsageError("the upsampling views need GI (drop --gi off)");
     if (renderer.settings().traceScale <= 1)
         throw UsageError("the upsampling views need a low-resolution trace (--trace-scale 2 or 4)");
+    if (!renderer.settings().writeWeightSum)
+        throw Error("the upsampling views need the sum of weights (RenderSettings::writeWeightSum)");
     return renderer.readFloatImage(renderer.targets().weightSum);
 }
 
@@ -60,7 +62,7 @@ std::vector<uint8_t> weightHeatMap(Renderer& renderer) {
 
 std::vector<std::string> writeUpsampleAux(Renderer& renderer, const std::filesystem::path& dir) {
     // Nothing is upsampled without GI or at trace scale 1 (every pixel traced): no weights to write.
-    if (!renderer.voxelGrid() || renderer.settings().traceScale <= 1) return {};
+    if (!renderer.voxelGrid() || renderer.settings().traceScale <= 1 || !renderer.settings().writeWeightSum) return {};
     FrameTargets& t = renderer.targets();
     std::vector<float> weights = renderer.readFloatImage(t.weightSum);
     std::vector<uint8_t> mask(size_t(t.width) * t.height * 4, 255);

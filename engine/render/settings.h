@@ -36,6 +36,9 @@ struct RenderSettings {
     bool temporal = true;           // reproject and accumulate last frame's result
     float tau = 0.0f;               // re-trace pixels whose sum of weights is below τ (0: the default for s)
     bool adaptive = true;           // adaptive re-tracing of low-weight pixels at full resolution
+    // Write the per-pixel sum of weights image (FrameTargets::weightSum) for --aux and the weights / resample
+    // views; off, upsample skips that store (nothing in the frame reads it).
+    bool writeWeightSum = false;
 
     // ---- material filtering ----
     bool toksvig = true;     // normal-map mip length → effective roughness (DESIGN §3.2)
