@@ -71,6 +71,11 @@ layout(set = 0, binding = VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, std430) buffer Res
 // The floor weight of a valid sample, as a share of its kernel weight: far below any weight the guide keeps
 // (and below τ), it only decides the result where the guide rejects every sample (a branch-free fallback).
 const float FALLBACK_SHARE = 1e-6;
+// The spatial kernel (lib/upsample_weights.glsl): bilinear (no guide) the tent over the 2×2 nearest samples;
+// with a guide the quadratic B-spline over the 3×3 nearest, so that the guide has candidates left where it
+// rejects some. A cell's pixels reach 4×4 samples in all (the left half of the cell the first three columns,
+// the right half the last three), which every pixel evaluates: selecting its 3×3 (with selects, as a variable
+// index into the array measured 3.4× slower on lavapipe) cost more than the 7 weights it saves.
 const int RADIUS = WEIGHTS == VCT_WEIGHTS_BILINEAR ? 1 : 2;
 const int WINDOW = 2 * RADIUS;  // samples per axis around a cell
 // Arrays of samples have the largest window's size (a size from specialization constants is not valid SPIR-V
@@ -129,7 +134,8 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {
         const Sample j = samples[k];
         // Kernel × validity: 0 outside the image and on the background.
-        const float f = tentKernel((vec2(pixel) - j.at) / float(SCALE), float(RADIUS)) * j.valid;
+        const vec2 offset = (vec2(pixel) - j.at) / float(SCALE);
+        const float f = (WEIGHTS == VCT_WEIGHTS_BILINEAR ? tentKernel(offset, 1.0) : bsplineKernel(offset)) * j.valid;
         const vec2 w = f * (exp(planeLogWeightFrom(here, j.p) +
                                 lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness)) +
                             FALLBACK_SHARE);

@@ -121,6 +121,17 @@ VCT_INLINE float tentKernel(vec2 offsetLowTexels, float radius) {
     return t.x * t.y;
 }
 
+// Spatial kernel f of the guided upsampling: the separable quadratic B-spline (support radius 1.5 low-res
+// texels), like the tent a partition of unity on the sample grid, but smooth and narrower (variance 1/4 texel²
+// against 2/3 for the tent of radius 2): a pixel reaches only its 3×3 nearest samples, 9 guide weights instead
+// of 16, and less spatial blur goes into the converged history.
+VCT_INLINE float bsplineKernel(vec2 offsetLowTexels) {
+    const vec2 x = abs(offsetLowTexels);
+    const vec2 outerWeight = max(vec2(1.5f) - x, vec2(0.0f));
+    const vec2 t = mix(0.5f * outerWeight * outerWeight, vec2(0.75f) - x * x, vec2(lessThan(x, vec2(0.5f))));
+    return t.x * t.y;
+}
+
 // Low-res sample offsets o_k (DESIGN §3.5): frame k traces low-res pixel (x, y) at full-res pixel
 // s·(x, y) + o_k. The sequence visits all s×s offsets every s² frames in an order that spreads consecutive
 // offsets apart (the 2×2 and 4×4 Bayer matrices' ranks), so a partial history already covers the block evenly.
