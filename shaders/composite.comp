@@ -10,6 +10,7 @@
 #include "lib/brdf.glsl"
 #include "lib/color.glsl"
 #include "lib/gbuffer_read.glsl"
+#include "lib/indirect_pack.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
@@ -21,8 +22,7 @@ layout(set = 0, binding = VCT_COMPOSITE_BINDING_DEPTH) uniform sampler2D depthTe
 layout(set = 0, binding = VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC) uniform sampler2D baseColorMetallicTexture;
 layout(set = 0, binding = VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION) uniform sampler2D emissiveOcclusionTexture;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_DIFFUSE, rgba16f) uniform readonly image2D diffuseImage;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_SPECULAR, rgba16f) uniform readonly image2D specularImage;
+layout(set = 0, binding = VCT_COMPOSITE_BINDING_INDIRECT, rgba32ui) uniform readonly uimage2D indirectImage;
 layout(set = 0, binding = VCT_COMPOSITE_BINDING_DFG) uniform sampler2D dfgTable;
 
 // Indirect light leaving the surface at `pixel` towards the camera.
@@ -41,8 +41,9 @@ vec3 indirect(ivec2 pixel) {
     const vec2 dfg = textureLod(dfgTable, vec2(NoV, saturate(normalRoughness.w)), 0.0).rg;
     const vec3 albedo = diffuseAlbedo(baseColorMetallic.rgb, baseColorMetallic.a);
     const vec3 f0 = f0FromMetallic(baseColorMetallic.rgb, baseColorMetallic.a);
-    const vec3 diffuse = imageLoad(diffuseImage, pixel).rgb;
-    const vec3 specular = imageLoad(specularImage, pixel).rgb;
+    const uvec4 packed = imageLoad(indirectImage, pixel);
+    const vec3 diffuse = unpackIndirectDiffuse(packed).rgb;
+    const vec3 specular = unpackIndirectSpecular(packed).rgb;
     return albedo * diffuse * occlusion + specularDfg(f0, dfg) * specular;
 }
 

@@ -9,6 +9,7 @@
 #include "lib/brdf.glsl"
 #include "lib/cone.glsl"
 #include "lib/gbuffer_read.glsl"
+#include "lib/indirect_pack.glsl"
 
 layout(local_size_x = VCT_RESAMPLE_GROUP_SIZE) in;
 
@@ -16,8 +17,7 @@ layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame
 layout(set = 0, binding = VCT_TRACE_BINDING_DEPTH) uniform sampler2D depthTexture;
 layout(set = 0, binding = VCT_TRACE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = VCT_TRACE_BINDING_VOXELS) uniform sampler3D voxels;
-layout(set = 0, binding = VCT_RESAMPLE_BINDING_DIFFUSE, rgba16f) uniform writeonly image2D diffuseImage;
-layout(set = 0, binding = VCT_RESAMPLE_BINDING_SPECULAR, rgba16f) uniform writeonly image2D specularImage;
+layout(set = 0, binding = VCT_RESAMPLE_BINDING_INDIRECT, rgba32ui) uniform writeonly uimage2D indirectImage;
 layout(set = 0, binding = VCT_RESAMPLE_BINDING_LIST, std430) readonly buffer ResampleList {
     ResampleListHeader header;
     uint pixels[];
@@ -31,6 +31,5 @@ void main() {
     const uint packed = resampleList.pixels[index];
     const ivec2 pixel = ivec2(packed & 0xffffu, packed >> 16);
     const IndirectSample s = tracePixel(voxels, depthTexture, normalRoughnessTexture, pixel);
-    imageStore(diffuseImage, pixel, vec4(s.diffuse, 1.0));
-    imageStore(specularImage, pixel, vec4(s.specular, 1.0));
+    imageStore(indirectImage, pixel, packIndirect(vec4(s.diffuse, 1.0), vec4(s.specular, 1.0)));
 }

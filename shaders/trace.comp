@@ -11,6 +11,7 @@
 #include "lib/gbuffer_read.glsl"
 #include "lib/upsample_weights.glsl"
 #include "lib/upsample_guide.glsl"
+#include "lib/indirect_pack.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
@@ -22,8 +23,7 @@ layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame
 layout(set = 0, binding = VCT_TRACE_BINDING_DEPTH) uniform sampler2D depthTexture;
 layout(set = 0, binding = VCT_TRACE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = VCT_TRACE_BINDING_VOXELS) uniform sampler3D voxels;
-layout(set = 0, binding = VCT_TRACE_BINDING_DIFFUSE, rgba16f) uniform writeonly image2D diffuseImage;
-layout(set = 0, binding = VCT_TRACE_BINDING_SPECULAR, rgba16f) uniform writeonly image2D specularImage;
+layout(set = 0, binding = VCT_TRACE_BINDING_INDIRECT, rgba32ui) uniform writeonly uimage2D indirectImage;
 layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_POSITION, rgba32f) uniform writeonly image2D guidePositionImage;
 layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_NORMAL, rgba16f) uniform writeonly image2D guideNormalImage;
 layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_AXIS, rgba16f) uniform writeonly image2D guideAxisImage;
@@ -32,15 +32,14 @@ layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_AXIS, rgba16f) uniform writeon
 
 void main() {
     const ivec2 lowPixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(lowPixel, imageSize(diffuseImage)))) return;
+    if (any(greaterThanEqual(lowPixel, imageSize(indirectImage)))) return;
     const int scale = max(int(frame.voxelParams.w), 1);
     // Clamped at the right and bottom edges (the low-res image rounds up); upsample clamps the same way.
     const ivec2 pixel = min(lowPixel * scale + frame.traceJitter.xy, ivec2(frame.imageSize.xy) - 1);
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     if (isBackground(depth)) {
         // Nothing to light; the guide marks the sample as background for the upsample.
-        imageStore(diffuseImage, lowPixel, vec4(0.0, 0.0, 0.0, 1.0));
-        imageStore(specularImage, lowPixel, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(indirectImage, lowPixel, packIndirect(vec4(0.0, 0.0, 0.0, 1.0), vec4(0.0, 0.0, 0.0, 1.0)));
         if (!FULL_RESOLUTION) imageStore(guidePositionImage, lowPixel, vec4(0.0));
         return;
     }
@@ -53,8 +52,8 @@ void main() {
     IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
     if (frame.voxelOrigin.w > 0.0)
         s = traceSurface(voxels, g.p, g.n, normalize(frame.cameraPosition.xyz - g.p), normalRoughness.w);
-    imageStore(diffuseImage, lowPixel, vec4(s.diffuse, 1.0));
-    imageStore(specularImage, lowPixel, vec4(s.specular, 1.0));
+    // Weight 1: one fresh sample (what the history accumulates at trace scale 1).
+    imageStore(indirectImage, lowPixel, packIndirect(vec4(s.diffuse, 1.0), vec4(s.specular, 1.0)));
     if (FULL_RESOLUTION) return;
     imageStore(guidePositionImage, lowPixel, vec4(g.p, 1.0));
     imageStore(guideNormalImage, lowPixel, vec4(g.n, g.specularSharpness));

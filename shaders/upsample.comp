@@ -32,6 +32,7 @@
 #include "lib/gbuffer_read.glsl"
 #include "lib/upsample_weights.glsl"
 #include "lib/upsample_guide.glsl"
+#include "lib/indirect_pack.glsl"
 
 #extension GL_EXT_control_flow_attributes : require
 
@@ -46,8 +47,7 @@ layout(constant_id = VCT_UPSAMPLE_SPEC_ADAPTIVE) const bool ADAPTIVE = true;  //
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;  // write weightSumImage
 
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_DIFFUSE_LOW) uniform sampler2D diffuseLow;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_SPECULAR_LOW) uniform sampler2D specularLow;
+layout(set = 0, binding = VCT_UPSAMPLE_BINDING_INDIRECT_LOW) uniform usampler2D indirectLow;
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_DEPTH) uniform sampler2D depthTexture;
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_MOTION) uniform sampler2D motionTexture;
@@ -56,10 +56,8 @@ layout(set = 0, binding = VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS) uniform sa
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_GUIDE_POSITION) uniform sampler2D guidePositionTexture;
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_GUIDE_NORMAL) uniform sampler2D guideNormalTexture;
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_GUIDE_AXIS) uniform sampler2D guideAxisTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY) uniform sampler2D diffuseHistory;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY) uniform sampler2D specularHistory;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_DIFFUSE, rgba16f) uniform writeonly image2D diffuseImage;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_SPECULAR, rgba16f) uniform writeonly image2D specularImage;
+layout(set = 0, binding = VCT_UPSAMPLE_BINDING_INDIRECT_HISTORY) uniform usampler2D indirectHistory;
+layout(set = 0, binding = VCT_UPSAMPLE_BINDING_INDIRECT, rgba32ui) uniform writeonly uimage2D indirectImage;
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_WEIGHT_SUM, rgba16f) uniform writeonly image2D weightSumImage;
 layout(set = 0, binding = VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, std430) buffer ResampleList {
     ResampleListHeader header;
@@ -164,8 +162,9 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
                                             worldFromDepth(frame.prevInvViewProj, atUv, prevDepth),
                                             frame.prevCameraPosition.xyz, kappa);
         const vec3 thenSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(then.specularSharpness) : vec3(0.0);
-        const vec4 diffuseTexel = texelFetch(diffuseHistory, at, 0);
-        const vec4 specularTexel = texelFetch(specularHistory, at, 0);
+        const uvec4 historyTexel = texelFetch(indirectHistory, at, 0);
+        const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
+        const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
         const vec2 guide =
             exp(planeLogWeightFrom(here, then.p) + lobeLogWeights(here, hereSharpness, then.n, then.specularAxis,
                                                                   thenSharpness));
@@ -188,8 +187,7 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     const vec4 diffuseOut = background ? vec4(0.0) : vec4(diffuse, min(weightSum.x, maxWeight));
     const vec4 specularOut = background ? vec4(0.0) : vec4(specular, min(weightSum.y, maxWeight));
     const vec4 weightOut = background ? vec4(0.0) : vec4(weightSum, resample ? 1.0 : 0.0, 0.0);
-    imageStore(diffuseImage, pixel, diffuseOut);
-    imageStore(specularImage, pixel, specularOut);
+    imageStore(indirectImage, pixel, packIndirect(diffuseOut, specularOut));
     if (WEIGHT_SUM) imageStore(weightSumImage, pixel, weightOut);
 
     if (ADAPTIVE && resample) {
@@ -203,7 +201,7 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
 void main() {
     const ivec2 size = ivec2(frame.imageSize.xy);
     const ivec2 jitter = frame.traceJitter.xy;
-    const ivec2 lowSize = textureSize(diffuseLow, 0);
+    const ivec2 lowSize = textureSize(indirectLow, 0);
     // Cell b holds the pixels x with floor((x − o)/s) = b: x ∈ [s·b + o, s·b + o + s). Cells start at −1, where
     // the offset o leaves pixels left of sample 0.
     const ivec2 cell = ivec2(gl_GlobalInvocationID.xy) - 1;
@@ -226,8 +224,9 @@ void main() {
         j.specularSharpness = normalSharpness.w;
         j.specularAxis = WEIGHTS == VCT_WEIGHTS_SG ? texelFetch(guideAxisTexture, at, 0).xyz : vec3(0.0);
         j.preparedSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(j.specularSharpness) : vec3(0.0);
-        j.diffuse = texelFetch(diffuseLow, at, 0).rgb;
-        j.specular = texelFetch(specularLow, at, 0).rgb;
+        const uvec4 light = texelFetch(indirectLow, at, 0);
+        j.diffuse = unpackIndirectDiffuse(light).rgb;
+        j.specular = unpackIndirectSpecular(light).rgb;
         j.at = vec2(min(low * SCALE + jitter, size - 1));  // where trace.comp traced it
         samples[k] = j;
     }

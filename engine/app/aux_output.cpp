@@ -12,18 +12,6 @@ namespace vct {
 
 namespace {
 
-// The indirect-light targets exist once cone tracing adds them to FrameTargets; until then these are null.
-template <class Targets>
-vk::Image* diffuseIndirect(Targets& targets) {
-    if constexpr (requires { targets.diffuseIndirect; }) return &targets.diffuseIndirect;
-    else return nullptr;
-}
-template <class Targets>
-vk::Image* specularIndirect(Targets& targets) {
-    if constexpr (requires { targets.specularIndirect; }) return &targets.specularIndirect;
-    else return nullptr;
-}
-
 // Per-pixel transforms of an RGBA32F image, in place.
 void toGrey(std::vector<float>& rgba, int channel) {
     for (size_t i = 0; i < rgba.size(); i += 4) {
@@ -78,8 +66,13 @@ std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesyste
         written.push_back(name);
     };
     writeRadiance("direct.exr", t.direct);
-    if (vk::Image* image = diffuseIndirect(t)) writeRadiance("diffuse_indirect.exr", *image);
-    if (vk::Image* image = specularIndirect(t)) writeRadiance("specular_indirect.exr", *image);
+    if (renderer.voxelGrid()) {
+        Renderer::IndirectLight light = renderer.readIndirect();
+        opaque(light.diffuse);
+        opaque(light.specular);
+        write("diffuse_indirect.exr", std::move(light.diffuse));
+        write("specular_indirect.exr", std::move(light.specular));
+    }
     std::vector<float> normalRoughness = renderer.readFloatImage(t.normalRoughness);
     std::vector<float> normal = normalRoughness;
     opaque(normal);
@@ -101,18 +94,23 @@ std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view, uint32_t voxelM
     if (view == AuxView::Resample) return resampleOverlay(renderer);
     if (view == AuxView::Weights) return weightHeatMap(renderer);
     FrameTargets& t = renderer.targets();
-    vk::Image* source = &t.direct;
+    std::vector<float> rgba;
+    uint32_t sw = t.width, sh = t.height;  // the source's size
     if (view == AuxView::Diffuse || view == AuxView::Specular) {
-        source = view == AuxView::Diffuse ? diffuseIndirect(t) : specularIndirect(t);
-        if (!source)
-            throw Error(std::string("--view ") + (view == AuxView::Diffuse ? "diffuse" : "specular") +
-                        ": the renderer has no indirect-light buffer yet");
+        if (!renderer.voxelGrid())
+            throw UsageError(std::string("--view ") + (view == AuxView::Diffuse ? "diffuse" : "specular") +
+                             ": there is no indirect light with --gi off");
+        Renderer::IndirectLight light = renderer.readIndirect();
+        rgba = std::move(view == AuxView::Diffuse ? light.diffuse : light.specular);
+    } else {
+        vk::Image* source = &t.direct;
+        if (view == AuxView::Normals || view == AuxView::Roughness) source = &t.normalRoughness;
+        if (view == AuxView::Voxels) source = &renderer.renderVoxelView(voxelMip);  // radiance: tone mapped below
+        rgba = renderer.readFloatImage(*source);
+        sw = source->width();
+        sh = source->height();
     }
-    if (view == AuxView::Normals || view == AuxView::Roughness) source = &t.normalRoughness;
-    if (view == AuxView::Voxels) source = &renderer.renderVoxelView(voxelMip);  // radiance: tone mapped below
-    const std::vector<float> rgba = renderer.readFloatImage(*source);
-    // A buffer at a reduced resolution (indirect light traced at 1/traceScale) is shown nearest-neighbour.
-    const uint32_t sw = source->width(), sh = source->height();
+    // A source of another size is shown nearest-neighbour.
     std::vector<uint8_t> bytes(size_t(t.width) * t.height * 4);
     const float exposure = renderer.settings().exposure;
     for (size_t i = 0; i < bytes.size(); i += 4) {

@@ -112,11 +112,12 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         }
 
         Renderer& reference = *configs.front().renderer;
-        const ImageRgba32f refDiffuse = readImage(reference, reference.targets().diffuseIndirect);
-        const ImageRgba32f refSpecular = readImage(reference, reference.targets().specularIndirect);
+        const uint32_t w = session.settings.width, h = session.settings.height;
+        const Renderer::IndirectLight refLight = reference.readIndirect();
+        const ImageRgba32f refDiffuse{w, h, refLight.diffuse};
+        const ImageRgba32f refSpecular{w, h, refLight.specular};
         const ImageRgba32f refFinal = readImage(reference, reference.targets().hdr);
 
-        const uint32_t w = session.settings.width, h = session.settings.height;
         report = {{"device", context.deviceName()}, {"scene", session.scene}, {"width", w}, {"height", h},
                   {"frames", frames}, {"warmup", warmup}, {"trace_scale", scale}, {"configs", nlohmann::json::array()}};
         char line[400];
@@ -131,8 +132,9 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         for (Config& config : configs) {
             Renderer& r = *config.renderer;
             FrameTargets& t = r.targets();
-            const ImageError diffuse = compareImages(refDiffuse, readImage(r, t.diffuseIndirect));
-            const ImageError specular = compareImages(refSpecular, readImage(r, t.specularIndirect));
+            Renderer::IndirectLight light = r.readIndirect();
+            const ImageError diffuse = compareImages(refDiffuse, {w, h, std::move(light.diffuse)});
+            const ImageError specular = compareImages(refSpecular, {w, h, std::move(light.specular)});
             const ImageError final = compareImages(refFinal, readImage(r, t.hdr));
             nlohmann::json passes = nlohmann::json::object();
             for (const vk::PassTiming& timing : r.timer().passStats()) passes[timing.name] = timing.medianMs;

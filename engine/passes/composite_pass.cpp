@@ -15,8 +15,7 @@ CompositePass::CompositePass(const vk::Context& context) : dfg_(context) {
                                        {VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS, sampled, cs},
                                        {VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC, sampled, cs},
                                        {VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION, sampled, cs},
-                                       {VCT_COMPOSITE_BINDING_DIFFUSE, storage, cs},
-                                       {VCT_COMPOSITE_BINDING_SPECULAR, storage, cs},
+                                       {VCT_COMPOSITE_BINDING_INDIRECT, storage, cs},
                                        {VCT_COMPOSITE_BINDING_DFG, sampled, cs}},
                                       0);
 }
@@ -29,8 +28,7 @@ std::vector<ImageUse> CompositePass::uses(FrameTargets& t) {
             {&t.normalRoughness, vk::ImageAccess::Sampled},
             {&t.baseColorMetallic, vk::ImageAccess::Sampled},
             {&t.emissiveOcclusion, vk::ImageAccess::Sampled},
-            {&t.diffuseIndirect, vk::ImageAccess::StorageRead},
-            {&t.specularIndirect, vk::ImageAccess::StorageRead},
+            {&t.indirect, vk::ImageAccess::StorageRead},
             {&t.hdr, vk::ImageAccess::StorageWrite},
             {&t.ldr, vk::ImageAccess::StorageWrite}};
 }
@@ -49,8 +47,7 @@ void CompositePass::execute(const FrameContext& frame) {
         .sampled(VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS, t.normalRoughness.view(), s.nearestClamp)
         .sampled(VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC, t.baseColorMetallic.view(), s.nearestClamp)
         .sampled(VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION, t.emissiveOcclusion.view(), s.nearestClamp)
-        .storage(VCT_COMPOSITE_BINDING_DIFFUSE, t.diffuseIndirect.view())
-        .storage(VCT_COMPOSITE_BINDING_SPECULAR, t.specularIndirect.view())
+        .storage(VCT_COMPOSITE_BINDING_INDIRECT, t.indirect.view())
         .sampled(VCT_COMPOSITE_BINDING_DFG, dfg_.image().view(), dfg_.sampler())
         .push(frame.context, frame.cmd, pipeline_);
     vkCmdDispatch(frame.cmd, tileCount(t.width), tileCount(t.height), 1);

@@ -13,8 +13,7 @@ ResamplePass::ResamplePass(const vk::Context& context, const VoxelSource& voxels
                                        {VCT_TRACE_BINDING_DEPTH, sampled, cs},
                                        {VCT_TRACE_BINDING_NORMAL_ROUGHNESS, sampled, cs},
                                        {VCT_TRACE_BINDING_VOXELS, sampled, cs},
-                                       {VCT_RESAMPLE_BINDING_DIFFUSE, storage, cs},
-                                       {VCT_RESAMPLE_BINDING_SPECULAR, storage, cs},
+                                       {VCT_RESAMPLE_BINDING_INDIRECT, storage, cs},
                                        {VCT_RESAMPLE_BINDING_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs}},
                                       0);
 }
@@ -24,8 +23,7 @@ std::vector<ImageUse> ResamplePass::uses(FrameTargets& t) {
     return {{&t.depth, vk::ImageAccess::Sampled},
             {&t.normalRoughness, vk::ImageAccess::Sampled},
             {voxels_.radiance, vk::ImageAccess::Sampled},
-            {&t.diffuseIndirect, vk::ImageAccess::StorageReadWrite},
-            {&t.specularIndirect, vk::ImageAccess::StorageReadWrite}};
+            {&t.indirect, vk::ImageAccess::StorageReadWrite}};
 }
 
 void ResamplePass::execute(const FrameContext& frame) {
@@ -37,8 +35,7 @@ void ResamplePass::execute(const FrameContext& frame) {
                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
         .sampled(VCT_TRACE_BINDING_NORMAL_ROUGHNESS, t.normalRoughness.view(), frame.samplers.nearestClamp)
         .sampled(VCT_TRACE_BINDING_VOXELS, voxels_.radiance->view(), voxels_.sampler)
-        .storage(VCT_RESAMPLE_BINDING_DIFFUSE, t.diffuseIndirect.view())
-        .storage(VCT_RESAMPLE_BINDING_SPECULAR, t.specularIndirect.view())
+        .storage(VCT_RESAMPLE_BINDING_INDIRECT, t.indirect.view())
         .storageBuffer(VCT_RESAMPLE_BINDING_LIST, t.resampleList.handle())
         .push(frame.context, frame.cmd, pipeline_);
     vkCmdDispatchIndirect(frame.cmd, t.resampleList.handle(), offsetof(gpu::ResampleListHeader, dispatch));

@@ -14,8 +14,7 @@ TracePass::TracePass(const vk::Context& context, uint32_t traceScale)
                                        {VCT_TRACE_BINDING_DEPTH, sampled, cs},
                                        {VCT_TRACE_BINDING_NORMAL_ROUGHNESS, sampled, cs},
                                        {VCT_TRACE_BINDING_VOXELS, sampled, cs},
-                                       {VCT_TRACE_BINDING_DIFFUSE, storage, cs},
-                                       {VCT_TRACE_BINDING_SPECULAR, storage, cs},
+                                       {VCT_TRACE_BINDING_INDIRECT, storage, cs},
                                        {VCT_TRACE_BINDING_GUIDE_POSITION, storage, cs},
                                        {VCT_TRACE_BINDING_GUIDE_NORMAL, storage, cs},
                                        {VCT_TRACE_BINDING_GUIDE_AXIS, storage, cs}},
@@ -47,19 +46,13 @@ TracePass::~TracePass() {
     if (emptySampler_) vkDestroySampler(device_, emptySampler_, nullptr);
 }
 
-vk::Image& TracePass::diffuseOutput(FrameTargets& t) const {
-    return fullResolution_ ? t.diffuseIndirect : t.diffuseIndirectLow;
-}
-vk::Image& TracePass::specularOutput(FrameTargets& t) const {
-    return fullResolution_ ? t.specularIndirect : t.specularIndirectLow;
-}
+vk::Image& TracePass::output(FrameTargets& t) const { return fullResolution_ ? t.indirect : t.indirectLow; }
 
 std::vector<ImageUse> TracePass::uses(FrameTargets& t) {
     return {{&t.depth, vk::ImageAccess::Sampled},
             {&t.normalRoughness, vk::ImageAccess::Sampled},
             {voxels().radiance, vk::ImageAccess::Sampled},
-            {&diffuseOutput(t), vk::ImageAccess::StorageWrite},
-            {&specularOutput(t), vk::ImageAccess::StorageWrite},
+            {&output(t), vk::ImageAccess::StorageWrite},
             {&t.guidePosition, vk::ImageAccess::StorageWrite},
             {&t.guideNormal, vk::ImageAccess::StorageWrite},
             {&t.guideAxis, vk::ImageAccess::StorageWrite}};
@@ -76,13 +69,12 @@ void TracePass::execute(const FrameContext& frame) {
                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
         .sampled(VCT_TRACE_BINDING_NORMAL_ROUGHNESS, t.normalRoughness.view(), s.nearestClamp)
         .sampled(VCT_TRACE_BINDING_VOXELS, grid.radiance->view(), grid.sampler)
-        .storage(VCT_TRACE_BINDING_DIFFUSE, diffuseOutput(t).view())
-        .storage(VCT_TRACE_BINDING_SPECULAR, specularOutput(t).view())
+        .storage(VCT_TRACE_BINDING_INDIRECT, output(t).view())
         .storage(VCT_TRACE_BINDING_GUIDE_POSITION, t.guidePosition.view())
         .storage(VCT_TRACE_BINDING_GUIDE_NORMAL, t.guideNormal.view())
         .storage(VCT_TRACE_BINDING_GUIDE_AXIS, t.guideAxis.view())
         .push(frame.context, frame.cmd, pipeline_);
-    vkCmdDispatch(frame.cmd, tileCount(diffuseOutput(t).width()), tileCount(diffuseOutput(t).height()), 1);
+    vkCmdDispatch(frame.cmd, tileCount(output(t).width()), tileCount(output(t).height()), 1);
 }
 
 }  // namespace vct

@@ -30,8 +30,7 @@ public:
 private:
     VoxelSource voxels() { return source_.radiance ? source_ : VoxelSource{&emptyGrid_, emptySampler_}; }
 
-    vk::Image& diffuseOutput(FrameTargets& targets) const;
-    vk::Image& specularOutput(FrameTargets& targets) const;
+    vk::Image& output(FrameTargets& targets) const;
 
     VkDevice device_ = VK_NULL_HANDLE;
     bool fullResolution_ = false;

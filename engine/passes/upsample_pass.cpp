@@ -22,17 +22,14 @@ const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
     vk::Pipeline pipeline = vk::Pipeline::compute(
         context_, "upsample.comp",
         {{VCT_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-         {VCT_UPSAMPLE_BINDING_DIFFUSE_LOW, sampled, cs},
-         {VCT_UPSAMPLE_BINDING_SPECULAR_LOW, sampled, cs},
-         {VCT_UPSAMPLE_BINDING_DIFFUSE, storage, cs},
-         {VCT_UPSAMPLE_BINDING_SPECULAR, storage, cs},
+         {VCT_UPSAMPLE_BINDING_INDIRECT_LOW, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_INDIRECT, storage, cs},
          {VCT_UPSAMPLE_BINDING_DEPTH, sampled, cs},
          {VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS, sampled, cs},
          {VCT_UPSAMPLE_BINDING_MOTION, sampled, cs},
          {VCT_UPSAMPLE_BINDING_PREV_DEPTH, sampled, cs},
          {VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS, sampled, cs},
-         {VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY, sampled, cs},
-         {VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY, sampled, cs},
+         {VCT_UPSAMPLE_BINDING_INDIRECT_HISTORY, sampled, cs},
          {VCT_UPSAMPLE_BINDING_WEIGHT_SUM, storage, cs},
          {VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
          {VCT_UPSAMPLE_BINDING_GUIDE_POSITION, sampled, cs},
@@ -43,8 +40,7 @@ const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
 }
 
 std::vector<ImageUse> UpsamplePass::uses(FrameTargets& t) {
-    return {{&t.diffuseIndirectLow, vk::ImageAccess::Sampled},
-            {&t.specularIndirectLow, vk::ImageAccess::Sampled},
+    return {{&t.indirectLow, vk::ImageAccess::Sampled},
             {&t.guidePosition, vk::ImageAccess::Sampled},
             {&t.guideNormal, vk::ImageAccess::Sampled},
             {&t.guideAxis, vk::ImageAccess::Sampled},
@@ -53,10 +49,8 @@ std::vector<ImageUse> UpsamplePass::uses(FrameTargets& t) {
             {&t.motion, vk::ImageAccess::Sampled},
             {&t.prevDepth, vk::ImageAccess::Sampled},
             {&t.prevNormalRoughness, vk::ImageAccess::Sampled},
-            {&t.diffuseHistory, vk::ImageAccess::Sampled},
-            {&t.specularHistory, vk::ImageAccess::Sampled},
-            {&t.diffuseIndirect, vk::ImageAccess::StorageWrite},
-            {&t.specularIndirect, vk::ImageAccess::StorageWrite},
+            {&t.indirectHistory, vk::ImageAccess::Sampled},
+            {&t.indirect, vk::ImageAccess::StorageWrite},
             {&t.weightSum, vk::ImageAccess::StorageWrite}};
 }
 
@@ -79,8 +73,7 @@ void UpsamplePass::execute(const FrameContext& frame) {
     constexpr VkImageLayout depthRead = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
     vk::DescriptorWriter()
         .uniform(VCT_BINDING_FRAME, frame.frameUniforms)
-        .sampled(VCT_UPSAMPLE_BINDING_DIFFUSE_LOW, t.diffuseIndirectLow.view(), s.nearestClamp)
-        .sampled(VCT_UPSAMPLE_BINDING_SPECULAR_LOW, t.specularIndirectLow.view(), s.nearestClamp)
+        .sampled(VCT_UPSAMPLE_BINDING_INDIRECT_LOW, t.indirectLow.view(), s.nearestClamp)
         .sampled(VCT_UPSAMPLE_BINDING_GUIDE_POSITION, t.guidePosition.view(), s.nearestClamp)
         .sampled(VCT_UPSAMPLE_BINDING_GUIDE_NORMAL, t.guideNormal.view(), s.nearestClamp)
         .sampled(VCT_UPSAMPLE_BINDING_GUIDE_AXIS, t.guideAxis.view(), s.nearestClamp)
@@ -89,15 +82,13 @@ void UpsamplePass::execute(const FrameContext& frame) {
         .sampled(VCT_UPSAMPLE_BINDING_MOTION, t.motion.view(), s.nearestClamp)
         .sampled(VCT_UPSAMPLE_BINDING_PREV_DEPTH, t.prevDepth.view(), s.nearestClamp, depthRead)
         .sampled(VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS, t.prevNormalRoughness.view(), s.nearestClamp)
-        .sampled(VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY, t.diffuseHistory.view(), s.nearestClamp)
-        .sampled(VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY, t.specularHistory.view(), s.nearestClamp)
-        .storage(VCT_UPSAMPLE_BINDING_DIFFUSE, t.diffuseIndirect.view())
-        .storage(VCT_UPSAMPLE_BINDING_SPECULAR, t.specularIndirect.view())
+        .sampled(VCT_UPSAMPLE_BINDING_INDIRECT_HISTORY, t.indirectHistory.view(), s.nearestClamp)
+        .storage(VCT_UPSAMPLE_BINDING_INDIRECT, t.indirect.view())
         .storage(VCT_UPSAMPLE_BINDING_WEIGHT_SUM, t.weightSum.view())
         .storageBuffer(VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, t.resampleList.handle())
         .push(frame.context, frame.cmd, pipeline);
     // One invocation per low-res cell of s×s pixels, from cell −1 (shaders/upsample.comp).
-    vkCmdDispatch(frame.cmd, tileCount(t.diffuseIndirectLow.width() + 1), tileCount(t.diffuseIndirectLow.height() + 1),
+    vkCmdDispatch(frame.cmd, tileCount(t.indirectLow.width() + 1), tileCount(t.indirectLow.height() + 1),
                   1);
     // The list feeds the resample pass's indirect dispatch and its shader, and the count's copy to the host.
     vk::memoryBarrier(frame.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

@@ -35,21 +35,13 @@ void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, ui
     // At trace scale 1 the trace writes the full-res targets and nothing is upsampled: no low-res images, and
     // 1×1 stand-ins for the guides the trace's scale-1 pipeline never writes (it still declares them).
     const bool upsampled = traceScale > 1;
-    if (upsampled) {
-        diffuseIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
-        specularIndirectLow = make(lowW, lowH, kRadianceFormat, storage);
-    } else {
-        diffuseIndirectLow = vk::Image();
-        specularIndirectLow = vk::Image();
-    }
+    indirectLow = upsampled ? make(lowW, lowH, kIndirectFormat, storage) : vk::Image();
     const uint32_t guideW = upsampled ? lowW : 1, guideH = upsampled ? lowH : 1;
     guidePosition = make(guideW, guideH, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
     guideNormal = make(guideW, guideH, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
     guideAxis = make(guideW, guideH, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
-    diffuseIndirect = make(w, h, kRadianceFormat, storage);
-    specularIndirect = make(w, h, kRadianceFormat, storage);
-    diffuseHistory = make(w, h, kRadianceFormat, storage);
-    specularHistory = make(w, h, kRadianceFormat, storage);
+    indirect = make(w, h, kIndirectFormat, storage);
+    indirectHistory = make(w, h, kIndirectFormat, storage);
     prevDepth = make(w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
     prevNormalRoughness = make(w, h, kNormalRoughnessFormat, attachment);
     weightSum = make(w, h, kRadianceFormat, storage);
@@ -69,8 +61,7 @@ void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, ui
 namespace vct {
 
 void FrameTargets::swapHistory() {
-    std::swap(diffuseIndirect, diffuseHistory);
-    std::swap(specularIndirect, specularHistory);
+    std::swap(indirect, indirectHistory);
     std::swap(depth, prevDepth);
     std::swap(normalRoughness, prevNormalRoughness);
 }

@@ -14,6 +14,7 @@ struct FrameTargets {
     static constexpr VkFormat kEmissiveOcclusionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
     static constexpr VkFormat kMotionFormat = VK_FORMAT_R16G16_SFLOAT;
     static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+    static constexpr VkFormat kIndirectFormat = VK_FORMAT_R32G32B32A32_UINT;  // lib/indirect_pack.glsl
     static constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
     static constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
@@ -25,18 +26,16 @@ struct FrameTargets {
     vk::Image motion;             // screen-space motion in UV units: uv_previous = uv - motion
     vk::Image direct;             // direct light + emission (linear HDR)
     // Demodulated indirect light (lib/cone.glsl): diffuse = cosine-weighted mean incoming radiance (× albedo
-    // in composite), specular = incoming radiance along the specular cone (× DFG in composite).
-    vk::Image diffuseIndirectLow;   // trace output, ceil(w/s) × ceil(h/s) for trace scale s
-    vk::Image specularIndirectLow;
+    // in composite), specular = incoming radiance along the specular cone (× DFG in composite); both packed in
+    // one texel with their weights (lib/indirect_pack.glsl).
+    vk::Image indirectLow;          // trace output, ceil(w/s) × ceil(h/s) for trace scale s > 1
     // Per low-res sample, what the upsample weights compare (written by trace, lib/upsample_guide.glsl).
     vk::Image guidePosition;        // RGBA32F world position, w: 1 (0 background)
     vk::Image guideNormal;          // RGBA16F unit normal, w: smoothed specular lobe sharpness
     vk::Image guideAxis;            // RGBA16F specular lobe axis
-    vk::Image diffuseIndirect;      // upsample output, full res; alpha: accumulated weight A (DESIGN §3.5)
-    vk::Image specularIndirect;
-    // Last frame's upsample outputs and G-buffer, for the temporal history (swapped in by swapHistory()).
-    vk::Image diffuseHistory;
-    vk::Image specularHistory;
+    vk::Image indirect;             // upsample output, full res; weights: accumulated weight A (DESIGN §3.5)
+    // Last frame's upsample output and G-buffer, for the temporal history (swapped in by swapHistory()).
+    vk::Image indirectHistory;
     vk::Image prevDepth;
     vk::Image prevNormalRoughness;
     vk::Image weightSum;          // upsample: sum of weights, r diffuse, g specular; b: 1 where re-traced

@@ -273,6 +273,23 @@ float Renderer::resampledFraction() const {
     return float(count) / float(std::max<uint64_t>(uint64_t(targets_.width) * targets_.height, 1));
 }
 
+Renderer::IndirectLight Renderer::readIndirect() {
+    if (!voxelGrid_) throw Error("there is no indirect light with GI off");
+    vk::Buffer staging = copyToHost(targets_.indirect);
+    const auto* texels = static_cast<const glm::uvec4*>(staging.mapped());
+    const size_t pixels = size_t(targets_.width) * targets_.height;
+    IndirectLight light{std::vector<float>(pixels * 4), std::vector<float>(pixels * 4)};
+    for (size_t i = 0; i < pixels; ++i) {
+        const glm::vec4 diffuse = glsl::unpackIndirectDiffuse(texels[i]);
+        const glm::vec4 specular = glsl::unpackIndirectSpecular(texels[i]);
+        for (int c = 0; c < 4; ++c) {
+            light.diffuse[i * 4 + size_t(c)] = diffuse[c];
+            light.specular[i * 4 + size_t(c)] = specular[c];
+        }
+    }
+    return light;
+}
+
 std::vector<uint8_t> Renderer::readLdr() {
     vk::Buffer staging = copyToHost(targets_.ldr);
     const auto* src = static_cast<const uint8_t*>(staging.mapped());

@@ -67,6 +67,13 @@ public:
     // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones).
     std::vector<float> readFloatImage(vk::Image& image);
     std::vector<uint8_t> readLdr();
+    // This frame's full-res demodulated indirect light (FrameTargets::indirect, unpacked): RGBA32F, rgb the
+    // radiance, a its accumulated weight. Throws when GI is off (nothing traced).
+    struct IndirectLight {
+        std::vector<float> diffuse;
+        std::vector<float> specular;
+    };
+    IndirectLight readIndirect();
 
 private:
     vk::Buffer copyToHost(vk::Image& image);

@@ -8,6 +8,7 @@ using namespace glm;
 #include "lib/brdf.glsl"
 #include "lib/color.glsl"
 #include "lib/cone.glsl"
+#include "lib/indirect_pack.glsl"
 #include "lib/toksvig.glsl"
 #include "lib/upsample_weights.glsl"
 }  // namespace vct::glsl

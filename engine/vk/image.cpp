@@ -23,7 +23,8 @@ uint32_t bytesPerPixel(VkFormat format) {
         case VK_FORMAT_R32_UINT: return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
         case VK_FORMAT_R32G32_SFLOAT: return 8;
-        case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+        case VK_FORMAT_R32G32B32A32_UINT: return 16;
         case VK_FORMAT_R16_SFLOAT: return 2;
         case VK_FORMAT_R8_UNORM: return 1;
         default: throw Error("bytesPerPixel: format not handled");

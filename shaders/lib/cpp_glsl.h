@@ -6,3 +6,4 @@
 // float literals with an `f` suffix (GLSL 4.x accepts it; C++ needs it for GLM's templates).
 #pragma once
 #include <glm/glm.hpp>
+#include <glm/gtc/packing.hpp>  // packHalf2x16 / unpackHalf2x16

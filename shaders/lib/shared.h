@@ -108,16 +108,16 @@ struct DrawPushConstants {
 #define VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS 5
 #define VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC 6
 #define VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION 7
-#define VCT_COMPOSITE_BINDING_DIFFUSE 8   // full-res demodulated indirect diffuse (upsample output)
-#define VCT_COMPOSITE_BINDING_SPECULAR 9  // full-res demodulated indirect specular
+#define VCT_COMPOSITE_BINDING_INDIRECT 8  // full-res demodulated indirect light (lib/indirect_pack.glsl)
 #define VCT_COMPOSITE_BINDING_DFG 10      // split-sum DFG table, uv = (n·v, perceptual roughness)
 
 // trace (cone tracing at 1/traceScale resolution)
 #define VCT_TRACE_BINDING_DEPTH 1
 #define VCT_TRACE_BINDING_NORMAL_ROUGHNESS 2
 #define VCT_TRACE_BINDING_VOXELS 3    // radiance (premultiplied rgb) + opacity, 3D with mips
-#define VCT_TRACE_BINDING_DIFFUSE 4   // out: low-res cosine-weighted incoming radiance
-#define VCT_TRACE_BINDING_SPECULAR 5  // out: low-res incoming radiance along the specular cone
+// out: cosine-weighted incoming radiance and incoming radiance along the specular cone, packed
+// (lib/indirect_pack.glsl), low res (full res at trace scale 1)
+#define VCT_TRACE_BINDING_INDIRECT 4
 // out: what the upsample weights compare, per low-res sample (lib/upsample_guide.glsl)
 #define VCT_TRACE_BINDING_GUIDE_POSITION 6  // rgba32f: world position, w: 1 (0: background)
 #define VCT_TRACE_BINDING_GUIDE_NORMAL 7    // rgba16f: unit normal, w: smoothed specular sharpness λ̄
@@ -125,17 +125,14 @@ struct DrawPushConstants {
 #define VCT_TRACE_SPEC_FULL_RESOLUTION 0    // specialization constant: trace scale 1 (writes the full-res targets)
 
 // upsample (spatial joint-bilateral + temporal history; flags low-weight pixels for resample)
-#define VCT_UPSAMPLE_BINDING_DIFFUSE_LOW 1
-#define VCT_UPSAMPLE_BINDING_SPECULAR_LOW 2
-#define VCT_UPSAMPLE_BINDING_DIFFUSE 3           // out: rgb radiance, a: accumulated weight A
-#define VCT_UPSAMPLE_BINDING_SPECULAR 4
+#define VCT_UPSAMPLE_BINDING_INDIRECT_LOW 1      // the trace's output (lib/indirect_pack.glsl)
+#define VCT_UPSAMPLE_BINDING_INDIRECT 3          // out: diffuse, specular radiance + accumulated weights A
 #define VCT_UPSAMPLE_BINDING_DEPTH 5
 #define VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS 6
 #define VCT_UPSAMPLE_BINDING_MOTION 7
 #define VCT_UPSAMPLE_BINDING_PREV_DEPTH 8
 #define VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS 9
-#define VCT_UPSAMPLE_BINDING_DIFFUSE_HISTORY 10  // last frame's outputs (rgb, a: A)
-#define VCT_UPSAMPLE_BINDING_SPECULAR_HISTORY 11
+#define VCT_UPSAMPLE_BINDING_INDIRECT_HISTORY 10  // last frame's output
 #define VCT_UPSAMPLE_BINDING_WEIGHT_SUM 12       // out: r sum of weights (diffuse), g (specular), b: 1 re-traced
 #define VCT_UPSAMPLE_BINDING_RESAMPLE_LIST 13    // out: ResampleList (count, indirect dispatch, pixels)
 #define VCT_UPSAMPLE_BINDING_GUIDE_POSITION 14   // the trace's per-sample guides (VCT_TRACE_BINDING_GUIDE_*)
@@ -150,8 +147,7 @@ struct DrawPushConstants {
 
 // resample (full-res cone tracing of the listed pixels; same trace bindings 1–3)
 #define VCT_RESAMPLE_BINDING_LIST 6
-#define VCT_RESAMPLE_BINDING_DIFFUSE 4           // in/out: the upsample outputs (trace bindings' numbers)
-#define VCT_RESAMPLE_BINDING_SPECULAR 5
+#define VCT_RESAMPLE_BINDING_INDIRECT 4          // in/out: the upsample output (the trace binding's number)
 #define VCT_RESAMPLE_GROUP_SIZE 64
 
 // The compacted list of pixels to re-trace: header, then one packed pixel (x | y << 16) per entry. The
