@@ -106,9 +106,9 @@ vec2 lobeLogWeights(Guide a, vec3 sharpnessA, vec3 nq, vec3 axisQ, vec3 sharpnes
                 lobeLogWeightPrepared(a.specularAxis, sharpnessA, axisQ, sharpnessQ, beta));
 }
 
-// ln of the plane-distance weight of point q seen from pixel `a` (none for bilinear).
-float planeLogWeightFrom(Guide a, vec3 q) {
-    return WEIGHTS == VCT_WEIGHTS_BILINEAR ? 0.0 : planeLogWeight(a.n, a.p, q, a.cameraDistance);
+// ln of the plane-distance weight of point q against a pixel's scaledTangentPlane (none for bilinear).
+float planeLogWeightFrom(vec4 plane, vec3 q) {
+    return WEIGHTS == VCT_WEIGHTS_BILINEAR ? 0.0 : planeLogWeightScaled(plane, q);
 }
 
 // Reconstructs one full-res pixel from its cell's samples and its history; writes it and lists it for
@@ -124,6 +124,7 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     const Guide here = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0),
                                         worldFromDepth(frame.invViewProj, uv, depth), frame.cameraPosition.xyz,
                                         kappa);
+    const vec4 herePlane = scaledTangentPlane(here.n, here.p, here.cameraDistance);
     const vec3 hereSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.specularSharpness) : vec3(0.0);
 
     // ---- spatial: the cell's low-res samples, each at its own jittered full-res position ----
@@ -134,7 +135,7 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         // Kernel × validity: 0 outside the image and on the background.
         const vec2 offset = (vec2(pixel) - j.at) / float(SCALE);
         const float f = (WEIGHTS == VCT_WEIGHTS_BILINEAR ? tentKernel(offset, 1.0) : bsplineKernel(offset)) * j.valid;
-        const vec2 w = f * (exp(planeLogWeightFrom(here, j.p) +
+        const vec2 w = f * (exp(planeLogWeightFrom(herePlane, j.p) +
                                 lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness)) +
                             FALLBACK_SHARE);
         spatialDiffuse += w.x * j.diffuse;
@@ -166,7 +167,7 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
         const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
         const vec2 guide =
-            exp(planeLogWeightFrom(here, then.p) + lobeLogWeights(here, hereSharpness, then.n, then.specularAxis,
+            exp(planeLogWeightFrom(herePlane, then.p) + lobeLogWeights(here, hereSharpness, then.n, then.specularAxis,
                                                                   thenSharpness));
         // Outside last frame's image or on its background: no history (the select also keeps the garbage
         // guide of a far-plane position out of the sums).

@@ -441,6 +441,84 @@ TEST(UpsampleWeights, TentKernelIsAPartitionOfUnity) {
     }
 }
 
+// --- the forms the upsample pass evaluates: prepared sharpness, scaled plane, B-spline kernel ------------------
+
+TEST(UpsampleWeights, PreparedLobeWeightMatchesTheDefinition) {
+    // lobeLogWeightPrepared (ln 2 + ½(ln λ̄a + ln λ̄b) − ln(λ̄a + λ̄b), harmonic term 1/(1/λ̄a + 1/λ̄b)) against
+    // the seed's formula in double, over random lobes and sharpnesses across the whole range [κ/(1+2κ), κ].
+    Rng rng;
+    for (int i = 0; i < 2000; ++i) {
+        const vec3 a = rng.unitVector(), b = rng.unitVector();
+        const float la = kKappa * rng.uniform(0.005f, 1.0f), lb = kKappa * rng.uniform(0.005f, 1.0f);
+        const double ratio = 2.0 * std::sqrt(double(la) * lb) / (double(la) + lb);
+        const double cosine = double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
+        const double expected =
+            std::pow(ratio, kBeta) * std::exp(kBeta * double(la) * lb / (double(la) + lb) * (cosine - 1.0));
+        const float w = exp(lobeLogWeightPrepared(a, preparedSharpness(la), b, preparedSharpness(lb), kBeta));
+        ASSERT_TRUE(isWeight(w));
+        EXPECT_NEAR(w, expected, 2e-5 + 2e-4 * expected) << la << " " << lb;
+    }
+    // Identical lobes: exactly 1; a NaN sharpness or axis: exactly 0, never NaN or 1.
+    EXPECT_EQ(exp(lobeLogWeightPrepared(vec3(0, 0, 1), preparedSharpness(3.0f), vec3(0, 0, 1),
+                                        preparedSharpness(3.0f), kBeta)),
+              1.0f);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(exp(lobeLogWeightPrepared(vec3(0, 0, 1), preparedSharpness(nan), vec3(0, 0, 1),
+                                        preparedSharpness(3.0f), kBeta)),
+              0.0f);
+    EXPECT_EQ(exp(lobeLogWeightPrepared(vec3(nan), preparedSharpness(3.0f), vec3(0, 0, 1),
+                                        preparedSharpness(3.0f), kBeta)),
+              0.0f);
+}
+
+TEST(UpsampleWeights, ScaledPlaneMatchesPlaneWeight) {
+    Rng rng;
+    for (int i = 0; i < 1000; ++i) {
+        const vec3 n = rng.unitVector();
+        const vec3 p(rng.uniform(-50.0f, 50.0f), rng.uniform(-50.0f, 50.0f), rng.uniform(-50.0f, 50.0f));
+        const vec3 q = p + rng.unitVector() * rng.uniform(0.0f, 0.5f);
+        const float dist = rng.uniform(0.5f, 40.0f);
+        const float direct = planeWeight(n, p, q, dist);
+        const float scaled = exp(planeLogWeightScaled(scaledTangentPlane(n, p, dist), q));
+        ASSERT_TRUE(isWeight(scaled));
+        // n·q − n·p rounds at the ulp of |p| (≤ 50 here) against a tolerance σ_z·dist down to 0.01.
+        EXPECT_NEAR(scaled, direct, 1e-3f);
+    }
+}
+
+TEST(UpsampleWeights, BsplineKernelIsAPartitionOfUnityOverThe3x3Nearest) {
+    Rng rng;
+    for (int i = 0; i < 500; ++i) {
+        const vec2 f(rng.uniform(-4.0f, 4.0f), rng.uniform(-4.0f, 4.0f));
+        const ivec2 nearest(int(std::lround(f.x)), int(std::lround(f.y)));
+        double sum = 0.0, outside = 0.0;
+        for (int y = nearest.y - 2; y <= nearest.y + 2; ++y)
+            for (int x = nearest.x - 2; x <= nearest.x + 2; ++x) {
+                const float k = bsplineKernel(vec2(float(x), float(y)) - f);
+                ASSERT_GE(k, 0.0f);
+                sum += k;
+                if (std::abs(x - nearest.x) > 1 || std::abs(y - nearest.y) > 1) outside += k;
+            }
+        EXPECT_NEAR(sum, 1.0, 1e-5) << f.x << ", " << f.y;
+        EXPECT_EQ(outside, 0.0) << "only the 3×3 nearest samples contribute";
+    }
+    // Continuous at the knots, even and separable.
+    EXPECT_NEAR(bsplineKernel(vec2(0.5f - 1e-6f, 0.0f)), bsplineKernel(vec2(0.5f + 1e-6f, 0.0f)), 1e-5f);
+    EXPECT_EQ(bsplineKernel(vec2(1.5f, 0.0f)), 0.0f);
+    EXPECT_FLOAT_EQ(bsplineKernel(vec2(0.3f, -0.6f)), bsplineKernel(vec2(-0.3f, 0.6f)));
+    EXPECT_FLOAT_EQ(bsplineKernel(vec2(0.0f)), 0.75f * 0.75f);
+}
+
+TEST(IndirectPack, RoundTripsHalfPrecision) {
+    const vec4 diffuse(0.25f, 3.5f, 0.0009765625f, 8.0f), specular(100.0f, 0.0f, 65504.0f, 0.125f);
+    const uvec4 packed = packIndirect(diffuse, specular);
+    EXPECT_EQ(unpackIndirectDiffuse(packed), diffuse);  // all exactly representable in fp16
+    EXPECT_EQ(unpackIndirectSpecular(packed), specular);
+    const vec4 odd(0.1f, 1.0f / 3.0f, 7.77f, 0.9f);
+    const vec4 back = unpackIndirectDiffuse(packIndirect(odd, vec4(0.0f)));
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(back[c], odd[c], odd[c] * 1e-3f);
+}
+
 // --- jitter sequence -----------------------------------------------------------------------------------------------
 
 TEST(UpsampleWeights, JitterOffsetVisitsEveryOffsetOncePerCycle) {

@@ -109,6 +109,18 @@ VCT_INLINE float planeLogWeight(vec3 n, vec3 p, vec3 q, float cameraDistance) {
     const float d = abs(dot(n, q - p)) / (PLANE_WEIGHT_SIGMA * max(cameraDistance, 1e-6f));
     return -d * d;
 }
+// The same for many points q against one pixel, with the division done once: the pixel's tangent plane scaled
+// by 1/(σ_z·dist), so that ln w_z = −(plane.xyz·q + plane.w)². (n·q − n·p instead of n·(q − p) rounds at the
+// ulp of |p|: weights within 1e-3 of planeWeight for |p| ≤ 50 and σ_z·dist ≥ 0.01, tests/upsample_weights_test.)
+VCT_INLINE vec4 scaledTangentPlane(vec3 n, vec3 p, float cameraDistance) {
+    const float inverseTolerance = 1.0f / (PLANE_WEIGHT_SIGMA * max(cameraDistance, 1e-6f));
+    return vec4(n * inverseTolerance, -dot(n, p) * inverseTolerance);
+}
+VCT_INLINE float planeLogWeightScaled(vec4 scaledPlane, vec3 q) {
+    const float d = dot(vec3(scaledPlane), q) + scaledPlane.w;
+    return -d * d;
+}
+
 VCT_INLINE float planeWeight(vec3 n, vec3 p, vec3 q, float cameraDistance) {
     return exp(planeLogWeight(n, p, q, cameraDistance));
 }
