@@ -6,4 +6,4 @@ scripts/install-deps.sh
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
-build/vct render --scene cornell --size 1280x720 --frames 30 --trace-scale 2 --out out "$@"
+build/vct render --scene cornell --size 1280x720 --frames 30 --out out "$@"

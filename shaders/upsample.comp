@@ -229,6 +229,15 @@ void main() {
         j.diffuse = unpackIndirectDiffuse(light).rgb;
         j.specular = unpackIndirectSpecular(light).rgb;
         j.at = vec2(min(low * SCALE + jitter, size - 1));  // where trace.comp traced it
+        // An invalid sample is multiplied by a zero kernel weight, and 0 × NaN is NaN: its guide (which the
+        // trace does not write on the background, so it may be anything) must be finite. Selects, no branch.
+        const bool valid = j.valid > 0.0;
+        j.p = valid ? j.p : vec3(0.0);
+        j.n = valid ? j.n : vec3(0.0, 0.0, 1.0);
+        j.specularAxis = valid ? j.specularAxis : vec3(0.0, 0.0, 1.0);
+        j.preparedSharpness = valid ? j.preparedSharpness : vec3(1.0, 0.0, 1.0);
+        j.diffuse = valid ? j.diffuse : vec3(0.0);
+        j.specular = valid ? j.specular : vec3(0.0);
         samples[k] = j;
     }
 

@@ -76,27 +76,51 @@ void applyUpsampleOptions(const ParsedArgs& args, RenderSettings& settings) {
     settings.adaptive = onOff(args, "adaptive", settings.adaptive);
 }
 
+namespace {
+
+// The defaults as the help prints them, read from RenderSettings (render/settings.h), the one place they live.
+std::string text(float value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%g", double(value));
+    return buffer;
+}
+std::string onOffText(bool value) { return value ? "on" : "off"; }
+std::string weightsText(RenderSettings::Weights weights) {
+    return weights == RenderSettings::Weights::Bilinear ? "bilinear"
+           : weights == RenderSettings::Weights::Normal ? "normal"
+                                                        : "sg";
+}
+
+}  // namespace
+
 std::vector<Option> upsampleOptions() {
-    return {{"weights", "bilinear|normal|sg", "upsampling guide: none, depth x normal, depth x SG lobe (DESIGN 3.4)", "sg"},
-            {"beta", "B", "SG lobe weight exponent", "20"},
-            {"kappa", "K", "SG smoothing kernel sharpness (bounds every lobe's sharpness)", "100"},
-            {"sigma-n", "S", "normal weight width sigma_n (--weights normal; sigma_n^2 = 0.01)", "0.1"},
-            {"gamma", "G", "temporal history decay per frame (0..1)", "0.9"},
-            {"temporal", "on|off", "reproject and accumulate last frame's indirect light", "on"},
-            {"tau", "T", "re-trace pixels whose sum of upsampling weights is below T", "0.25"},
-            {"adaptive", "on|off", "adaptive re-tracing of low-weight pixels at full resolution", "on"}};
+    const RenderSettings defaults;
+    return {{"weights", "bilinear|normal|sg", "upsampling guide: none, depth x normal, depth x SG lobe (DESIGN 3.4)",
+             weightsText(defaults.weights)},
+            {"beta", "B", "SG lobe weight exponent", text(defaults.beta)},
+            {"kappa", "K", "SG smoothing kernel sharpness (bounds every lobe's sharpness)", text(defaults.kappa)},
+            {"sigma-n", "S", "normal weight width sigma_n (--weights normal)", text(defaults.sigmaN)},
+            {"gamma", "G", "temporal history decay per frame (0..1)", text(defaults.gamma)},
+            {"temporal", "on|off", "reproject and accumulate last frame's indirect light", onOffText(defaults.temporal)},
+            {"tau", "T", "re-trace pixels whose sum of upsampling weights is below T", text(resampleThreshold(defaults))},
+            {"adaptive", "on|off", "adaptive re-tracing of low-weight pixels at full resolution",
+             onOffText(defaults.adaptive)}};
 }
 
 std::vector<Option> materialFilterOptions() {
-    return {{"toksvig", "on|off", "Toksvig roughness from normal-map mips (DESIGN 3.2)", "on"},
-            {"specular-aa", "on|off", "geometric specular anti-aliasing from normal derivatives", "on"},
+    const RenderSettings defaults;
+    return {{"toksvig", "on|off", "Toksvig roughness from normal-map mips (DESIGN 3.2)", onOffText(defaults.toksvig)},
+            {"specular-aa", "on|off", "geometric specular anti-aliasing from normal derivatives",
+             onOffText(defaults.specularAA)},
             {"texture-lod0", "", "diagnostic: sample material textures at level 0 only (supersampled references)",
              ""}};
 }
 
 std::vector<Option> giOptions() {
-    return {{"gi", "on|off", "cone-traced indirect light; off: the constant ambient term instead", "on"},
-            {"trace-scale", "1|2|4", "trace indirect light at 1/S of the resolution per axis", "1"},
+    const RenderSettings defaults;
+    return {{"gi", "on|off", "cone-traced indirect light; off: the constant ambient term instead", onOffText(defaults.gi)},
+            {"trace-scale", "1|2|4", "trace indirect light at 1/S of the resolution per axis (1: every pixel)",
+             std::to_string(defaults.traceScale)},
             {"voxels", "N", "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
              ""},
             {"voxel-cache", "FILE.vdb",

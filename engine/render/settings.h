@@ -1,4 +1,8 @@
-// Everything a frame depends on besides the scene and the camera: one documented place for the tunables.
+// Everything a frame depends on besides the scene and the camera: one documented place for the tunables and
+// their defaults. The command line's help (app/session.cpp) prints these defaults; README and benchmarks quote
+// them. The defaults run the method: indirect light traced at 1/4 resolution per axis, upsampled with SG lobe
+// weights and temporal history, low-weight pixels re-traced (benchmarks/README.md: the speed and error that
+// chose trace scale 4).
 #pragma once
 
 #include <cstdint>
@@ -23,7 +27,7 @@ struct RenderSettings {
     // ---- global illumination (voxel cone tracing) ----
     bool gi = true;                // false: the constant ambient term instead of cone-traced indirect light
     uint32_t voxelResolution = 0;  // N for the N³ grid (32..256); 0 = chosen from the scene
-    uint32_t traceScale = 1;       // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
+    uint32_t traceScale = 4;       // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
     std::string voxelCache;        // OpenVDB file holding the static voxelization (vct voxelize); empty: compute it
 
     // ---- spatio-temporal upsampling and adaptive re-tracing (DESIGN §3.3–3.5) ----
