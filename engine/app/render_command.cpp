@@ -97,6 +97,7 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.height = h;
         report.frames = frames;
         report.warmup = warmup;
+        report.anisotropy = renderer.settings().anisotropy;
         report.passes = renderer.timer().passStats();
         report.frame = renderer.timer().frameStats();
         report.resampledFraction = renderer.resampledFraction();

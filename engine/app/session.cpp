@@ -34,6 +34,12 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
     options.settings.toksvig = onOff(args, "toksvig", options.settings.toksvig);
     options.settings.specularAA = onOff(args, "specular-aa", options.settings.specularAA);
     options.settings.textureLod0 = args.has("texture-lod0");
+    if (args.has("anisotropy")) {
+        const std::string value = args.get("anisotropy");
+        if (value != "0" && value != "2" && value != "4" && value != "8" && value != "16")
+            throw UsageError("--anisotropy '" + value + "': expected 0, 2, 4, 8 or 16");
+        options.settings.anisotropy = uint32_t(std::stoul(value));
+    }
     // Global illumination (DESIGN §3.6), likewise only where declared (giOptions).
     options.settings.gi = onOff(args, "gi", options.settings.gi);
     if (args.has("trace-scale")) {
@@ -91,6 +97,9 @@ std::vector<Option> materialFilterOptions() {
     return {{"toksvig", "on|off", "Toksvig roughness from normal-map mips (DESIGN 3.2)", "on"},
             {"specular-aa", "on|off", "geometric specular anti-aliasing from normal derivatives", "on"},
             {"texture-lod0", "", "diagnostic: sample material textures at level 0 only (supersampled references)",
+             ""},
+            {"anisotropy", "0|2|4|8|16",
+             "anisotropic texture filtering (0: off); default 0 on a CPU device (emulated, very slow), 8 on a GPU",
              ""}};
 }
 
@@ -110,6 +119,14 @@ Session::Session(const SessionOptions& options) {
     context_ = std::make_unique<vk::Context>(options.context);
     std::printf("device: %s\n", context_->deviceName().c_str());
     renderer_ = std::make_unique<Renderer>(*context_, scene_, options.settings);
+    printAnisotropy(options.settings.anisotropy, renderer_->settings().anisotropy);
+}
+
+void printAnisotropy(uint32_t requested, uint32_t chosen) {
+    const char* why = requested == kAnisotropyFromDevice ? " (default for this device)"
+                      : requested != chosen              ? " (the device's limit)"
+                                                         : "";
+    std::printf("anisotropy: %u%s\n", chosen, why);
 }
 
 Session::~Session() {

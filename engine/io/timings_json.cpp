@@ -17,6 +17,7 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                            {"size", {report.width, report.height}},
                            {"frames", report.frames},
                            {"warmup", report.warmup},
+                           {"anisotropy", report.anisotropy},
                            {"passes", passes},
                            {"frame_median_ms", report.frame.medianMs},
                            {"resampled_fraction", report.resampledFraction}};

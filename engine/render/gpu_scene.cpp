@@ -30,7 +30,21 @@ Texture solidTexture(TextureKind kind, uint8_t r, uint8_t g, uint8_t b, uint8_t 
 
 }  // namespace
 
-GpuScene::GpuScene(const vk::Context& context, const Scene& scene) : context_(context), scene_(scene) {
+uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested) {
+    uint32_t level = requested;
+    if (level == kAnisotropyFromDevice)
+        level = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0u : 8u;
+    VkPhysicalDeviceFeatures features;
+    vkGetPhysicalDeviceFeatures(context.physicalDevice(), &features);
+    if (!features.samplerAnisotropy) return 0;
+    // The limit is a float ≥ 16 where the feature exists; keep the largest power of two within it.
+    const float limit = context.properties().limits.maxSamplerAnisotropy;
+    while (level > 1 && float(level) > limit) level /= 2;
+    return level < 2 ? 0 : level;
+}
+
+GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy)
+    : context_(context), scene_(scene), anisotropy_(anisotropy) {
     vertices_ = vk::Buffer::withData(context, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     indices_ = vk::Buffer::withData(context, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),
@@ -76,10 +90,9 @@ VkSampler GpuScene::samplerFor(TextureWrap s, TextureWrap t) {
     info.addressModeV = addressMode(t);
     info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     info.maxLod = VK_LOD_CLAMP_NONE;
-    VkPhysicalDeviceFeatures features;
-    vkGetPhysicalDeviceFeatures(context_.physicalDevice(), &features);
-    info.anisotropyEnable = features.samplerAnisotropy;
-    info.maxAnisotropy = std::min(8.0f, context_.properties().limits.maxSamplerAnisotropy);
+    // chooseAnisotropy has checked the feature and the device's limit.
+    info.anisotropyEnable = anisotropy_ >= 2 ? VK_TRUE : VK_FALSE;
+    info.maxAnisotropy = anisotropy_ >= 2 ? float(anisotropy_) : 1.0f;
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(context_.device(), &info, nullptr, &sampler));
     samplers_[key] = sampler;

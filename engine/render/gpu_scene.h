@@ -6,15 +6,23 @@
 #include <vector>
 
 #include "lib/shared.h"
+#include "render/settings.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
 
 namespace vct {
 
+// The anisotropic filtering level the material sampler gets: `requested` (0, 2, 4, 8 or 16), or for
+// kAnisotropyFromDevice 0 on a CPU device (lavapipe emulates anisotropy with many bilinear taps per sample:
+// DamagedHelmet's gbuffer pass takes seconds instead of milliseconds) and 8 on a GPU; then clamped to the
+// device's maxSamplerAnisotropy, and 0 without the samplerAnisotropy feature.
+uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested);
+
 class GpuScene {
 public:
-    GpuScene(const vk::Context& context, const Scene& scene);
+    // `anisotropy`: the material sampler's level, as chosen by chooseAnisotropy (0: off).
+    GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy);
     ~GpuScene();
     GpuScene(const GpuScene&) = delete;
     GpuScene& operator=(const GpuScene&) = delete;
@@ -50,6 +58,7 @@ private:
 
     const vk::Context& context_;
     const Scene& scene_;
+    uint32_t anisotropy_ = 0;
     vk::Buffer vertices_, indices_, materials_, instanceBuffer_, lightBuffer_;
     std::vector<vk::Image> textures_;
     std::vector<VkSampler> textureSamplers_;  // parallel to textures_

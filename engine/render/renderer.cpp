@@ -21,10 +21,20 @@
 
 namespace vct {
 
+namespace {
+
+// The settings with what depends on the device resolved before anything is created from them.
+RenderSettings resolveForDevice(const vk::Context& context, RenderSettings settings) {
+    settings.anisotropy = chooseAnisotropy(context, settings.anisotropy);
+    return settings;
+}
+
+}  // namespace
+
 Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings)
     : context_(context),
-      settings_(settings),
-      gpuScene_(context, scene),
+      settings_(resolveForDevice(context, settings)),
+      gpuScene_(context, scene, settings_.anisotropy),
       frameUniforms_(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                      vk::MemoryUsage::HostVisible),
       timer_(context) {

@@ -8,6 +8,10 @@
 
 namespace vct {
 
+// RenderSettings::anisotropy before the device is known: chooseAnisotropy (render/gpu_scene.h) picks it. Not 0,
+// which is a valid request (off).
+constexpr uint32_t kAnisotropyFromDevice = ~0u;
+
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -43,6 +47,9 @@ struct RenderSettings {
     // Diagnostic: sample every material texture at level 0 (bilinear, no mips, no anisotropy). A render
     // supersampled this way and box-filtered down is the ground truth that texture filtering approximates.
     bool textureLod0 = false;
+    // Anisotropic filtering of material textures: 0 (off), 2, 4, 8 or 16 samples. The Renderer replaces
+    // kAnisotropyFromDevice with chooseAnisotropy's choice, so after construction it holds what the sampler uses.
+    uint32_t anisotropy = kAnisotropyFromDevice;
 };
 
 // Cap A_max on the accumulated history weight (DESIGN §3.5), in units of one fully agreeing spatial
