@@ -48,6 +48,7 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
             throw UsageError("--trace-scale '" + value + "': expected 1, 2 or 4");
         options.settings.traceScale = uint32_t(std::stoul(value));
     }
+    options.settings.voxelizeEveryFrame = args.has("voxelize-every-frame");
     applyUpsampleOptions(args, options.settings);
     // 0 (flag absent) lets the renderer choose from the device (render/voxel_grid.h); N must be a power of two.
     if (args.has("voxels")) {
@@ -99,7 +100,7 @@ std::vector<Option> materialFilterOptions() {
             {"texture-lod0", "", "diagnostic: sample material textures at level 0 only (supersampled references)",
              ""},
             {"anisotropy", "0|2|4|8|16",
-             "anisotropic texture filtering (0: off); default 0 on a CPU device (emulated, very slow), 8 on a GPU",
+             "anisotropic texture filtering (0: off); default 0 on a CPU device (very slow there), 8 on a GPU",
              ""}};
 }
 
@@ -109,7 +110,9 @@ std::vector<Option> giOptions() {
             {"voxels", "N", "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
              ""},
             {"voxel-cache", "FILE.vdb",
-             "load the static voxelization from FILE (written by vct voxelize) instead of computing it", ""}};
+             "load the static voxelization from FILE (written by vct voxelize) instead of computing it", ""},
+            {"voxelize-every-frame", "",
+             "diagnostic: rebuild the voxel grid every frame, also when nothing moved and no light changed", ""}};
 }
 
 Session::Session(const SessionOptions& options) {

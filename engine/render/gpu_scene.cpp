@@ -184,8 +184,12 @@ void GpuScene::update(float timeSeconds, bool cut) {
         gpuInstances[i].normalMatrix = glm::transpose(glm::inverse(next[i].world));
         previousWorld_[i] = next[i].world;
     }
+    // Exact comparison: a scene without animation evaluates to the very same matrices every time.
+    bool changed = !hasUpdated_ || next.size() != instances_.size();
+    for (size_t i = 0; !changed && i < next.size(); ++i) changed = next[i].world != instances_[i].world;
     instances_ = std::move(next);
 
+    const std::vector<gpu::GpuLight> previousLights = std::move(lights_);
     lights_.clear();
     for (size_t n = 0; n < scene_.nodes.size(); ++n) {
         if (scene_.nodes[n].light < 0) continue;
@@ -206,6 +210,11 @@ void GpuScene::update(float timeSeconds, bool cut) {
         g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
         lights_.push_back(g);
     }
+    changed = changed || previousLights.size() != lights_.size() ||
+              (!lights_.empty() &&
+               std::memcmp(previousLights.data(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight)) != 0);
+    changed_ = changed;
+    hasUpdated_ = true;
     fitShadow();
     if (!lights_.empty()) std::memcpy(lightBuffer_.mapped(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight));
 }

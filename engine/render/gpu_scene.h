@@ -37,6 +37,9 @@ public:
     // Writes this frame's instances (world and previous-world matrices) and lights at time t.
     // The first call (or one after a cut) uses the current transforms as the previous ones.
     void update(float timeSeconds, bool cut);
+    // Whether the last update() moved an instance or changed a light against the update before it (the first
+    // update: true). The voxel grid depends on nothing else of the scene.
+    bool changedInLastUpdate() const { return changed_; }
     const std::vector<Instance>& instances() const { return instances_; }
     uint32_t lightCount() const { return uint32_t(lights_.size()); }
     const std::vector<gpu::GpuLight>& lights() const { return lights_; }
@@ -71,6 +74,8 @@ private:
     int shadowLight_ = -1;
     glm::mat4 lightViewProj_{1.0f};
     float shadowTexelWorld_ = 0.0f;
+    bool changed_ = true;
+    bool hasUpdated_ = false;
     Aabb bounds_;
     void fitShadow();
 };

@@ -183,7 +183,16 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
     timer_.beginFrame(cmd_);
     FrameContext frame{context_, cmd_, gpuScene_, targets_, frameUniforms_.handle(), settings_, samplers_};
+    // The voxel grid depends only on the scene's geometry and lights, not on the camera: when neither changed
+    // since a frame built it, its passes have nothing to do (no dispatch; timed as 0 ms). A cut rebuilds it
+    // anyway, so that every cut starts from the same state as a first frame.
+    const bool buildVoxelGrid =
+        !voxelGridBuilt_ || input.cut || gpuScene_.changedInLastUpdate() || settings_.voxelizeEveryFrame;
     for (const auto& pass : passes_) {
+        if (pass->buildsVoxelGrid() && !buildVoxelGrid) {
+            timer_.skipScope(pass->name());
+            continue;
+        }
         timer_.beginScope(cmd_, pass->name());
         for (const ImageUse& use : pass->uses(targets_)) use.image->use(cmd_, use.access);
         pass->execute(frame);
@@ -208,6 +217,11 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     VK_CHECK(vkQueueSubmit(context_.queue(), 1, &info, fence_));
     VK_CHECK(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
     timer_.collect(input.recordTimings);
+    if (voxelGrid_) {
+        voxelGridBuilt_ = true;
+        // A voxel cache's staging buffer, uploaded by this frame's voxelize pass, is no longer needed.
+        if (voxelGrid_->staticVoxelized() && voxelGrid_->hasStaticCache()) voxelGrid_->releaseStaticCache();
+    }
 }
 
 namespace {
