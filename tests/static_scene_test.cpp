@@ -4,6 +4,7 @@
 // of the indirect-light targets: the views and --aux files that need them say so or are left out.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -118,6 +119,34 @@ TEST(StaticScene, VoxelCacheOnAStaticSceneGivesTheSameImage) {
     const ImageRgba32f a = readExr(cached.dir / "final.exr"), b = readExr(computed.dir / "final.exr");
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     EXPECT_TRUE(a.pixels == b.pixels) << "the cached voxelization renders differently";
+}
+
+// ---- GI off: no indirect-light targets ----
+
+TEST(GiOff, AuxWritesOnlyTheBuffersThatExist) {
+    const Render off = render("gi-off-aux", "cornell", {"--gi", "off", "--aux"});
+    for (const char* file :
+         {"direct.exr", "normal.exr", "roughness.exr", "albedo.exr", "depth.exr", "final.exr"})
+        EXPECT_TRUE(fs::is_regular_file(off.dir / file)) << file;
+    for (const char* file :
+         {"diffuse_indirect.exr", "specular_indirect.exr", "weight_sum.exr", "resample_mask.png"})
+        EXPECT_FALSE(fs::exists(off.dir / file)) << file << " written with --gi off";
+    for (const char* pass : kVoxelPasses) EXPECT_EQ(runs(off, pass), -1) << pass;
+    const ImageRgba32f image = readExr(off.dir / "final.exr");
+    EXPECT_EQ(test::countNonFinite(image.pixels), 0u);
+}
+
+TEST(GiOff, ViewsThatNeedGiAreOneLineUsageErrors) {
+    const fs::path dir = test::freshOutputDir("static_scene/gi-off-views");
+    for (const char* view : {"diffuse", "specular", "weights", "resample", "voxels"}) {
+        const test::RunResult run = test::runVct({"render", "--gi", "off", "--size", "64x36", "--frames", "1",
+                                                  "--view", view, "--out", dir.string()});
+        ASSERT_TRUE(run.exited()) << run.describe();
+        EXPECT_EQ(run.exitCode, 2) << view << "\n" << run.describe();
+        EXPECT_NE(run.err.find("--gi"), std::string::npos) << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+        EXPECT_FALSE(fs::exists(dir / "final.png")) << view << ": failed only after rendering";
+    }
 }
 
 }  // namespace

@@ -12,16 +12,12 @@ namespace vct {
 
 namespace {
 
-// The indirect-light targets exist once cone tracing adds them to FrameTargets; until then these are null.
-template <class Targets>
-vk::Image* diffuseIndirect(Targets& targets) {
-    if constexpr (requires { targets.diffuseIndirect; }) return &targets.diffuseIndirect;
-    else return nullptr;
+// The indirect-light targets; null with GI off, which does not allocate them (FrameTargets::gi).
+vk::Image* diffuseIndirect(FrameTargets& targets) {
+    return targets.gi ? &targets.diffuseIndirect : nullptr;
 }
-template <class Targets>
-vk::Image* specularIndirect(Targets& targets) {
-    if constexpr (requires { targets.specularIndirect; }) return &targets.specularIndirect;
-    else return nullptr;
+vk::Image* specularIndirect(FrameTargets& targets) {
+    return targets.gi ? &targets.specularIndirect : nullptr;
 }
 
 // Per-pixel transforms of an RGBA32F image, in place.
@@ -48,6 +44,35 @@ void opaque(std::vector<float>& rgba) {
 uint8_t toByte(float v) { return uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) * 255.0f)); }
 
 }  // namespace
+
+const char* auxViewName(AuxView view) {
+    switch (view) {
+        case AuxView::Final:
+            return "final";
+        case AuxView::Direct:
+            return "direct";
+        case AuxView::Diffuse:
+            return "diffuse";
+        case AuxView::Specular:
+            return "specular";
+        case AuxView::Normals:
+            return "normals";
+        case AuxView::Roughness:
+            return "roughness";
+        case AuxView::Voxels:
+            return "voxels";
+        case AuxView::Resample:
+            return "resample";
+        case AuxView::Weights:
+            return "weights";
+    }
+    return "?";
+}
+
+bool auxViewNeedsGi(AuxView view) {
+    return view == AuxView::Diffuse || view == AuxView::Specular || view == AuxView::Voxels ||
+           view == AuxView::Resample || view == AuxView::Weights;
+}
 
 AuxView parseAuxView(const std::string& value) {
     if (value == "final") return AuxView::Final;
@@ -104,9 +129,7 @@ std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view, uint32_t voxelM
     vk::Image* source = &t.direct;
     if (view == AuxView::Diffuse || view == AuxView::Specular) {
         source = view == AuxView::Diffuse ? diffuseIndirect(t) : specularIndirect(t);
-        if (!source)
-            throw Error(std::string("--view ") + (view == AuxView::Diffuse ? "diffuse" : "specular") +
-                        ": the renderer has no indirect-light buffer yet");
+        if (!source) throw UsageError(std::string("--view ") + auxViewName(view) + ": needs --gi on");
     }
     if (view == AuxView::Normals || view == AuxView::Roughness) source = &t.normalRoughness;
     if (view == AuxView::Voxels) source = &renderer.renderVoxelView(voxelMip);  // radiance: tone mapped below

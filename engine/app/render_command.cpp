@@ -68,6 +68,10 @@ int runRenderCommand(int argc, char** argv, int first) {
     if (args.has("voxel-mip") && view != AuxView::Voxels) throw UsageError("--voxel-mip: only with --view voxels");
     if (view == AuxView::Voxels && !options.settings.gi)
         throw UsageError("--view voxels: there is no voxel grid with --gi off");
+    // Checked before any frame: with GI off the frame has no indirect light, weights or re-traced pixels.
+    if (auxViewNeedsGi(view) && !options.settings.gi)
+        throw UsageError(std::string("--view ") + auxViewName(view) +
+                         ": needs --gi on (no indirect light with --gi off)");
     auto voxelMip = [&](uint32_t mipCount) { return args.getUint("voxel-mip", 0, mipCount - 1); };
     if (view == AuxView::Voxels && options.settings.voxelResolution != 0)
         voxelMip(uint32_t(std::bit_width(options.settings.voxelResolution)));

@@ -11,7 +11,7 @@ namespace vct {
 namespace {
 
 std::vector<float> readWeightSum(Renderer& renderer) {
-    if (!renderer.voxelGrid()) throw UsageError("the upsampling views need GI (drop --gi off)");
+    if (!renderer.targets().gi) throw UsageError("the upsampling views need GI (drop --gi off)");
     return renderer.readFloatImage(renderer.targets().weightSum);
 }
 
@@ -57,7 +57,7 @@ std::vector<uint8_t> weightHeatMap(Renderer& renderer) {
 }
 
 std::vector<std::string> writeUpsampleAux(Renderer& renderer, const std::filesystem::path& dir) {
-    if (!renderer.voxelGrid()) return {};
+    if (!renderer.targets().gi) return {};  // no weights without GI
     FrameTargets& t = renderer.targets();
     std::vector<float> weights = renderer.readFloatImage(t.weightSum);
     std::vector<uint8_t> mask(size_t(t.width) * t.height * 4, 255);

@@ -21,18 +21,30 @@ CompositePass::CompositePass(const vk::Context& context) : dfg_(context) {
                                       0);
 }
 
+namespace {
+
+// With GI off there are no indirect images (FrameTargets::gi): the direct image, same format and already
+// read here, is bound in their place. One pipeline for both modes; the shader does not read them then.
+vk::Image& diffuseOrStandIn(FrameTargets& t) {
+    return t.gi ? t.diffuseIndirect : t.direct;
+}
+vk::Image& specularOrStandIn(FrameTargets& t) {
+    return t.gi ? t.specularIndirect : t.direct;
+}
+
+}  // namespace
+
 std::vector<ImageUse> CompositePass::uses(FrameTargets& t) {
-    // The indirect images are bound even with GI off (no trace has written them; the shader then skips them):
-    // one pipeline for both modes, and a read-only General layout is valid for unwritten images.
-    return {{&t.direct, vk::ImageAccess::StorageRead},
-            {&t.depth, vk::ImageAccess::Sampled},
-            {&t.normalRoughness, vk::ImageAccess::Sampled},
-            {&t.baseColorMetallic, vk::ImageAccess::Sampled},
-            {&t.emissiveOcclusion, vk::ImageAccess::Sampled},
-            {&t.diffuseIndirect, vk::ImageAccess::StorageRead},
-            {&t.specularIndirect, vk::ImageAccess::StorageRead},
-            {&t.hdr, vk::ImageAccess::StorageWrite},
-            {&t.ldr, vk::ImageAccess::StorageWrite}};
+    std::vector<ImageUse> uses = {
+        {&t.direct, vk::ImageAccess::StorageRead},        {&t.depth, vk::ImageAccess::Sampled},
+        {&t.normalRoughness, vk::ImageAccess::Sampled},   {&t.baseColorMetallic, vk::ImageAccess::Sampled},
+        {&t.emissiveOcclusion, vk::ImageAccess::Sampled}, {&t.hdr, vk::ImageAccess::StorageWrite},
+        {&t.ldr, vk::ImageAccess::StorageWrite}};
+    if (t.gi) {
+        uses.push_back({&t.diffuseIndirect, vk::ImageAccess::StorageRead});
+        uses.push_back({&t.specularIndirect, vk::ImageAccess::StorageRead});
+    }
+    return uses;
 }
 
 void CompositePass::execute(const FrameContext& frame) {
@@ -49,8 +61,8 @@ void CompositePass::execute(const FrameContext& frame) {
         .sampled(VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS, t.normalRoughness.view(), s.nearestClamp)
         .sampled(VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC, t.baseColorMetallic.view(), s.nearestClamp)
         .sampled(VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION, t.emissiveOcclusion.view(), s.nearestClamp)
-        .storage(VCT_COMPOSITE_BINDING_DIFFUSE, t.diffuseIndirect.view())
-        .storage(VCT_COMPOSITE_BINDING_SPECULAR, t.specularIndirect.view())
+        .storage(VCT_COMPOSITE_BINDING_DIFFUSE, diffuseOrStandIn(t).view())
+        .storage(VCT_COMPOSITE_BINDING_SPECULAR, specularOrStandIn(t).view())
         .sampled(VCT_COMPOSITE_BINDING_DFG, dfg_.image().view(), dfg_.sampler())
         .push(frame.context, frame.cmd, pipeline_);
     vkCmdDispatch(frame.cmd, tileCount(t.width), tileCount(t.height), 1);

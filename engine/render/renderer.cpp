@@ -43,7 +43,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         throw UsageError("size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                          " exceeds the device's maximum image dimension " +
                          std::to_string(limits.maxImageDimension2D));
-    targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE, settings.traceScale);
+    targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE, settings.traceScale,
+                    settings.gi);
     createSamplers();
     // The frame, in order (DESIGN §2).
     passes_.push_back(std::make_unique<ShadowPass>(context));
@@ -113,7 +114,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     vkDeviceWaitIdle(context_.device());
     settings_.width = width;
     settings_.height = height;
-    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE, settings_.traceScale);
+    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE, settings_.traceScale, settings_.gi);
     hasPrevious_ = false;
 }
 
@@ -291,6 +292,7 @@ std::vector<float> Renderer::readFloatImage(vk::Image& image) {
 }
 
 float Renderer::resampledFraction() const {
+    if (!targets_.gi) return 0.0f;  // nothing traced, nothing re-traced
     const uint32_t count = *static_cast<const uint32_t*>(targets_.resampleCount.mapped());
     return float(count) / float(std::max<uint64_t>(uint64_t(targets_.width) * targets_.height, 1));
 }
