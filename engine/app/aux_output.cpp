@@ -37,6 +37,35 @@ uint8_t toByte(float v) { return uint8_t(std::lround(std::clamp(std::isfinite(v)
 
 }  // namespace
 
+const char* auxViewName(AuxView view) {
+    switch (view) {
+        case AuxView::Final:
+            return "final";
+        case AuxView::Direct:
+            return "direct";
+        case AuxView::Diffuse:
+            return "diffuse";
+        case AuxView::Specular:
+            return "specular";
+        case AuxView::Normals:
+            return "normals";
+        case AuxView::Roughness:
+            return "roughness";
+        case AuxView::Voxels:
+            return "voxels";
+        case AuxView::Resample:
+            return "resample";
+        case AuxView::Weights:
+            return "weights";
+    }
+    return "?";
+}
+
+bool auxViewNeedsGi(AuxView view) {
+    return view == AuxView::Diffuse || view == AuxView::Specular || view == AuxView::Voxels ||
+           view == AuxView::Resample || view == AuxView::Weights;
+}
+
 AuxView parseAuxView(const std::string& value) {
     if (value == "final") return AuxView::Final;
     if (value == "direct") return AuxView::Direct;
@@ -98,8 +127,7 @@ std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view, uint32_t voxelM
     uint32_t sw = t.width, sh = t.height;  // the source's size
     if (view == AuxView::Diffuse || view == AuxView::Specular) {
         if (!renderer.voxelGrid())
-            throw UsageError(std::string("--view ") + (view == AuxView::Diffuse ? "diffuse" : "specular") +
-                             ": there is no indirect light with --gi off");
+            throw UsageError(std::string("--view ") + auxViewName(view) + ": needs --gi on");
         Renderer::IndirectLight light = renderer.readIndirect();
         rgba = std::move(view == AuxView::Diffuse ? light.diffuse : light.specular);
     } else {

@@ -16,6 +16,9 @@ enum class AuxView { Final, Direct, Diffuse, Specular, Normals, Roughness, Voxel
 
 // Parses a --view value; throws UsageError for unknown ones and for those not implemented yet.
 AuxView parseAuxView(const std::string& value);
+const char* auxViewName(AuxView view);  // the --view value
+// The views of buffers that only exist with GI on (indirect light, upsampling weights, the voxel grid).
+bool auxViewNeedsGi(AuxView view);
 
 // Writes direct, diffuse_indirect, specular_indirect (when the frame targets have them), normal, roughness,
 // albedo and depth as EXR into `dir`; returns the names written.

@@ -105,6 +105,7 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         std::printf("device: %s\n", context.deviceName().c_str());
         std::vector<Config> configs = makeConfigs(session.settings, scale);
         for (Config& config : configs) config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
+        printAnisotropy(session.settings.anisotropy, configs.front().renderer->settings().anisotropy);
 
         for (uint32_t frame = 0; frame < frames; ++frame) {
             const FrameInput input = fixedStepFrame(scene, frame, warmup);
@@ -145,6 +146,7 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
             };
             report["configs"].push_back({{"name", config.name},
                                          {"trace_scale", config.settings.traceScale},
+                                         {"anisotropy", r.settings().anisotropy},
                                          {"pass_median_ms", passes},
                                          {"frame_median_ms", frameMs},
                                          {"resampled_fraction", r.resampledFraction()},

@@ -70,6 +70,10 @@ int runRenderCommand(int argc, char** argv, int first) {
         throw UsageError("--view voxels: there is no voxel grid with --gi off");
     // The per-pixel sum of upsampling weights is an output of its own, written only when something shows it.
     options.settings.writeWeightSum = args.has("aux") || view == AuxView::Weights || view == AuxView::Resample;
+    // Checked before any frame: with GI off the frame has no indirect light, weights or re-traced pixels.
+    if (auxViewNeedsGi(view) && !options.settings.gi)
+        throw UsageError(std::string("--view ") + auxViewName(view) +
+                         ": needs --gi on (no indirect light with --gi off)");
     auto voxelMip = [&](uint32_t mipCount) { return args.getUint("voxel-mip", 0, mipCount - 1); };
     if (view == AuxView::Voxels && options.settings.voxelResolution != 0)
         voxelMip(uint32_t(std::bit_width(options.settings.voxelResolution)));
@@ -99,6 +103,7 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.height = h;
         report.frames = frames;
         report.warmup = warmup;
+        report.anisotropy = renderer.settings().anisotropy;
         report.passes = renderer.timer().passStats();
         report.frame = renderer.timer().frameStats();
         report.resampledFraction = renderer.resampledFraction();

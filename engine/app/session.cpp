@@ -34,6 +34,12 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
     options.settings.toksvig = onOff(args, "toksvig", options.settings.toksvig);
     options.settings.specularAA = onOff(args, "specular-aa", options.settings.specularAA);
     options.settings.textureLod0 = args.has("texture-lod0");
+    if (args.has("anisotropy")) {
+        const std::string value = args.get("anisotropy");
+        if (value != "0" && value != "2" && value != "4" && value != "8" && value != "16")
+            throw UsageError("--anisotropy '" + value + "': expected 0, 2, 4, 8 or 16");
+        options.settings.anisotropy = uint32_t(std::stoul(value));
+    }
     // Global illumination (DESIGN §3.6), likewise only where declared (giOptions).
     options.settings.gi = onOff(args, "gi", options.settings.gi);
     if (args.has("trace-scale")) {
@@ -42,6 +48,7 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
             throw UsageError("--trace-scale '" + value + "': expected 1, 2 or 4");
         options.settings.traceScale = uint32_t(std::stoul(value));
     }
+    options.settings.voxelizeEveryFrame = args.has("voxelize-every-frame");
     applyUpsampleOptions(args, options.settings);
     // 0 (flag absent) lets the renderer choose from the device (render/voxel_grid.h); N must be a power of two.
     if (args.has("voxels")) {
@@ -113,6 +120,9 @@ std::vector<Option> materialFilterOptions() {
             {"specular-aa", "on|off", "geometric specular anti-aliasing from normal derivatives",
              onOffText(defaults.specularAA)},
             {"texture-lod0", "", "diagnostic: sample material textures at level 0 only (supersampled references)",
+             ""},
+            {"anisotropy", "0|2|4|8|16",
+             "anisotropic texture filtering (0: off); default 0 on a CPU device (very slow there), 8 on a GPU",
              ""}};
 }
 
@@ -124,7 +134,9 @@ std::vector<Option> giOptions() {
             {"voxels", "N", "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
              ""},
             {"voxel-cache", "FILE.vdb",
-             "load the static voxelization from FILE (written by vct voxelize) instead of computing it", ""}};
+             "load the static voxelization from FILE (written by vct voxelize) instead of computing it", ""},
+            {"voxelize-every-frame", "",
+             "diagnostic: rebuild the voxel grid every frame, also when nothing moved and no light changed", ""}};
 }
 
 Session::Session(const SessionOptions& options) {
@@ -134,6 +146,14 @@ Session::Session(const SessionOptions& options) {
     context_ = std::make_unique<vk::Context>(options.context);
     std::printf("device: %s\n", context_->deviceName().c_str());
     renderer_ = std::make_unique<Renderer>(*context_, scene_, options.settings);
+    printAnisotropy(options.settings.anisotropy, renderer_->settings().anisotropy);
+}
+
+void printAnisotropy(uint32_t requested, uint32_t chosen) {
+    const char* why = requested == kAnisotropyFromDevice ? " (default for this device)"
+                      : requested != chosen              ? " (the device's limit)"
+                                                         : "";
+    std::printf("anisotropy: %u%s\n", chosen, why);
 }
 
 Session::~Session() {

@@ -22,8 +22,8 @@ struct SessionOptions {
 // --texture-lod0 when the command declares them.
 SessionOptions sessionOptions(const ParsedArgs& args);
 
-// The --toksvig and --specular-aa options (both default on) and the diagnostic --texture-lod0 switch, for a
-// command's CommandSpec.
+// The --toksvig and --specular-aa options (both default on), --anisotropy (0|2|4|8|16, default from the
+// device) and the diagnostic --texture-lod0 switch, for a command's CommandSpec.
 std::vector<Option> materialFilterOptions();
 
 // The --gi (on|off) and --trace-scale (1|2|4) options, for a command's CommandSpec.
@@ -46,6 +46,10 @@ private:
     std::unique_ptr<vk::Context> context_;
     std::unique_ptr<Renderer> renderer_;
 };
+
+// The startup line naming the anisotropic filtering level in use, like the device line: `requested` is the
+// setting given to the Renderer (kAnisotropyFromDevice without --anisotropy), `chosen` the Renderer's.
+void printAnisotropy(uint32_t requested, uint32_t chosen);
 
 // Throws when --validate was given and the validation layer reported anything.
 void checkValidation(const SessionOptions& options);

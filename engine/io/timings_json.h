@@ -13,6 +13,7 @@ struct TimingReport {
     std::string device;
     uint32_t width = 0, height = 0;
     uint32_t frames = 0, warmup = 0;
+    uint32_t anisotropy = 0;  // material textures' anisotropic filtering level in use (0: off)
     std::vector<vk::PassTiming> passes;
     vk::PassTiming frame;
     float resampledFraction = 0.0f;  // share of the pixels re-traced in the last frame (adaptive re-tracing)

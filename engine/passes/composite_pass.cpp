@@ -21,16 +21,12 @@ CompositePass::CompositePass(const vk::Context& context) : dfg_(context) {
 }
 
 std::vector<ImageUse> CompositePass::uses(FrameTargets& t) {
-    // The indirect images are bound even with GI off (no trace has written them; the shader then skips them):
-    // one pipeline for both modes, and a read-only General layout is valid for unwritten images.
-    return {{&t.direct, vk::ImageAccess::StorageRead},
-            {&t.depth, vk::ImageAccess::Sampled},
-            {&t.normalRoughness, vk::ImageAccess::Sampled},
-            {&t.baseColorMetallic, vk::ImageAccess::Sampled},
-            {&t.emissiveOcclusion, vk::ImageAccess::Sampled},
-            {&t.indirect, vk::ImageAccess::StorageRead},
-            {&t.hdr, vk::ImageAccess::StorageWrite},
-            {&t.ldr, vk::ImageAccess::StorageWrite}};
+    std::vector<ImageUse> uses = {
+        {&t.direct, vk::ImageAccess::StorageRead},        {&t.depth, vk::ImageAccess::Sampled},
+        {&t.normalRoughness, vk::ImageAccess::Sampled},   {&t.baseColorMetallic, vk::ImageAccess::Sampled},
+        {&t.emissiveOcclusion, vk::ImageAccess::Sampled}, {&t.indirect, vk::ImageAccess::StorageRead},
+        {&t.hdr, vk::ImageAccess::StorageWrite},          {&t.ldr, vk::ImageAccess::StorageWrite}};
+    return uses;
 }
 
 void CompositePass::execute(const FrameContext& frame) {

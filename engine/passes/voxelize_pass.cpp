@@ -93,13 +93,13 @@ void VoxelizePass::execute(const FrameContext& frame) {
     VkCommandBuffer cmd = frame.cmd;
     const bool voxelizeStatic = !grid_.staticVoxelized();
     // A voxel cache (--voxel-cache) stands in for voxelizing the static instances: its upload is recorded
-    // here, in the first frame, in this pass's timer scope. Its staging buffer goes once that frame is done
-    // (the renderer waits for every frame before the next is recorded).
-    if (!voxelizeStatic && grid_.hasStaticCache()) grid_.releaseStaticCache();
+    // here, in the first frame, in this pass's timer scope. The renderer frees its staging buffer once that
+    // frame is done.
     const bool fromCache = voxelizeStatic && grid_.hasStaticCache();
     const bool moving = grid_.hasMovingInstances();
-    // A static scene's volumes, once resolved, never change: the scope stays (near zero) but does nothing.
-    if (!voxelizeStatic && !moving && resolved_) return;
+    // A static scene's volumes, once resolved, never change: a frame that rebuilds the grid for a changed
+    // light or a camera cut re-injects, but has nothing to voxelize or resolve.
+    if (!voxelizeStatic && !moving && resolved_ && !frame.settings.voxelizeEveryFrame) return;
     resolved_ = true;
     if (voxelizeStatic || moving) {
         // The last frame's resolve may still read the accumulator being cleared.

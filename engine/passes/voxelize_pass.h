@@ -18,6 +18,7 @@ public:
     const char* name() const override { return "voxelize"; }
     std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
+    bool buildsVoxelGrid() const override { return true; }
 
 private:
     // Dispatches the triangles of every instance whose `moving` flag equals `moving` into `accumulator`.

@@ -48,10 +48,14 @@ struct FrameTargets {
 
     uint32_t width = 0, height = 0;
     uint32_t traceScale = 1;
+    // Whether the indirect-light targets exist: with GI off, indirectLow through resampleCount above are not
+    // allocated (empty handles; readers check this flag), except a 1×1 `indirect` for composite's binding.
+    bool gi = true;
 
     void create(const vk::Context& context, uint32_t width, uint32_t height, uint32_t shadowMapSize,
-                uint32_t traceScale = 1);
+                uint32_t traceScale = 1, bool gi = true);
     // Start of a frame: this frame's outputs and G-buffer become last frame's (no copies, the images swap).
+    // Without GI there is no history: nothing to swap.
     void swapHistory();
 };
 

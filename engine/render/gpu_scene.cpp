@@ -30,7 +30,21 @@ Texture solidTexture(TextureKind kind, uint8_t r, uint8_t g, uint8_t b, uint8_t 
 
 }  // namespace
 
-GpuScene::GpuScene(const vk::Context& context, const Scene& scene) : context_(context), scene_(scene) {
+uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested) {
+    uint32_t level = requested;
+    if (level == kAnisotropyFromDevice)
+        level = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0u : 8u;
+    VkPhysicalDeviceFeatures features;
+    vkGetPhysicalDeviceFeatures(context.physicalDevice(), &features);
+    if (!features.samplerAnisotropy) return 0;
+    // The limit is a float ≥ 16 where the feature exists; keep the largest power of two within it.
+    const float limit = context.properties().limits.maxSamplerAnisotropy;
+    while (level > 1 && float(level) > limit) level /= 2;
+    return level < 2 ? 0 : level;
+}
+
+GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy)
+    : context_(context), scene_(scene), anisotropy_(anisotropy) {
     vertices_ = vk::Buffer::withData(context, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     indices_ = vk::Buffer::withData(context, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),
@@ -76,10 +90,9 @@ VkSampler GpuScene::samplerFor(TextureWrap s, TextureWrap t) {
     info.addressModeV = addressMode(t);
     info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     info.maxLod = VK_LOD_CLAMP_NONE;
-    VkPhysicalDeviceFeatures features;
-    vkGetPhysicalDeviceFeatures(context_.physicalDevice(), &features);
-    info.anisotropyEnable = features.samplerAnisotropy;
-    info.maxAnisotropy = std::min(8.0f, context_.properties().limits.maxSamplerAnisotropy);
+    // chooseAnisotropy has checked the feature and the device's limit.
+    info.anisotropyEnable = anisotropy_ >= 2 ? VK_TRUE : VK_FALSE;
+    info.maxAnisotropy = anisotropy_ >= 2 ? float(anisotropy_) : 1.0f;
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(context_.device(), &info, nullptr, &sampler));
     samplers_[key] = sampler;
@@ -171,8 +184,12 @@ void GpuScene::update(float timeSeconds, bool cut) {
         gpuInstances[i].normalMatrix = glm::transpose(glm::inverse(next[i].world));
         previousWorld_[i] = next[i].world;
     }
+    // Exact comparison: a scene without animation evaluates to the very same matrices every time.
+    bool changed = !hasUpdated_ || next.size() != instances_.size();
+    for (size_t i = 0; !changed && i < next.size(); ++i) changed = next[i].world != instances_[i].world;
     instances_ = std::move(next);
 
+    const std::vector<gpu::GpuLight> previousLights = std::move(lights_);
     lights_.clear();
     for (size_t n = 0; n < scene_.nodes.size(); ++n) {
         if (scene_.nodes[n].light < 0) continue;
@@ -193,6 +210,11 @@ void GpuScene::update(float timeSeconds, bool cut) {
         g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
         lights_.push_back(g);
     }
+    changed = changed || previousLights.size() != lights_.size() ||
+              (!lights_.empty() &&
+               std::memcmp(previousLights.data(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight)) != 0);
+    changed_ = changed;
+    hasUpdated_ = true;
     fitShadow();
     if (!lights_.empty()) std::memcpy(lightBuffer_.mapped(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight));
 }

@@ -6,15 +6,23 @@
 #include <vector>
 
 #include "lib/shared.h"
+#include "render/settings.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
 
 namespace vct {
 
+// The anisotropic filtering level the material sampler gets: `requested` (0, 2, 4, 8 or 16), or for
+// kAnisotropyFromDevice 0 on a CPU device (lavapipe emulates anisotropy with many bilinear taps per sample:
+// DamagedHelmet's gbuffer pass takes seconds instead of milliseconds) and 8 on a GPU; then clamped to the
+// device's maxSamplerAnisotropy, and 0 without the samplerAnisotropy feature.
+uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested);
+
 class GpuScene {
 public:
-    GpuScene(const vk::Context& context, const Scene& scene);
+    // `anisotropy`: the material sampler's level, as chosen by chooseAnisotropy (0: off).
+    GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy);
     ~GpuScene();
     GpuScene(const GpuScene&) = delete;
     GpuScene& operator=(const GpuScene&) = delete;
@@ -29,6 +37,9 @@ public:
     // Writes this frame's instances (world and previous-world matrices) and lights at time t.
     // The first call (or one after a cut) uses the current transforms as the previous ones.
     void update(float timeSeconds, bool cut);
+    // Whether the last update() moved an instance or changed a light against the update before it (the first
+    // update: true). The voxel grid depends on nothing else of the scene.
+    bool changedInLastUpdate() const { return changed_; }
     const std::vector<Instance>& instances() const { return instances_; }
     uint32_t lightCount() const { return uint32_t(lights_.size()); }
     const std::vector<gpu::GpuLight>& lights() const { return lights_; }
@@ -50,6 +61,7 @@ private:
 
     const vk::Context& context_;
     const Scene& scene_;
+    uint32_t anisotropy_ = 0;
     vk::Buffer vertices_, indices_, materials_, instanceBuffer_, lightBuffer_;
     std::vector<vk::Image> textures_;
     std::vector<VkSampler> textureSamplers_;  // parallel to textures_
@@ -62,6 +74,8 @@ private:
     int shadowLight_ = -1;
     glm::mat4 lightViewProj_{1.0f};
     float shadowTexelWorld_ = 0.0f;
+    bool changed_ = true;
+    bool hasUpdated_ = false;
     Aabb bounds_;
     void fitShadow();
 };

@@ -41,6 +41,9 @@ public:
     // The images this pass reads and writes this frame, and how.
     virtual std::vector<ImageUse> uses(FrameTargets& targets) = 0;
     virtual void execute(const FrameContext& frame) = 0;
+    // True for the passes that build the voxel grid (voxelize, inject, mips): what they make depends only on
+    // the scene's geometry and lights, so the runner skips them in frames where neither changed.
+    virtual bool buildsVoxelGrid() const { return false; }
 };
 
 // Dispatch size for a full-image compute pass in VCT_TILE_SIZE tiles.

@@ -21,10 +21,20 @@
 
 namespace vct {
 
+namespace {
+
+// The settings with what depends on the device resolved before anything is created from them.
+RenderSettings resolveForDevice(const vk::Context& context, RenderSettings settings) {
+    settings.anisotropy = chooseAnisotropy(context, settings.anisotropy);
+    return settings;
+}
+
+}  // namespace
+
 Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings)
     : context_(context),
-      settings_(settings),
-      gpuScene_(context, scene),
+      settings_(resolveForDevice(context, settings)),
+      gpuScene_(context, scene, settings_.anisotropy),
       frameUniforms_(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                      vk::MemoryUsage::HostVisible),
       timer_(context) {
@@ -33,7 +43,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         throw UsageError("size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                          " exceeds the device's maximum image dimension " +
                          std::to_string(limits.maxImageDimension2D));
-    targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE, settings.traceScale);
+    targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE, settings.traceScale,
+                    settings.gi);
     createSamplers();
     // The frame, in order (DESIGN §2).
     passes_.push_back(std::make_unique<ShadowPass>(context));
@@ -105,7 +116,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     vkDeviceWaitIdle(context_.device());
     settings_.width = width;
     settings_.height = height;
-    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE, settings_.traceScale);
+    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE, settings_.traceScale, settings_.gi);
     hasPrevious_ = false;
 }
 
@@ -175,7 +186,16 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
     timer_.beginFrame(cmd_);
     FrameContext frame{context_, cmd_, gpuScene_, targets_, frameUniforms_.handle(), settings_, samplers_};
+    // The voxel grid depends only on the scene's geometry and lights, not on the camera: when neither changed
+    // since a frame built it, its passes have nothing to do (no dispatch; timed as 0 ms). A cut rebuilds it
+    // anyway, so that every cut starts from the same state as a first frame.
+    const bool buildVoxelGrid =
+        !voxelGridBuilt_ || input.cut || gpuScene_.changedInLastUpdate() || settings_.voxelizeEveryFrame;
     for (const auto& pass : passes_) {
+        if (pass->buildsVoxelGrid() && !buildVoxelGrid) {
+            timer_.skipScope(pass->name());
+            continue;
+        }
         timer_.beginScope(cmd_, pass->name());
         for (const ImageUse& use : pass->uses(targets_)) use.image->use(cmd_, use.access);
         pass->execute(frame);
@@ -200,6 +220,11 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     VK_CHECK(vkQueueSubmit(context_.queue(), 1, &info, fence_));
     VK_CHECK(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
     timer_.collect(input.recordTimings);
+    if (voxelGrid_) {
+        voxelGridBuilt_ = true;
+        // A voxel cache's staging buffer, uploaded by this frame's voxelize pass, is no longer needed.
+        if (voxelGrid_->staticVoxelized() && voxelGrid_->hasStaticCache()) voxelGrid_->releaseStaticCache();
+    }
 }
 
 namespace {
@@ -269,6 +294,7 @@ std::vector<float> Renderer::readFloatImage(vk::Image& image) {
 }
 
 float Renderer::resampledFraction() const {
+    if (!targets_.gi) return 0.0f;  // nothing traced, nothing re-traced
     const uint32_t count = *static_cast<const uint32_t*>(targets_.resampleCount.mapped());
     return float(count) / float(std::max<uint64_t>(uint64_t(targets_.width) * targets_.height, 1));
 }

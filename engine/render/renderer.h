@@ -97,6 +97,7 @@ private:
     glm::mat4 previousInvViewProj_{1.0f};
     glm::vec4 previousCameraPosition_{0.0f};
     uint32_t frameIndex_ = 0;  // frames rendered: picks the trace offset o_k
+    bool voxelGridBuilt_ = false;  // a frame has built the voxel grid (its contents persist between frames)
     bool hasPrevious_ = false;
 };
 

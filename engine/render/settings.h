@@ -12,6 +12,10 @@
 
 namespace vct {
 
+// RenderSettings::anisotropy before the device is known: chooseAnisotropy (render/gpu_scene.h) picks it.
+// Not 0, which is a valid request (off).
+constexpr uint32_t kAnisotropyFromDevice = ~0u;
+
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -29,6 +33,9 @@ struct RenderSettings {
     uint32_t voxelResolution = 0;  // N for the N³ grid (32..256); 0 = chosen from the scene
     uint32_t traceScale = 4;       // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
     std::string voxelCache;        // OpenVDB file holding the static voxelization (vct voxelize); empty: compute it
+    // Diagnostic: rebuild the voxel grid (voxelize, inject, mips) every frame, even when nothing in the scene
+    // changed; the image must be the same as without (the test of skipping them).
+    bool voxelizeEveryFrame = false;
 
     // ---- spatio-temporal upsampling and adaptive re-tracing (DESIGN §3.3–3.5) ----
     enum class Weights { Bilinear, Normal, Sg };
@@ -50,6 +57,9 @@ struct RenderSettings {
     // Diagnostic: sample every material texture at level 0 (bilinear, no mips, no anisotropy). A render
     // supersampled this way and box-filtered down is the ground truth that texture filtering approximates.
     bool textureLod0 = false;
+    // Anisotropic filtering of material textures: 0 (off), 2, 4, 8 or 16 samples. The Renderer replaces
+    // kAnisotropyFromDevice with chooseAnisotropy's choice: afterwards it holds what the sampler uses.
+    uint32_t anisotropy = kAnisotropyFromDevice;
 };
 
 // Cap A_max on the accumulated history weight (DESIGN §3.5), in units of one fully agreeing spatial

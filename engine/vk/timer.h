@@ -16,7 +16,8 @@ struct PassTiming {
     double medianMs = 0.0;
     double p95Ms = 0.0;
     double minMs = 0.0;
-    size_t samples = 0;
+    size_t samples = 0;  // recorded frames
+    size_t runs = 0;     // recorded frames in which the pass ran (the others were skipped: 0 ms samples)
 };
 
 class GpuTimer {
@@ -30,6 +31,9 @@ public:
     void beginFrame(VkCommandBuffer cmd);
     void beginScope(VkCommandBuffer cmd, const std::string& name);
     void endScope(VkCommandBuffer cmd);
+    // A pass with nothing to do this frame: no timestamps, a 0 ms sample (it cost the frame nothing), and
+    // not counted in PassTiming::runs.
+    void skipScope(const std::string& name);
     // After the frame's fence: reads the timestamps; keeps them as samples when `record` is true.
     void collect(bool record);
 
@@ -44,15 +48,21 @@ private:
     VkQueryPool pool_ = VK_NULL_HANDLE;
     uint32_t maxScopes_;
     uint64_t validMask_;
-    std::vector<std::string> scopeNames_;  // this frame's scopes, in order
+    struct Scope {
+        std::string name;
+        int query = -1;  // index of its pair of timestamps; -1: skipped
+    };
+    std::vector<Scope> scopes_;  // this frame's scopes, in order
+    uint32_t timedScopes_ = 0;   // how many of them have timestamps
     int openScope_ = -1;
     std::vector<std::string> passOrder_;
     std::vector<std::vector<double>> passSamples_;  // parallel to passOrder_
+    std::vector<size_t> passRuns_;                  // parallel to passOrder_
     std::vector<double> frameSamples_;
     std::vector<std::pair<std::string, double>> lastFrame_;
 };
 
-// Median / p95 / min of a list of samples (by value: sorts a copy).
+// Median / p95 / min of a list of samples (by value: sorts a copy); runs = the number of samples.
 PassTiming summarize(const std::string& name, std::vector<double> samples);
 
 }  // namespace vct::vk
