@@ -509,14 +509,26 @@ TEST(UpsampleWeights, BsplineKernelIsAPartitionOfUnityOverThe3x3Nearest) {
     EXPECT_FLOAT_EQ(bsplineKernel(vec2(0.0f)), 0.75f * 0.75f);
 }
 
-TEST(IndirectPack, RoundTripsHalfPrecision) {
-    const vec4 diffuse(0.25f, 3.5f, 0.0009765625f, 8.0f), specular(100.0f, 0.0f, 65504.0f, 0.125f);
+TEST(IndirectPack, RoundTripsBfloat16) {
+    // Exactly representable in bfloat16 (8-bit significand): exact round trips, beyond fp16's range too.
+    const vec4 diffuse(0.25f, 3.5f, 0.0009765625f, 8.0f), specular(65536.0f * 4.0f, 0.0f, 1.5f, 0.125f);
     const uvec4 packed = packIndirect(diffuse, specular);
-    EXPECT_EQ(unpackIndirectDiffuse(packed), diffuse);  // all exactly representable in fp16
+    EXPECT_EQ(unpackIndirectDiffuse(packed), diffuse);
     EXPECT_EQ(unpackIndirectSpecular(packed), specular);
-    const vec4 odd(0.1f, 1.0f / 3.0f, 7.77f, 0.9f);
-    const vec4 back = unpackIndirectDiffuse(packIndirect(odd, vec4(0.0f)));
-    for (int c = 0; c < 4; ++c) EXPECT_NEAR(back[c], odd[c], odd[c] * 1e-3f);
+    // Anything else within 2^-8 relative (half a step of the 8-bit significand), unbiased over many values.
+    Rng rng;
+    double signedError = 0.0;
+    for (int i = 0; i < 10000; ++i) {
+        const float x = std::exp(rng.uniform(-20.0f, 20.0f));
+        const float back = unpackBfloat16x2(packBfloat16x2(x, 0.0f)).x;
+        ASSERT_LE(std::abs(back - x), x * (1.0f / 256.0f)) << x;
+        signedError += (double(back) - x) / x;
+    }
+    EXPECT_LT(std::abs(signedError / 10000.0), 2e-4);
+    // Huge values stay finite (fp16 would overflow at 65504); inf and NaN pass through.
+    EXPECT_TRUE(std::isfinite(unpackBfloat16x2(packBfloat16x2(1e30f, 0.0f)).x));
+    EXPECT_TRUE(std::isinf(unpackBfloat16x2(packBfloat16x2(kInf, 0.0f)).x));
+    EXPECT_TRUE(std::isnan(unpackBfloat16x2(packBfloat16x2(std::numeric_limits<float>::quiet_NaN(), 0.0f)).x));
 }
 
 // --- jitter sequence -----------------------------------------------------------------------------------------------
