@@ -174,6 +174,20 @@ TEST_F(RenderCornell, TimingsJsonFollowsTheSchema) {
     }
     for (const char* required : {"shadow", "gbuffer", "direct", "composite"})
         EXPECT_TRUE(names.count(required)) << "no '" << required << "' pass in " << timings["passes"].dump();
+
+    // The run gave no GI flags: the defaults run the method (issue 8) — a 1/4-resolution trace, upsampled with
+    // SG lobe weights and history, low-weight pixels re-traced — and timings.json says so.
+    for (const char* required : {"voxelize", "inject", "mips", "trace", "upsample", "resample"})
+        EXPECT_TRUE(names.count(required)) << "no '" << required << "' pass in " << timings["passes"].dump();
+    ASSERT_TRUE(timings.contains("settings") && timings["settings"].is_object()) << timings.dump(2);
+    const json& settings = timings["settings"];
+    EXPECT_EQ(settings.value("trace_scale", 0), 4) << settings.dump();
+    EXPECT_EQ(settings.value("weights", ""), "sg") << settings.dump();
+    EXPECT_TRUE(settings.value("temporal", false)) << settings.dump();
+    EXPECT_TRUE(settings.value("adaptive", false)) << settings.dump();
+    EXPECT_TRUE(settings.value("gi", false)) << settings.dump();
+    ASSERT_TRUE(timings.contains("fps") && timings["fps"].is_number()) << timings.dump(2);
+    EXPECT_NEAR(timings["fps"].get<double>(), 1000.0 / frameMedian, 1e-6 * timings["fps"].get<double>());
 }
 
 // ---- informational commands ----

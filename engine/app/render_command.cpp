@@ -104,6 +104,7 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.frames = frames;
         report.warmup = warmup;
         report.anisotropy = renderer.settings().anisotropy;
+        report.settings = renderer.settings();
         report.passes = renderer.timer().passStats();
         report.frame = renderer.timer().frameStats();
         report.resampledFraction = renderer.resampledFraction();

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "io/settings_json.h"
 
 namespace vct {
 
@@ -20,6 +21,8 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                            {"anisotropy", report.anisotropy},
                            {"passes", passes},
                            {"frame_median_ms", report.frame.medianMs},
+                           {"fps", report.frame.medianMs > 0.0 ? 1000.0 / report.frame.medianMs : 0.0},
+                           {"settings", settingsJson(report.settings)},
                            {"resampled_fraction", report.resampledFraction}};
     std::ofstream file(path);
     if (!file) throw Error("cannot write '" + path.string() + "'");
@@ -43,6 +46,10 @@ std::string formatTimingTable(const TimingReport& report) {
     std::snprintf(line, sizeof(line), "%-12s %10.3f %10.3f %10.3f %6zu\n", "frame", report.frame.medianMs,
                   report.frame.p95Ms, report.frame.minMs, report.frame.samples);
     table += line;
+    if (report.frame.medianMs > 0.0) {
+        std::snprintf(line, sizeof(line), "fps          %9.1f (1000 / frame median)\n", 1000.0 / report.frame.medianMs);
+        table += line;
+    }
     std::snprintf(line, sizeof(line), "re-traced    %9.2f%% of the pixels (last frame)\n",
                   100.0 * report.resampledFraction);
     table += line;

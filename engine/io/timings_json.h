@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "render/settings.h"
 #include "vk/timer.h"
 
 namespace vct {
@@ -14,6 +15,7 @@ struct TimingReport {
     uint32_t width = 0, height = 0;
     uint32_t frames = 0, warmup = 0;
     uint32_t anisotropy = 0;  // material textures' anisotropic filtering level in use (0: off)
+    RenderSettings settings;  // what the frames were rendered with (after the renderer's choices)
     std::vector<vk::PassTiming> passes;
     vk::PassTiming frame;
     float resampledFraction = 0.0f;  // share of the pixels re-traced in the last frame (adaptive re-tracing)

@@ -1,0 +1,26 @@
+#include "io/settings_json.h"
+
+namespace vct {
+
+nlohmann::json settingsJson(const RenderSettings& s) {
+    const char* weights = s.weights == RenderSettings::Weights::Bilinear ? "bilinear"
+                          : s.weights == RenderSettings::Weights::Normal ? "normal"
+                                                                          : "sg";
+    return {{"gi", s.gi},
+            {"voxels", s.voxelResolution},
+            {"trace_scale", s.traceScale},
+            {"weights", weights},
+            {"beta", s.beta},
+            {"kappa", s.kappa},
+            {"sigma_n", s.sigmaN},
+            {"gamma", s.gamma},
+            {"temporal", s.temporal},
+            {"adaptive", s.adaptive},
+            {"tau", resampleThreshold(s)},
+            {"toksvig", s.toksvig},
+            {"specular_aa", s.specularAA},
+            {"anisotropy", s.anisotropy},
+            {"exposure", s.exposure}};
+}
+
+}  // namespace vct
