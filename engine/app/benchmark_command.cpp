@@ -1,11 +1,14 @@
-// vct benchmark: speed against error of the upsampling configurations (DESIGN §5), all in one run.
+// vct benchmark: GPU-timed measurements in one run on one device (DESIGN §5), in three modes.
 //
-// One Vulkan device, one scene, one renderer per configuration: the reference (every pixel traced every
-// frame, trace scale 1) and the low-res configurations (bilinear / normal / SG weights, with and without
-// adaptive re-tracing). Frames are interleaved, config after config for each frame time, so every
-// configuration sees the same machine load (what makes ratios between them meaningful on a shared CPU device).
-// After the last frame each configuration's diffuse, specular and final images are compared with the
-// reference's (linear HDR). Writes DIR/benchmark.json and DIR/benchmark.md and prints the table.
+// upsampling (default): speed against error of the upsampling configurations. One scene, one renderer per
+//   configuration: the reference (every pixel traced every frame, trace scale 1) and the low-res
+//   configurations (bilinear / normal / SG weights, with and without adaptive re-tracing). After the last frame
+//   each configuration's diffuse, specular and final images are compared with the reference's (linear HDR).
+//   Writes DIR/benchmark.json and DIR/benchmark.md.
+// scenes: the default configuration on several scenes (app/benchmark_scenes.cpp).
+// scaling: per-pass cost against pixel count and voxel resolution (app/benchmark_scaling.cpp).
+// In every mode the renderers take turns in blocks of frames (app/benchmark_run.h), so all of them see the
+// same machine load, which is what makes ratios between them meaningful on a shared CPU device.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/benchmark_modes.h"
+#include "app/benchmark_run.h"
 #include "app/cli.h"
 #include "app/commands.h"
 #include "app/session.h"
@@ -24,17 +29,11 @@ namespace vct {
 
 namespace {
 
-struct Config {
-    std::string name;
-    RenderSettings settings;
-    std::unique_ptr<Renderer> renderer;
-};
-
 // The configurations of one benchmark: the reference, then each guide without and with adaptive re-tracing.
-std::vector<Config> makeConfigs(const RenderSettings& base, uint32_t scale) {
-    std::vector<Config> configs;
+std::vector<BenchmarkRun> makeConfigs(const Scene& scene, const RenderSettings& base, uint32_t scale) {
+    std::vector<BenchmarkRun> configs;
     auto add = [&](const std::string& name, auto change) {
-        Config config{name, base, nullptr};
+        BenchmarkRun config{name, &scene, base, nullptr, ""};
         change(config.settings);
         configs.push_back(std::move(config));
     };
@@ -57,45 +56,16 @@ std::vector<Config> makeConfigs(const RenderSettings& base, uint32_t scale) {
     return configs;
 }
 
-double passMedian(const Renderer& renderer, const std::string& pass) {
-    for (const vk::PassTiming& timing : renderer.timer().passStats())
-        if (timing.name == pass) return timing.medianMs;
-    return 0.0;
-}
-
 ImageRgba32f readImage(Renderer& renderer, vk::Image& image) {
     return {image.width(), image.height(), renderer.readFloatImage(image)};
 }
 
-}  // namespace
-
-int runBenchmarkCommand(int argc, char** argv, int first) {
-    std::vector<Option> options = {
-        {"scene", "NAME|FILE", "built-in scene name or a .gltf/.glb file", "cornell"},
-        {"size", "WxH", "image size in pixels", "320x180"},
-        {"frames", "N", "frames per configuration (>= warmup + 30)", "64"},
-        {"warmup", "K", "frames left out of the timing statistics", "10"},
-        {"trace-scale", "2|4", "trace scale of the upsampled configurations", "4"},
-        {"out", "DIR", "where benchmark.json and benchmark.md go", "out/benchmark"},
-        {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
-        {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
-        {"voxels", "N", "voxel grid resolution (default from the device)", ""},
-        {"exposure", "X", "linear exposure before tone mapping", "1"}};
-    for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
-    static const CommandSpec spec(
-        "benchmark",
-        "Times and measures the error of the upsampling configurations against trace scale 1, in one run.",
-        options);
-    auto parsed = spec.parse(argc, argv, first);
-    if (!parsed) return 0;
-    const ParsedArgs& args = *parsed;
-    SessionOptions session = sessionOptions(args);
-    const uint32_t frames = args.getUint("frames", 2, 100000);
-    const uint32_t warmup = args.getUint("warmup", 0, frames - 1);
+// The upsampling mode: the reference and the five low-res configurations, errors against the reference.
+int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session, const BenchmarkFrames& timing,
+                           const std::filesystem::path& outDir) {
     const std::string scaleText = args.get("trace-scale");
     if (scaleText != "2" && scaleText != "4") throw UsageError("--trace-scale '" + scaleText + "': expected 2 or 4");
     const uint32_t scale = uint32_t(std::stoul(scaleText));
-    const std::filesystem::path outDir = args.get("out");
 
     nlohmann::json report;
     std::string table;
@@ -103,14 +73,11 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         const Scene scene = loadScene(session.scene);
         vk::Context context(session.context);
         std::printf("device: %s\n", context.deviceName().c_str());
-        std::vector<Config> configs = makeConfigs(session.settings, scale);
-        for (Config& config : configs) config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
+        std::vector<BenchmarkRun> configs = makeConfigs(scene, session.settings, scale);
+        for (BenchmarkRun& config : configs)
+            config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
         printAnisotropy(session.settings.anisotropy, configs.front().renderer->settings().anisotropy);
-
-        for (uint32_t frame = 0; frame < frames; ++frame) {
-            const FrameInput input = fixedStepFrame(scene, frame, warmup);
-            for (Config& config : configs) config.renderer->render(input);
-        }
+        renderInterleaved(configs, timing.frames, timing.warmup, timing.block);
 
         Renderer& reference = *configs.front().renderer;
         const uint32_t w = session.settings.width, h = session.settings.height;
@@ -118,71 +85,123 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         const ImageRgba32f refDiffuse{w, h, refLight.diffuse};
         const ImageRgba32f refSpecular{w, h, refLight.specular};
         const ImageRgba32f refFinal = readImage(reference, reference.targets().hdr);
+        // The indirect light's cost: what tracing fewer pixels is meant to save (trace + upsample + re-trace).
+        auto indirectMs = [](const Renderer& r) {
+            return passMedian(r, "trace") + passMedian(r, "upsample") + passMedian(r, "resample");
+        };
+        const double referenceIndirect = indirectMs(reference);
 
         report = {{"device", context.deviceName()}, {"scene", session.scene}, {"width", w}, {"height", h},
-                  {"frames", frames}, {"warmup", warmup}, {"trace_scale", scale}, {"configs", nlohmann::json::array()}};
-        char line[400];
-        std::snprintf(line, sizeof(line), "| %-20s | %8s | %8s | %8s | %8s | %8s | %10s | %10s | %10s | %8s |\n",
-                      "configuration", "trace", "upsample", "resample", "frame", "re-traced", "MSE diff.",
-                      "MSE spec.", "MSE final", "PSNR fin");
+                  {"frames", timing.frames}, {"warmup", timing.warmup}, {"block", timing.block},
+                  {"trace_scale", scale}, {"configs", nlohmann::json::array()}};
+        char line[512];
+        std::snprintf(line, sizeof(line),
+                      "| %-20s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %10s | %10s | %10s | %8s |\n",
+                      "configuration", "trace", "upsample", "resample", "indirect", "ind/ref", "ups/trc", "frame",
+                      "re-traced", "MSE diff.", "MSE spec.", "MSE final", "PSNR fin");
         table += line;
-        table += "|" + std::string(22, '-') + "|" + std::string(10, '-') + "|" + std::string(10, '-') + "|" +
-                 std::string(10, '-') + "|" + std::string(10, '-') + "|" + std::string(10, '-') + "|" +
-                 std::string(12, '-') + "|" + std::string(12, '-') + "|" + std::string(12, '-') + "|" +
-                 std::string(10, '-') + "|\n";
-        for (Config& config : configs) {
+        table += "|" + std::string(22, '-');
+        for (int column = 0; column < 8; ++column) table += "|" + std::string(10, '-');
+        for (int column = 0; column < 3; ++column) table += "|" + std::string(12, '-');
+        table += "|" + std::string(10, '-') + "|\n";
+        for (BenchmarkRun& config : configs) {
             Renderer& r = *config.renderer;
-            FrameTargets& t = r.targets();
             Renderer::IndirectLight light = r.readIndirect();
             const ImageError diffuse = compareImages(refDiffuse, {w, h, std::move(light.diffuse)});
             const ImageError specular = compareImages(refSpecular, {w, h, std::move(light.specular)});
-            const ImageError final = compareImages(refFinal, readImage(r, t.hdr));
-            nlohmann::json passes = nlohmann::json::object();
-            for (const vk::PassTiming& timing : r.timer().passStats()) passes[timing.name] = timing.medianMs;
-            const double frameMs = r.timer().frameStats().medianMs;
+            const ImageError final = compareImages(refFinal, readImage(r, r.targets().hdr));
             auto errorJson = [](const ImageError& e) {
                 return nlohmann::json{{"mse", e.mse}, {"rel_mse", e.relMse}, {"psnr", e.psnr}, {"max", e.maxAbs},
                                       {"non_finite", e.nonFinite}};
             };
-            report["configs"].push_back({{"name", config.name},
-                                         {"trace_scale", config.settings.traceScale},
-                                         {"anisotropy", r.settings().anisotropy},
-                                         {"pass_median_ms", passes},
-                                         {"frame_median_ms", frameMs},
-                                         {"resampled_fraction", r.resampledFraction()},
-                                         {"error", {{"diffuse", errorJson(diffuse)},
-                                                    {"specular", errorJson(specular)},
-                                                    {"final", errorJson(final)}}}});
+            const double indirect = indirectMs(r), trace = passMedian(r, "trace");
+            const double indirectRatio = referenceIndirect > 0.0 ? indirect / referenceIndirect : 0.0;
+            const double upsampleRatio = trace > 0.0 ? passMedian(r, "upsample") / trace : 0.0;
+            nlohmann::json entry = timingJson(r);
+            entry["name"] = config.name;
+            entry["trace_scale"] = config.settings.traceScale;
+            entry["anisotropy"] = r.settings().anisotropy;
+            entry["indirect_ms"] = indirect;
+            entry["indirect_over_reference"] = indirectRatio;
+            entry["upsample_over_trace"] = upsampleRatio;
+            entry["resampled_fraction"] = r.resampledFraction();
+            entry["error"] = {{"diffuse", errorJson(diffuse)}, {"specular", errorJson(specular)},
+                              {"final", errorJson(final)}};
+            report["configs"].push_back(entry);
             std::snprintf(line, sizeof(line),
-                          "| %-20s | %8.3f | %8.3f | %8.3f | %8.3f | %7.2f%% | %10.4g | %10.4g | %10.4g | %8.2f |\n",
-                          config.name.c_str(), passMedian(r, "trace"), passMedian(r, "upsample"),
-                          passMedian(r, "resample"), frameMs, 100.0 * r.resampledFraction(), diffuse.mse,
-                          specular.mse, final.mse, final.psnr);
+                          "| %-20s | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %7.2f%% | %10.4g | "
+                          "%10.4g | %10.4g | %8.2f |\n",
+                          config.name.c_str(), trace, passMedian(r, "upsample"), passMedian(r, "resample"), indirect,
+                          indirectRatio, upsampleRatio, r.timer().frameStats().medianMs,
+                          100.0 * r.resampledFraction(), diffuse.mse, specular.mse, final.mse, final.psnr);
             table += line;
         }
-        // The acceptance ratio: sg's upsample against normal's, both without re-tracing, same run.
+        // The acceptance ratios (issue 8), same run: sg's upsample against normal's (both without re-tracing),
+        // and for the default configuration (sg + adaptive) upsample against trace, indirect against reference.
         const double normalUpsample = passMedian(*configs[2].renderer, "upsample");
         const double sgUpsample = passMedian(*configs[3].renderer, "upsample");
+        const nlohmann::json& method = report["configs"].back();
         report["upsample_ratio_sg_over_normal"] = normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0;
-        std::snprintf(line, sizeof(line), "\nupsample sg / normal (medians, same run): %.3f\n",
+        report["upsample_over_trace"] = method["upsample_over_trace"];
+        report["indirect_over_reference"] = method["indirect_over_reference"];
+        std::snprintf(line, sizeof(line),
+                      "\nsg+adaptive: upsample / trace %.3f, indirect / reference indirect %.3f; upsample sg / "
+                      "normal %.3f (medians, same run)\n",
+                      method["upsample_over_trace"].get<double>(), method["indirect_over_reference"].get<double>(),
                       normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0);
         table += line;
     }
     checkValidation(session);
-
-    std::error_code error;
-    std::filesystem::create_directories(outDir, error);
-    if (error) throw Error("cannot create output directory '" + outDir.string() + "': " + error.message());
-    std::ofstream(outDir / "benchmark.json") << report.dump(2) << "\n";
-    std::ofstream md(outDir / "benchmark.md");
-    md << "Device: " << report["device"].get<std::string>() << ", scene " << session.scene << ", "
-       << session.settings.width << "x" << session.settings.height << ", " << frames << " frames (medians after "
-       << warmup << " warm-up frames, ms), trace scale " << scale
-       << "; errors of the last frame against the reference, linear HDR.\n\n"
-       << table;
-    std::printf("%s", table.c_str());
-    std::printf("wrote %s, %s\n", (outDir / "benchmark.json").c_str(), (outDir / "benchmark.md").c_str());
+    char caption[300];
+    std::snprintf(caption, sizeof(caption),
+                  "Device: %s, scene %s, %ux%u, %u frames in blocks of %u (medians after %u warm-up frames, ms), "
+                  "trace scale %u; indirect = trace + upsample + resample; errors of the last frame against the "
+                  "reference, linear HDR.",
+                  report["device"].get<std::string>().c_str(), session.scene.c_str(), session.settings.width,
+                  session.settings.height, timing.frames, timing.block, timing.warmup, scale);
+    writeBenchmarkReport(outDir, "benchmark", report, caption, table);
     return 0;
+}
+
+}  // namespace
+
+int runBenchmarkCommand(int argc, char** argv, int first) {
+    std::vector<Option> options = {
+        {"mode", "upsampling|scenes|scaling",
+         "upsampling: configurations against trace scale 1; scenes: the default configuration on several "
+         "scenes; scaling: cost against pixel count and voxel resolution",
+         "upsampling"},
+        {"scene", "NAME|FILE", "built-in scene name or a .gltf/.glb file (upsampling, scaling)", "cornell"},
+        {"scenes", "A,B,...", "scenes mode: built-in names and glTF files (default: cornell, plane and every "
+                               "glTF under --scenes-dir)", ""},
+        {"scenes-dir", "DIR", "scenes mode: where to look for glTF models (DIR/*/glTF/*.gltf, DIR/*/*.glb)",
+         "../shared/scenes"},
+        {"size", "WxH", "image size in pixels (scaling: the size of the voxel-resolution sweep)", "320x180"},
+        {"frames", "N", "frames per configuration (>= warmup + 30 for claims)", "64"},
+        {"warmup", "K", "frames left out of the timing statistics", "10"},
+        {"block", "B", "frames a configuration renders in a row before the next takes its turn", "8"},
+        {"trace-scale", "2|4", "upsampling: trace scale of the upsampled configurations", "4"},
+        {"out", "DIR", "where the report (.json, .md) goes", "out/benchmark"},
+        {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
+        {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
+        {"voxels", "N", "voxel grid resolution (default from the device)", ""},
+        {"exposure", "X", "linear exposure before tone mapping", "1"}};
+    for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
+    static const CommandSpec spec("benchmark", "GPU-timed measurements in one run: see --mode.", options);
+    auto parsed = spec.parse(argc, argv, first);
+    if (!parsed) return 0;
+    const ParsedArgs& args = *parsed;
+    const SessionOptions session = sessionOptions(args);
+    BenchmarkFrames timing;
+    timing.frames = args.getUint("frames", 2, 100000);
+    timing.warmup = args.getUint("warmup", 0, timing.frames - 1);
+    timing.block = args.getUint("block", 1, 100000);
+    const std::filesystem::path outDir = args.get("out");
+    const std::string mode = args.get("mode");
+    if (mode == "upsampling") return runUpsamplingBenchmark(args, session, timing, outDir);
+    if (mode == "scenes") return runScenesBenchmark(args, session, timing, outDir);
+    if (mode == "scaling") return runScalingBenchmark(args, session, timing, outDir);
+    throw UsageError("--mode '" + mode + "': expected upsampling, scenes or scaling");
 }
 
 }  // namespace vct

@@ -48,7 +48,7 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
             throw UsageError("--trace-scale '" + value + "': expected 1, 2 or 4");
         options.settings.traceScale = uint32_t(std::stoul(value));
     }
-    options.settings.voxelizeEveryFrame = args.has("voxelize-every-frame");
+    options.settings.recomputeEveryFrame = args.has("recompute-every-frame");
     applyUpsampleOptions(args, options.settings);
     // 0 (flag absent) lets the renderer choose from the device (render/voxel_grid.h); N must be a power of two.
     if (args.has("voxels")) {
@@ -135,8 +135,10 @@ std::vector<Option> giOptions() {
              ""},
             {"voxel-cache", "FILE.vdb",
              "load the static voxelization from FILE (written by vct voxelize) instead of computing it", ""},
-            {"voxelize-every-frame", "",
-             "diagnostic: rebuild the voxel grid every frame, also when nothing moved and no light changed", ""}};
+            {"recompute-every-frame", "",
+             "diagnostic: run every pass every frame, also the shadow map, voxel grid, G-buffer and direct light "
+             "when nothing moved, no light changed and the camera stood still",
+             ""}};
 }
 
 Session::Session(const SessionOptions& options) {

@@ -11,6 +11,7 @@ class GBufferPass : public Pass {
 public:
     explicit GBufferPass(const vk::Context& context);
     const char* name() const override { return "gbuffer"; }
+    PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 

@@ -10,6 +10,7 @@ class ShadowPass : public Pass {
 public:
     explicit ShadowPass(const vk::Context& context);
     const char* name() const override { return "shadow"; }
+    PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
     std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 

@@ -14,7 +14,7 @@ public:
     const char* name() const override { return "mips"; }
     std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
-    bool buildsVoxelGrid() const override { return true; }
+    PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
 private:
     VoxelGrid& grid_;

@@ -99,7 +99,7 @@ void VoxelizePass::execute(const FrameContext& frame) {
     const bool moving = grid_.hasMovingInstances();
     // A static scene's volumes, once resolved, never change: a frame that rebuilds the grid for a changed
     // light or a camera cut re-injects, but has nothing to voxelize or resolve.
-    if (!voxelizeStatic && !moving && resolved_ && !frame.settings.voxelizeEveryFrame) return;
+    if (!voxelizeStatic && !moving && resolved_ && !frame.settings.recomputeEveryFrame) return;
     resolved_ = true;
     if (voxelizeStatic || moving) {
         // The last frame's resolve may still read the accumulator being cleared.

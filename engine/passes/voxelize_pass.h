@@ -18,7 +18,7 @@ public:
     const char* name() const override { return "voxelize"; }
     std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
-    bool buildsVoxelGrid() const override { return true; }
+    PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
 private:
     // Dispatches the triangles of every instance whose `moving` flag equals `moving` into `accumulator`.

@@ -68,9 +68,10 @@ void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, ui
 
 namespace vct {
 
-void FrameTargets::swapHistory() {
+void FrameTargets::swapHistory(bool gbuffer) {
     if (!gi) return;
     std::swap(indirect, indirectHistory);
+    if (!gbuffer) return;
     std::swap(depth, prevDepth);
     std::swap(normalRoughness, prevNormalRoughness);
 }

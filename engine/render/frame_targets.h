@@ -56,7 +56,8 @@ struct FrameTargets {
                 uint32_t traceScale = 1, bool gi = true);
     // Start of a frame: this frame's outputs and G-buffer become last frame's (no copies, the images swap).
     // Without GI there is no history: nothing to swap.
-    void swapHistory();
+    // gbuffer false: the G-buffer is kept (a frame that reuses it, render/renderer.cpp), both copies hold it.
+    void swapHistory(bool gbuffer = true);
 };
 
 }  // namespace vct

@@ -34,6 +34,12 @@ struct ImageUse {
     vk::ImageAccess access;
 };
 
+enum class PassReuse {
+    Never,                 // runs every frame (the jittered trace and what follows it)
+    WhileSceneUnchanged,   // depends only on the scene's geometry and lights (shadow map, voxel grid)
+    WhileViewUnchanged,    // depends on those and the camera (G-buffer, direct light)
+};
+
 class Pass {
 public:
     virtual ~Pass() = default;
@@ -41,9 +47,9 @@ public:
     // The images this pass reads and writes this frame, and how.
     virtual std::vector<ImageUse> uses(FrameTargets& targets) = 0;
     virtual void execute(const FrameContext& frame) = 0;
-    // True for the passes that build the voxel grid (voxelize, inject, mips): what they make depends only on
-    // the scene's geometry and lights, so the runner skips them in frames where neither changed.
-    virtual bool buildsVoxelGrid() const { return false; }
+    // What the pass's output depends on, so that the runner can skip it in frames where that did not change
+    // (its output persists from the frame that made it): "a pass that has nothing to do" does not run.
+    virtual PassReuse reuse() const { return PassReuse::Never; }
 };
 
 // Dispatch size for a full-image compute pass in VCT_TILE_SIZE tiles.

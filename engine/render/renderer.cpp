@@ -116,6 +116,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     vkDeviceWaitIdle(context_.device());
     settings_.width = width;
     settings_.height = height;
+    sceneBuilt_ = false;  // the shadow map is recreated with the targets
     targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE, settings_.traceScale, settings_.gi);
     hasPrevious_ = false;
 }
@@ -175,8 +176,21 @@ FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup) {
 
 void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     gpuScene_.update(input.timeSeconds, input.cut || !hasPrevious_);
+    // What this frame must recompute (a pass that has nothing to do does not run; its output persists):
+    // - the shadow map and voxel grid depend only on the scene's geometry and lights: rebuilt when they
+    //   changed, on a cut (every cut starts from the state of a first frame) and after a resize;
+    // - the G-buffer and direct light also depend on the camera: reused once scene and camera have been the
+    //   same for two frames, so that both G-buffer copies (current and previous, for the history) hold them.
+    const bool sceneChanged = !sceneBuilt_ || input.cut || !hasPrevious_ || gpuScene_.changedInLastUpdate() ||
+                              settings_.recomputeEveryFrame;
+    const float aspect = float(settings_.width) / float(settings_.height);
+    const glm::mat4 viewProj = input.camera.projection(aspect) * input.camera.view;
+    const bool viewChanged = sceneChanged || viewProj != previousViewProj_ ||
+                             glm::vec4(input.camera.position(), 1.0f) != previousCameraPosition_;
+    stableFrames_ = viewChanged ? 0 : stableFrames_ + 1;
+    const bool reuseView = stableFrames_ >= 2;
     // Last frame's indirect light and G-buffer become the history (before the uniforms say whether it is valid).
-    if (hasPrevious_) targets_.swapHistory();
+    if (hasPrevious_) targets_.swapHistory(!reuseView);
     writeFrameUniforms(input);
     ++frameIndex_;
 
@@ -186,14 +200,11 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
     timer_.beginFrame(cmd_);
     FrameContext frame{context_, cmd_, gpuScene_, targets_, frameUniforms_.handle(), settings_, samplers_};
-    // The voxel grid depends only on the scene's geometry and lights, not on the camera: when neither changed
-    // since a frame built it, its passes have nothing to do (no dispatch; timed as 0 ms). A cut rebuilds it
-    // anyway, so that every cut starts from the same state as a first frame.
-    const bool buildVoxelGrid =
-        !voxelGridBuilt_ || input.cut || gpuScene_.changedInLastUpdate() || settings_.voxelizeEveryFrame;
     for (const auto& pass : passes_) {
-        if (pass->buildsVoxelGrid() && !buildVoxelGrid) {
-            timer_.skipScope(pass->name());
+        const PassReuse reuse = pass->reuse();
+        if ((reuse == PassReuse::WhileSceneUnchanged && !sceneChanged) ||
+            (reuse == PassReuse::WhileViewUnchanged && reuseView)) {
+            timer_.skipScope(pass->name());  // timed as 0 ms, with a run count (vk/timer.h)
             continue;
         }
         timer_.beginScope(cmd_, pass->name());
@@ -220,8 +231,8 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     VK_CHECK(vkQueueSubmit(context_.queue(), 1, &info, fence_));
     VK_CHECK(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
     timer_.collect(input.recordTimings);
+    sceneBuilt_ = true;
     if (voxelGrid_) {
-        voxelGridBuilt_ = true;
         // A voxel cache's staging buffer, uploaded by this frame's voxelize pass, is no longer needed.
         if (voxelGrid_->staticVoxelized() && voxelGrid_->hasStaticCache()) voxelGrid_->releaseStaticCache();
     }

@@ -97,7 +97,10 @@ private:
     glm::mat4 previousInvViewProj_{1.0f};
     glm::vec4 previousCameraPosition_{0.0f};
     uint32_t frameIndex_ = 0;  // frames rendered: picks the trace offset o_k
-    bool voxelGridBuilt_ = false;  // a frame has built the voxel grid (its contents persist between frames)
+    // A frame has built what depends only on the scene (shadow map, voxel grid); reset by resize().
+    bool sceneBuilt_ = false;
+    // Consecutive frames whose scene and camera equal the previous frame's (0: this frame changed something).
+    uint32_t stableFrames_ = 0;
     bool hasPrevious_ = false;
 };
 

@@ -33,9 +33,10 @@ struct RenderSettings {
     uint32_t voxelResolution = 0;  // N for the N³ grid (32..256); 0 = chosen from the scene
     uint32_t traceScale = 4;       // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
     std::string voxelCache;        // OpenVDB file holding the static voxelization (vct voxelize); empty: compute it
-    // Diagnostic: rebuild the voxel grid (voxelize, inject, mips) every frame, even when nothing in the scene
-    // changed; the image must be the same as without (the test of skipping them).
-    bool voxelizeEveryFrame = false;
+    // Diagnostic: run every pass every frame, also those whose output did not change (shadow, voxel grid,
+    // G-buffer and direct light of a static scene and camera); the image must be the same as without (the test
+    // of skipping them).
+    bool recomputeEveryFrame = false;
 
     // ---- spatio-temporal upsampling and adaptive re-tracing (DESIGN §3.3–3.5) ----
     enum class Weights { Bilinear, Normal, Sg };

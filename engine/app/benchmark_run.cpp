@@ -1,0 +1,69 @@
+#include "app/benchmark_run.h"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "core/error.h"
+#include "io/settings_json.h"
+
+namespace vct {
+
+void renderInterleaved(std::vector<BenchmarkRun>& runs, uint32_t frames, uint32_t warmup, uint32_t block) {
+    block = std::max(block, 1u);
+    size_t live = 0;
+    for (const BenchmarkRun& run : runs) live += run.renderer ? 1 : 0;
+    const uint64_t total = uint64_t(frames) * live;
+    uint64_t done = 0;
+    const auto start = std::chrono::steady_clock::now();
+    bool progress = false;
+    for (uint32_t first = 0; first < frames; first += block) {
+        const uint32_t last = std::min(frames, first + block);
+        for (BenchmarkRun& run : runs) {
+            if (!run.renderer) continue;
+            for (uint32_t frame = first; frame < last; ++frame, ++done)
+                run.renderer->render(fixedStepFrame(*run.scene, frame, warmup));
+            // A progress line once the run has taken a few seconds (stderr: the tables stay clean on stdout).
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (seconds > 3.0) {
+                std::fprintf(stderr, "\rbenchmark: %3d%% of %llu frames, %.0f s", int(100 * done / total),
+                             static_cast<unsigned long long>(total), seconds);
+                progress = true;
+            }
+        }
+    }
+    if (progress) std::fprintf(stderr, "\n");
+}
+
+double passMedian(const Renderer& renderer, const std::string& pass) {
+    for (const vk::PassTiming& timing : renderer.timer().passStats())
+        if (timing.name == pass) return timing.medianMs;
+    return 0.0;
+}
+
+nlohmann::json timingJson(const Renderer& renderer) {
+    nlohmann::json passes = nlohmann::json::object();
+    for (const vk::PassTiming& timing : renderer.timer().passStats()) passes[timing.name] = timing.medianMs;
+    const double frameMs = renderer.timer().frameStats().medianMs;
+    return {{"pass_median_ms", passes},
+            {"frame_median_ms", frameMs},
+            {"fps", frameMs > 0.0 ? 1000.0 / frameMs : 0.0},
+            {"settings", settingsJson(renderer.settings())}};
+}
+
+void writeBenchmarkReport(const std::filesystem::path& dir, const std::string& name, const nlohmann::json& report,
+                          const std::string& caption, const std::string& table) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) throw Error("cannot create output directory '" + dir.string() + "': " + error.message());
+    const std::filesystem::path json = dir / (name + ".json"), md = dir / (name + ".md");
+    std::ofstream(json) << report.dump(2) << "\n";
+    std::ofstream(md) << caption << "\n\n" << table;
+    if (!std::filesystem::is_regular_file(json) || !std::filesystem::is_regular_file(md))
+        throw Error("cannot write '" + json.string() + "' or '" + md.string() + "'");
+    std::printf("%s", table.c_str());
+    std::printf("wrote %s, %s\n", json.c_str(), md.c_str());
+}
+
+}  // namespace vct
