@@ -1,0 +1,13 @@
+# Sourced by the benchmark scripts: the repository root, the runtime dir, Debian's python3 (matplotlib comes
+# from python3-matplotlib, for plots only), and the device slug that names result files.
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
+PYTHON=/usr/bin/python3
+[ -x "$PYTHON" ] || PYTHON=python3
+mkdir -p benchmarks/results
+
+# device_slug REPORT.json: the report's device name as a file-name prefix ("llvmpipe-LLVM-15-0-6-256-bits").
+device_slug() {
+    "$PYTHON" -c 'import json,sys; print(json.load(open(sys.argv[1]))["device"])' "$1" |
+        tr -cs 'A-Za-z0-9' '-' | sed 's/-*$//'
+}
