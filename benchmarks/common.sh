@@ -11,3 +11,11 @@ device_slug() {
     "$PYTHON" -c 'import json,sys; print(json.load(open(sys.argv[1]))["device"])' "$1" |
         tr -cs 'A-Za-z0-9' '-' | sed 's/-*$//'
 }
+
+# flags_suffix ARGS...: extra flags as a file-name suffix ("--trace-scale 2" → "-trace-scale-2"; none → ""), so that
+# configurations measured side by side do not overwrite each other's results.
+flags_suffix() {
+    local flags
+    flags="$(echo "$*" | tr -cs 'A-Za-z0-9' '-' | sed 's/^-*//; s/-*$//')"
+    echo "${flags:+-$flags}"
+}

@@ -9,8 +9,6 @@ shift || true
 out="$(mktemp -d)"
 build/vct render --scene cornell --size "$size" --frames 50 --warmup 10 --out "$out" "$@"
 slug="$(device_slug "$out/timings.json")"
-# Extra flags become part of the name, so configurations measured side by side do not overwrite each other.
-flags="$(echo "$*" | tr -cs 'A-Za-z0-9' '-' | sed 's/^-*//; s/-*$//')"
-name="${slug}-${size}${flags:+-$flags}"
+name="${slug}-${size}$(flags_suffix "$@")"
 cp "$out/timings.json" "benchmarks/results/${name}.json"
 echo "recorded benchmarks/results/${name}.json"

@@ -10,7 +10,6 @@ shift || true
 out="$(mktemp -d)"
 build/vct benchmark --mode scenes --size "$size" --frames 48 --warmup 8 --out "$out" "$@"
 slug="$(device_slug "$out/scenes.json")"
-flags="$(echo "$*" | tr -cs 'A-Za-z0-9' '-' | sed 's/^-*//; s/-*$//')"
-name="${slug}-${size}-scenes${flags:+-$flags}"
+name="${slug}-${size}-scenes$(flags_suffix "$@")"
 for ext in json md; do cp "$out/scenes.$ext" "benchmarks/results/${name}.$ext"; done
 echo "recorded benchmarks/results/${name}.{json,md}"

@@ -185,7 +185,9 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
         {"voxels", "N", "voxel grid resolution (default from the device)", ""},
-        {"exposure", "X", "linear exposure before tone mapping", "1"}};
+        {"exposure", "X", "linear exposure before tone mapping", "1"},
+        {"recompute-every-frame", "",
+         "diagnostic: run every pass every frame, also what a static scene and camera would reuse", ""}};
     for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
     static const CommandSpec spec("benchmark", "GPU-timed measurements in one run: see --mode.", options);
     auto parsed = spec.parse(argc, argv, first);

@@ -52,6 +52,35 @@ nlohmann::json timingJson(const Renderer& renderer) {
             {"settings", settingsJson(renderer.settings())}};
 }
 
+std::string passTableHeader(const std::string& leadingColumns, const std::vector<std::string>& passes) {
+    std::string header = "|", rule = "|";
+    std::string column;
+    for (char c : leadingColumns + "|") {
+        if (c != '|') {
+            column += c;
+            continue;
+        }
+        header += " " + column + " |";
+        rule += "---|";
+        column.clear();
+    }
+    for (const std::string& pass : passes) {
+        header += " " + pass + " |";
+        rule += "---|";
+    }
+    return header + "\n" + rule + "\n";
+}
+
+std::string passTableCells(const Renderer& renderer, const std::vector<std::string>& passes) {
+    std::string cells;
+    char cell[32];
+    for (const std::string& pass : passes) {
+        std::snprintf(cell, sizeof(cell), " %.2f |", passMedian(renderer, pass));
+        cells += cell;
+    }
+    return cells + "\n";
+}
+
 void writeBenchmarkReport(const std::filesystem::path& dir, const std::string& name, const nlohmann::json& report,
                           const std::string& caption, const std::string& table) {
     std::error_code error;

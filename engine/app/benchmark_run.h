@@ -36,6 +36,11 @@ double passMedian(const Renderer& renderer, const std::string& pass);
 // "fps"}, plus the settings it ran with.
 nlohmann::json timingJson(const Renderer& renderer);
 
+// Markdown table pieces shared by the modes: the header (leading columns, then one per pass) and a row's pass
+// cells (" 1.23 |" per pass, then a newline).
+std::string passTableHeader(const std::string& leadingColumns, const std::vector<std::string>& passes);
+std::string passTableCells(const Renderer& renderer, const std::vector<std::string>& passes);
+
 // Writes DIR/NAME.json and DIR/NAME.md (a caption line and a Markdown table) and prints the table.
 void writeBenchmarkReport(const std::filesystem::path& dir, const std::string& name, const nlohmann::json& report,
                           const std::string& caption, const std::string& table);

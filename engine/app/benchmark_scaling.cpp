@@ -54,11 +54,7 @@ int runScalingBenchmark(const ParsedArgs& args, const SessionOptions& session, c
         for (const BenchmarkRun& run : runs)
             if (run.renderer && passes.empty())
                 for (const vk::PassTiming& pass : run.renderer->timer().passStats()) passes.push_back(pass.name);
-        table = "| sweep | size | voxels | frame ms |";
-        for (const std::string& pass : passes) table += " " + pass + " |";
-        table += "\n|---|---|---|---|";
-        for (size_t i = 0; i < passes.size(); ++i) table += "---|";
-        table += "\n";
+        table = passTableHeader("sweep|size|voxels|frame ms", passes);
         for (size_t i = 0; i < runs.size(); ++i) {
             const BenchmarkRun& run = runs[i];
             nlohmann::json entry = run.renderer ? timingJson(*run.renderer) : nlohmann::json::object();
@@ -79,12 +75,7 @@ int runScalingBenchmark(const ParsedArgs& args, const SessionOptions& session, c
                 continue;
             }
             std::snprintf(cells, sizeof(cells), " %.2f |", run.renderer->timer().frameStats().medianMs);
-            table += cells;
-            for (const std::string& pass : passes) {
-                std::snprintf(cells, sizeof(cells), " %.2f |", passMedian(*run.renderer, pass));
-                table += cells;
-            }
-            table += "\n";
+            table += cells + passTableCells(*run.renderer, passes);
         }
     }
     checkValidation(session);

@@ -96,11 +96,7 @@ int runScenesBenchmark(const ParsedArgs& args, const SessionOptions& session, co
         // Columns: the passes of the first run that has them all (GI on: every pass).
         std::vector<std::string> passes;
         for (const vk::PassTiming& pass : runs.front().renderer->timer().passStats()) passes.push_back(pass.name);
-        table = "| scene | frame ms | fps | ÷ cornell |";
-        for (const std::string& pass : passes) table += " " + pass + " |";
-        table += "\n|---|---|---|---|";
-        for (size_t i = 0; i < passes.size(); ++i) table += "---|";
-        table += "\n";
+        table = passTableHeader("scene|frame ms|fps|÷ cornell", passes);
         for (size_t i = 0; i < runs.size(); ++i) {
             const Renderer& r = *runs[i].renderer;
             const double frameMs = r.timer().frameStats().medianMs;
@@ -113,12 +109,7 @@ int runScenesBenchmark(const ParsedArgs& args, const SessionOptions& session, co
             char cells[128];
             std::snprintf(cells, sizeof(cells), "| %s | %.2f | %.1f | %.2f |", runs[i].name.c_str(), frameMs,
                           frameMs > 0.0 ? 1000.0 / frameMs : 0.0, ratio);
-            table += cells;
-            for (const std::string& pass : passes) {
-                std::snprintf(cells, sizeof(cells), " %.2f |", passMedian(r, pass));
-                table += cells;
-            }
-            table += "\n";
+            table += cells + passTableCells(r, passes);
         }
     }
     checkValidation(session);

@@ -12,9 +12,8 @@ const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
                                                                                      : VCT_WEIGHTS_SG;
     // Indexed by constant_id (VCT_UPSAMPLE_SPEC_*).
     const std::vector<uint32_t> constants = {settings.traceScale, weights, settings.temporal ? 1u : 0u,
-                                             settings.adaptive ? 1u : 0u, settings.writeWeightSum ? 1u : 0u};
-    const uint32_t key =
-        constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17 | constants[4] << 18;
+                                             settings.writeWeightSum ? 1u : 0u};
+    const uint32_t key = constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17;
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
     constexpr VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;

@@ -142,8 +142,7 @@ struct DrawPushConstants {
 #define VCT_UPSAMPLE_SPEC_SCALE 0     // trace scale s (2 or 4)
 #define VCT_UPSAMPLE_SPEC_WEIGHTS 1   // VCT_WEIGHTS_*
 #define VCT_UPSAMPLE_SPEC_TEMPORAL 2  // bool: reproject the history
-#define VCT_UPSAMPLE_SPEC_ADAPTIVE 3  // bool: list low-weight pixels for the resample pass
-#define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 4  // bool: write the sum-of-weights image (views, --aux)
+#define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 3  // bool: write the sum-of-weights image (views, --aux)
 
 // resample (full-res cone tracing of the listed pixels; same trace bindings 1–3)
 #define VCT_RESAMPLE_BINDING_LIST 6
