@@ -143,7 +143,7 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     }
 
     // ---- temporal: last frame's output where this surface was, validated against last frame's G-buffer ----
-    // The nearest texel to the reprojected position, weighted by the guide against last frame's G-buffer there
+    // With a guide: the nearest texel to the reprojected position, weighted by the guide against last frame's G-buffer there
     // × the weight it had accumulated (alpha). Nearest, not bilinear: indirect light is smooth, so the
     // sub-texel shift costs little, while bilinear taps blur the history a little more with every moving frame,
     // and 4 validated taps cost more than the 1/16-res trace on lavapipe (measured: 3.4 ms of 22 ms at
@@ -151,7 +151,32 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     vec3 historyDiffuse = vec3(0.0), historySpecular = vec3(0.0);
     vec2 historyWeight = vec2(0.0);
     // Valid history (not the first frame, not a cut): uniform per frame, set by the renderer.
-    if (TEMPORAL && frame.upsampleMode.y > 0.5) {
+    // Without a guide (bilinear) nothing can validate a tap, so the history is resampled bilinearly over the 4
+    // texels around the reprojected position (outside the image or on the background: weight 0), the
+    // guide-free baseline as a whole.
+    if (WEIGHTS == VCT_WEIGHTS_BILINEAR && TEMPORAL && frame.upsampleMode.y > 0.5) {
+        const vec2 prevCoord = (uv - texelFetch(motionTexture, pixel, 0).xy) * frame.imageSize.xy - 0.5;
+        const ivec2 prevBase = ivec2(floor(prevCoord));
+        const vec2 fraction = prevCoord - vec2(prevBase);
+        [[unroll]] for (int tap = 0; tap < 4; ++tap) {
+            const ivec2 offset = ivec2(tap & 1, tap >> 1);
+            const ivec2 texel = prevBase + offset;
+            const bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size));
+            const ivec2 at = clamp(texel, ivec2(0), size - 1);
+            const vec2 bilinear = mix(vec2(1.0) - fraction, fraction, vec2(offset));
+            const float share = inside && !isBackground(texelFetch(prevDepthTexture, at, 0).r)
+                                    ? bilinear.x * bilinear.y
+                                    : 0.0;
+            const uvec4 historyTexel = texelFetch(indirectHistory, at, 0);
+            const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
+            const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
+            const vec2 w = share * vec2(diffuseTexel.a, specularTexel.a);
+            historyDiffuse += w.x * diffuseTexel.rgb;
+            historySpecular += w.y * specularTexel.rgb;
+            historyWeight += w;
+        }
+    }
+    if (WEIGHTS != VCT_WEIGHTS_BILINEAR && TEMPORAL && frame.upsampleMode.y > 0.5) {
         const vec2 prevUv = uv - texelFetch(motionTexture, pixel, 0).xy;
         const ivec2 texel = ivec2(floor(prevUv * frame.imageSize.xy));
         const bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size));
