@@ -92,18 +92,13 @@ std::string text(float value) {
     return buffer;
 }
 std::string onOffText(bool value) { return value ? "on" : "off"; }
-std::string weightsText(RenderSettings::Weights weights) {
-    return weights == RenderSettings::Weights::Bilinear ? "bilinear"
-           : weights == RenderSettings::Weights::Normal ? "normal"
-                                                        : "sg";
-}
 
 }  // namespace
 
 std::vector<Option> upsampleOptions() {
     const RenderSettings defaults;
     return {{"weights", "bilinear|normal|sg", "upsampling guide: none, depth x normal, depth x SG lobe (DESIGN 3.4)",
-             weightsText(defaults.weights)},
+             weightsName(defaults.weights)},
             {"beta", "B", "SG lobe weight exponent", text(defaults.beta)},
             {"kappa", "K", "SG smoothing kernel sharpness (bounds every lobe's sharpness)", text(defaults.kappa)},
             {"sigma-n", "S", "normal weight width sigma_n (--weights normal)", text(defaults.sigmaN)},

@@ -3,13 +3,10 @@
 namespace vct {
 
 nlohmann::json settingsJson(const RenderSettings& s) {
-    const char* weights = s.weights == RenderSettings::Weights::Bilinear ? "bilinear"
-                          : s.weights == RenderSettings::Weights::Normal ? "normal"
-                                                                          : "sg";
     return {{"gi", s.gi},
             {"voxels", s.voxelResolution},
             {"trace_scale", s.traceScale},
-            {"weights", weights},
+            {"weights", weightsName(s.weights)},
             {"beta", s.beta},
             {"kappa", s.kappa},
             {"sigma_n", s.sigmaN},

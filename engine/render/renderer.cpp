@@ -149,11 +149,9 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     u.prevCameraPosition = history ? previousCameraPosition_ : u.cameraPosition;
     u.upsampleParams = glm::vec4(settings_.beta, settings_.kappa, settings_.sigmaN * settings_.sigmaN,
                                  settings_.gamma);
-    const float weights = settings_.weights == RenderSettings::Weights::Bilinear ? VCT_WEIGHTS_BILINEAR
-                          : settings_.weights == RenderSettings::Weights::Normal ? VCT_WEIGHTS_NORMAL
-                                                                                   : VCT_WEIGHTS_SG;
     const bool adaptive = settings_.adaptive && settings_.traceScale > 1;
-    u.upsampleMode = glm::vec4(weights, history ? 1.0f : 0.0f, adaptive ? resampleThreshold(settings_) : 0.0f,
+    // x unused: the weights are upsample's specialization constant (passes/upsample_pass.cpp).
+    u.upsampleMode = glm::vec4(0.0f, history ? 1.0f : 0.0f, adaptive ? resampleThreshold(settings_) : 0.0f,
                                kHistoryWeightCap);
     const glm::ivec2 jitter = glsl::jitterOffset(frameIndex_, int(settings_.traceScale));
     u.traceJitter = glm::ivec4(jitter, int(frameIndex_), 0);

@@ -63,6 +63,13 @@ struct RenderSettings {
     uint32_t anisotropy = kAnisotropyFromDevice;
 };
 
+// The weights' name on the command line and in the JSON reports.
+inline const char* weightsName(RenderSettings::Weights weights) {
+    return weights == RenderSettings::Weights::Bilinear ? "bilinear"
+           : weights == RenderSettings::Weights::Normal ? "normal"
+                                                        : "sg";
+}
+
 // Cap A_max on the accumulated history weight (DESIGN §3.5), in units of one fully agreeing spatial
 // neighbourhood (the spatial kernel sums to 1): the history never outweighs this many frames of new samples,
 // so it follows changing light within a few frames.
