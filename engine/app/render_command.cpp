@@ -2,6 +2,7 @@
 #include <bit>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -12,6 +13,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/timings_json.h"
+#include "scene/camera_path.h"
 
 namespace vct {
 
@@ -25,6 +27,7 @@ std::vector<Option> renderOptions() {
          {"out", "DIR", "output directory (created if missing)", "out"},
          {"exposure", "X", "linear exposure before tone mapping", "1"},
          {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
+         {"camera-path", "FILE.json", "play this keyframed camera path (scenes/*.camera.json) instead of the scene camera", ""},
          {"camera-cut", "K", "from frame K on, the camera jumps to another view (a camera cut: no history)", ""},
          {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
          {"aux", "", "also write every buffer as EXR: direct, normal, roughness, albedo, depth (and indirect)", ""},
@@ -63,6 +66,8 @@ int runRenderCommand(int argc, char** argv, int first) {
     const uint32_t warmup = args.has("warmup") ? args.getUint("warmup", 0, frames - 1) : std::min(10u, frames / 4);
     const std::filesystem::path outDir = args.get("out");
     const AuxView view = parseAuxView(args.get("view"));
+    const std::optional<CameraPath> cameraPath =
+        args.has("camera-path") ? std::optional<CameraPath>(loadCameraPath(args.get("camera-path"))) : std::nullopt;
     const uint32_t cutFrame = args.has("camera-cut") ? args.getUint("camera-cut", 1, frames - 1) : frames;
     // --voxel-mip M: 0 .. mipCount − 1 of the grid (log2(N) + 1 mips), checked before any frame is rendered.
     if (args.has("voxel-mip") && view != AuxView::Voxels) throw UsageError("--voxel-mip: only with --view voxels");
@@ -87,7 +92,7 @@ int runRenderCommand(int argc, char** argv, int first) {
         Renderer& renderer = session.renderer();
         const uint32_t mip = view == AuxView::Voxels ? voxelMip(renderer.voxelGrid()->mipCount()) : 0;
         for (uint32_t frame = 0; frame < frames; ++frame) {
-            FrameInput input = fixedStepFrame(session.scene(), frame, warmup);
+            FrameInput input = fixedStepFrame(session.scene(), frame, warmup, cameraPath ? &*cameraPath : nullptr);
             if (frame == cutFrame) input.cut = true;
             if (frame >= cutFrame) input.camera = cutCamera(input.camera);
             renderer.render(input);

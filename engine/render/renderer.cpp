@@ -16,6 +16,7 @@
 #include "passes/voxel_mips_pass.h"
 #include "passes/voxel_view_pass.h"
 #include "passes/voxelize_pass.h"
+#include "scene/camera_path.h"
 #include "render/shader_math.h"
 #include "vk/check.h"
 
@@ -163,10 +164,11 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     hasPrevious_ = true;
 }
 
-FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup) {
+FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup, const CameraPath* path) {
     FrameInput input;
     input.timeSeconds = float(index) / 60.0f;
     input.camera = sceneCamera(scene, input.timeSeconds);
+    if (path) input.camera = path->evaluate(input.timeSeconds, input.camera);
     input.cut = index == 0;
     input.recordTimings = index >= warmup;
     return input;

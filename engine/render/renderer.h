@@ -24,9 +24,12 @@ struct FrameInput {
     bool recordTimings = false;  // keep this frame's pass timings in the statistics (after warm-up)
 };
 
-// Frame `index` of a headless run at a fixed 1/60 s step from t = 0, seen from the scene's camera: a cut on the
-// first frame (no history), timed from frame `warmup` on.
-FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup);
+struct CameraPath;
+
+// Frame `index` of a headless run at a fixed 1/60 s step from t = 0, seen from the scene's camera (or from
+// `path` at the same time, with the scene camera's lens where the path sets none): a cut on the first frame
+// (no history), timed from frame `warmup` on.
+FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup, const CameraPath* path = nullptr);
 
 // Optional extra work after the passes (the window's blit to the swapchain) and its synchronisation.
 struct FrameSubmit {
