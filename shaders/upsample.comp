@@ -127,8 +127,11 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     const vec3 hereSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.specularSharpness) : vec3(0.0);
 
     // ---- spatial: the cell's low-res samples, each at its own jittered full-res position ----
+    // Two sums of the same weights: spatialWeight (the sum of weights W_s of DESIGN §3.5, for τ and the weights
+    // view) and the accumulation weights, in which a sample traced at this very pixel counts 1/f(0) (it is the
+    // reference value there: one) and an interpolated one EXACT_SHARE (lib/upsample_weights.glsl) of its weight.
     vec3 spatialDiffuse = vec3(0.0), spatialSpecular = vec3(0.0);
-    vec2 spatialWeight = vec2(0.0);
+    vec2 spatialWeight = vec2(0.0), accumulationWeight = vec2(0.0);
     [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {
         const Sample j = samples[k];
         // Kernel × validity: 0 outside the image and on the background.
@@ -137,9 +140,14 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         const vec2 w = f * (exp(planeLogWeightFrom(herePlane, j.p) +
                                 lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness)) +
                             FALLBACK_SHARE);
-        spatialDiffuse += w.x * j.diffuse;
-        spatialSpecular += w.y * j.specular;
+        const float share = WEIGHTS == VCT_WEIGHTS_BILINEAR ? 1.0
+                            : all(equal(j.at, vec2(pixel)))  ? 1.0 / BSPLINE_CENTRE
+                                                             : EXACT_SHARE;
+        const vec2 a = share * w;
+        spatialDiffuse += a.x * j.diffuse;
+        spatialSpecular += a.y * j.specular;
         spatialWeight += w;
+        accumulationWeight += a;
     }
 
     // ---- temporal: last frame's output where this surface was, validated against last frame's G-buffer ----
@@ -202,17 +210,18 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
 
     const float gamma = frame.upsampleParams.w;
     const vec2 weightSum = spatialWeight + gamma * historyWeight;
+    const vec2 accumulated = accumulationWeight + gamma * historyWeight;
     // A sum below the floor has no valid sample and no history behind it (its numerator is as small): black.
-    const float minSum = 1e-20;
-    const vec3 diffuse = (spatialDiffuse + gamma * historyDiffuse) / max(weightSum.x, minSum);
-    const vec3 specular = (spatialSpecular + gamma * historySpecular) / max(weightSum.y, minSum);
+    const float minSum = 1e-30;
+    const vec3 diffuse = (spatialDiffuse + gamma * historyDiffuse) / max(accumulated.x, minSum);
+    const vec3 specular = (spatialSpecular + gamma * historySpecular) / max(accumulated.y, minSum);
     const float maxWeight = frame.upsampleMode.w;
     // Nothing to light on the background: no indirect light, never re-traced.
     // τ is 0 without adaptive re-tracing (nothing is listed). A uniform, not a specialization constant: the
     // variant without the append measured 25 % slower on lavapipe (LLVM then unrolled the 16-pixel loop).
     const bool resample = !background && min(weightSum.x, weightSum.y) < frame.upsampleMode.z;
-    const vec4 diffuseOut = background ? vec4(0.0) : vec4(diffuse, min(weightSum.x, maxWeight));
-    const vec4 specularOut = background ? vec4(0.0) : vec4(specular, min(weightSum.y, maxWeight));
+    const vec4 diffuseOut = background ? vec4(0.0) : vec4(diffuse, min(accumulated.x, maxWeight));
+    const vec4 specularOut = background ? vec4(0.0) : vec4(specular, min(accumulated.y, maxWeight));
     const vec4 weightOut = background ? vec4(0.0) : vec4(weightSum, resample ? 1.0 : 0.0, 0.0);
     imageStore(indirectImage, pixel, packIndirect(diffuseOut, specularOut));
     if (WEIGHT_SUM) imageStore(weightSumImage, pixel, weightOut);

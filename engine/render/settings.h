@@ -44,7 +44,7 @@ struct RenderSettings {
     float beta = 20.0f;             // SG lobe weight exponent β
     float kappa = 100.0f;           // SG smoothing kernel sharpness κ
     float sigmaN = 0.1f;            // normal weight σ_n (σ_n² = 0.01)
-    float gamma = 0.9f;             // temporal history decay γ
+    float gamma = 0.8f;             // temporal history decay γ
     bool temporal = true;           // reproject and accumulate last frame's result
     float tau = 0.0f;               // re-trace pixels whose sum of weights is below τ (0: the default for s)
     bool adaptive = true;           // adaptive re-tracing of low-weight pixels at full resolution

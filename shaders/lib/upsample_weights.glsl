@@ -144,6 +144,18 @@ VCT_INLINE float bsplineKernel(vec2 offsetLowTexels) {
     return t.x * t.y;
 }
 
+// The quadratic B-spline's value at its centre (per axis 3/4): the kernel weight of a sample traced at the
+// pixel itself.
+const float BSPLINE_CENTRE = 0.5625f;
+
+// Share of an interpolated sample's weight in the accumulated history, against a sample traced at the pixel
+// itself (share 1). The spatial neighbourhood is a blur (the B-spline spans ±1.5 low-res texels): if its
+// samples counted as much as exact ones, the history would converge to the blurred trace, not the traced
+// pixels, however many frames the jitter covers. Counted this little, they fill a pixel until its own sample
+// arrives (normalised: alone they still give a full estimate) and then step aside. The sum of weights that τ
+// tests is unchanged by it (upsample.comp keeps both sums).
+const float EXACT_SHARE = 1.0f / 64.0f;
+
 // Low-res sample offsets o_k (DESIGN §3.5): frame k traces low-res pixel (x, y) at full-res pixel
 // s·(x, y) + o_k. The sequence visits all s×s offsets every s² frames in an order that spreads consecutive
 // offsets apart (the 2×2 and 4×4 Bayer matrices' ranks), so a partial history already covers the block evenly.
