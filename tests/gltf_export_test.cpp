@@ -556,6 +556,11 @@ TEST_P(RenderExported, SameFinalExrAsTheBuiltinScene) {
     ASSERT_EQ(builtin.height, 36u);
     ASSERT_EQ(loaded.width, builtin.width);
     ASSERT_EQ(loaded.height, builtin.height);
+    float brightest = 0.0f;
+    for (size_t i = 0; i < builtin.pixels.size(); i += 4)
+        brightest = std::max(
+            brightest, test::luminance(builtin.pixels[i], builtin.pixels[i + 1], builtin.pixels[i + 2]));
+    EXPECT_GT(brightest, 0.05f) << "the built-in scene rendered black";
     size_t differing = 0;
     for (size_t i = 0; i < builtin.pixels.size(); ++i)
         differing += std::memcmp(&builtin.pixels[i], &loaded.pixels[i], sizeof(float)) != 0;
