@@ -1,29 +1,29 @@
 // Scene → glTF 2.0 binary. The model is built with tinygltf's structures and serialised by its writer; this
 // file only decides what goes where. Round trip through loadGltf():
 //  - Numbers: every float goes into the BIN chunk as float32, or into the JSON as a double that tinygltf
-//  prints
-//    with 17 significant digits, so the loader reads back the very same float. Vertex attributes, indices,
-//    node TRS (rotations: see rotationTheLoaderKeeps) and matrices, material factors, lights, cameras and
-//    animation keys come back bit for bit.
+//    prints with 17 significant digits, so the loader reads back the very same float. Vertex attributes,
+//    indices, node TRS (rotations: see rotationTheLoaderKeeps) and matrices, material factors, lights,
+//    cameras and animation keys come back bit for bit.
 //  - Textures: Scene textures are RGBA8 (the loader already turns 16-bit images into 8 bits; there are no
-//  float
-//    textures), so level 0 is stored losslessly as an 8-bit PNG (RGB when every alpha is 255, else RGBA).
-//    Mips are not stored: the loader rebuilds them with the same buildMipChain() the procedural textures use.
-//    Images go into the BIN chunk (bufferView + mimeType): tinygltf 2.7's own image writer would embed them
-//    as base64 data URIs in the JSON chunk, a third larger.
+//    float textures), so level 0 is stored losslessly as an 8-bit PNG (RGB when every alpha is 255, else
+//    RGBA). Mips are not stored: the loader rebuilds them with the same buildMipChain() the procedural
+//    textures use. Images go into the BIN chunk (bufferView + mimeType): tinygltf 2.7's own image writer
+//    would embed them as base64 data URIs in the JSON chunk, a third larger.
 //  - Emission above 1 is written as emissiveFactor / 2^k with KHR_materials_emissive_strength 2^k (exact).
 // What glTF cannot hold, and the loader therefore gives back differently (none of it occurs in the built-in
 // scenes): a texture's kind is implied by the material slot that uses it (a texture no material uses is
-// dropped; one used both as colour and as data comes back twice); a primitive shared by several meshes comes
-// back once per mesh; a non-spot light's cone angles are not written; normalScale and occlusionStrength exist
-// only with their texture; an animation's duration is its last key time; an animation without channels is
-// dropped; Scene::notes are not written.
+// dropped; one used both as colour and as data comes back twice), and textures come back in the order the
+// materials first use them; empty mesh, material and node names come back as "mesh 3" etc.; a primitive
+// shared by several meshes comes back once per mesh; a non-spot light's cone angles are not written;
+// normalScale and occlusionStrength exist only with their texture; an animation's duration is its last key
+// time; an animation without channels is dropped; Scene::notes are not written.
 #include "scene/gltf_writer.h"
 
 #include <stb/stb_image_write.h>  // implementation in Debian's libstb
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
