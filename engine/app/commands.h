@@ -10,5 +10,6 @@ int runScenesCommand(int argc, char** argv, int first);
 int runVoxelizeCommand(int argc, char** argv, int first);
 int runCompareCommand(int argc, char** argv, int first);
 int runBenchmarkCommand(int argc, char** argv, int first);
+int runExportSceneCommand(int argc, char** argv, int first);
 
 }  // namespace vct

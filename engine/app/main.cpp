@@ -18,7 +18,8 @@ const char* kUsage =
     "  scenes   list the built-in scenes\n"
     "  voxelize voxelize the scene at t = 0 into OpenVDB grids (a cache for --voxel-cache)\n"
     "  benchmark  per-pass timings and error of the upsampling configurations, in one run\n"
-    "  compare  error metrics of an EXR image against a reference\n\n"
+    "  compare  error metrics of an EXR image against a reference\n"
+    "  export-scene  write a scene (built-in or loaded) as glTF 2.0 binary (.glb)\n\n"
     "Run 'vct COMMAND --help' for a command's options.\n";
 
 // Messages are one line whatever their source (tinygltf, the driver, ...).
@@ -45,6 +46,7 @@ int dispatch(int argc, char** argv) {
     if (command == "voxelize") return vct::runVoxelizeCommand(argc, argv, 2);
     if (command == "compare") return vct::runCompareCommand(argc, argv, 2);
     if (command == "benchmark") return vct::runBenchmarkCommand(argc, argv, 2);
+    if (command == "export-scene") return vct::runExportSceneCommand(argc, argv, 2);
     throw vct::UsageError("unknown command '" + command + "' (see vct --help)");
 }
 
