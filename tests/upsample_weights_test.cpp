@@ -16,6 +16,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "render/settings.h"
 #include "render/shader_math.h"
 
 namespace {
@@ -575,3 +576,9 @@ TEST(UpsampleWeights, JitterOffsetVisitsEveryOffsetOncePerCycle) {
 }
 
 }  // namespace
+
+// The renderer's history cap and weights view count pixel-own samples with the weight the shaders give them.
+TEST(UpsampleWeights, ExactSampleWeightIsTheShadersOne) {
+    EXPECT_EQ(vct::kExactSampleWeight, EXACT_SAMPLE_WEIGHT);
+    EXPECT_EQ(vct::kHistoryWeightCap, 8.0f * EXACT_SAMPLE_WEIGHT);
+}

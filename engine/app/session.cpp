@@ -77,6 +77,7 @@ void applyUpsampleOptions(const ParsedArgs& args, RenderSettings& settings) {
     if (args.has("beta")) settings.beta = args.getFloat("beta", 0.01f, 1000.0f);
     if (args.has("kappa")) settings.kappa = args.getFloat("kappa", 0.01f, 1e6f);
     if (args.has("sigma-n")) settings.sigmaN = args.getFloat("sigma-n", 1e-3f, 10.0f);
+    if (args.has("diffuse-sharpness")) settings.diffuseSharpness = args.getFloat("diffuse-sharpness", 1e-3f, 1e4f);
     if (args.has("gamma")) settings.gamma = args.getFloat("gamma", 0.0f, 1.0f);
     if (args.has("tau")) settings.tau = args.getFloat("tau", 1e-6f, 1000.0f);
     settings.temporal = onOff(args, "temporal", settings.temporal);
@@ -102,6 +103,7 @@ std::vector<Option> upsampleOptions() {
             {"beta", "B", "SG lobe weight exponent", text(defaults.beta)},
             {"kappa", "K", "SG smoothing kernel sharpness (bounds every lobe's sharpness)", text(defaults.kappa)},
             {"sigma-n", "S", "normal weight width sigma_n (--weights normal)", text(defaults.sigmaN)},
+            {"diffuse-sharpness", "L", "sg diffuse lobe sharpness lambda_d (--weights sg)", text(defaults.diffuseSharpness)},
             {"gamma", "G", "temporal history decay per frame (0..1)", text(defaults.gamma)},
             {"temporal", "on|off", "reproject and accumulate last frame's indirect light", onOffText(defaults.temporal)},
             {"tau", "T", "re-trace pixels whose sum of upsampling weights is below T", text(resampleThreshold(defaults))},

@@ -46,8 +46,9 @@ ImageError compareImages(const ImageRgba32f& reference, const ImageRgba32f& imag
     error.mse = count ? sum / double(count) : 0.0;
     error.relMse = count ? relSum / double(count) : 0.0;
     if (peakValue > 0.0) peak = peakValue;
-    error.psnr = error.mse > 0.0 ? 10.0 * std::log10(std::max(peak, 1e-12) * std::max(peak, 1e-12) / error.mse)
-                                 : std::numeric_limits<double>::infinity();
+    error.psnr = error.mse > 0.0
+                     ? 10.0 * std::log10(std::max(peak, 1e-12) * std::max(peak, 1e-12) / error.mse)
+                     : std::numeric_limits<double>::infinity();
     return error;
 }
 
@@ -73,9 +74,11 @@ ImageRgba8 errorHeatMap(const ImageRgba32f& reference, const ImageRgba32f& image
     ImageRgba8 map{reference.width, reference.height, std::vector<uint8_t>(reference.pixels.size())};
     for (size_t i = 0; i + 3 < map.pixels.size(); i += 4) {
         double sum = 0.0;
-        for (size_t c = 0; c < 3; ++c) sum += std::abs(double(image.pixels[i + c]) - double(reference.pixels[i + c]));
+        for (size_t c = 0; c < 3; ++c)
+            sum += std::abs(double(image.pixels[i + c]) - double(reference.pixels[i + c]));
         // Non-finite differences show as full scale, never as 0.
-        const double t = std::isfinite(sum) ? std::clamp(sum / 3.0 / std::max(fullScale, 1e-30), 0.0, 1.0) : 1.0;
+        const double t =
+            std::isfinite(sum) ? std::clamp(sum / 3.0 / std::max(fullScale, 1e-30), 0.0, 1.0) : 1.0;
         // Black → red → yellow → white, each a third of the scale.
         const double rgb[3] = {std::clamp(3.0 * t, 0.0, 1.0), std::clamp(3.0 * t - 1.0, 0.0, 1.0),
                                std::clamp(3.0 * t - 2.0, 0.0, 1.0)};
@@ -87,8 +90,8 @@ ImageRgba8 errorHeatMap(const ImageRgba32f& reference, const ImageRgba32f& image
 
 std::string formatImageError(const ImageError& e) {
     char line[200];
-    std::snprintf(line, sizeof(line), "mse %.6g  rel_mse %.6g  psnr %.2f dB  max %.4g%s", e.mse, e.relMse, e.psnr,
-                  e.maxAbs, e.nonFinite ? "  NON-FINITE VALUES" : "");
+    std::snprintf(line, sizeof(line), "mse %.6g  rel_mse %.6g  psnr %.2f dB  max %.4g%s", e.mse, e.relMse,
+                  e.psnr, e.maxAbs, e.nonFinite ? "  NON-FINITE VALUES" : "");
     return line;
 }
 

@@ -10,6 +10,7 @@ nlohmann::json settingsJson(const RenderSettings& s) {
             {"beta", s.beta},
             {"kappa", s.kappa},
             {"sigma_n", s.sigmaN},
+            {"diffuse_sharpness", s.diffuseSharpness},
             {"gamma", s.gamma},
             {"temporal", s.temporal},
             {"adaptive", s.adaptive},

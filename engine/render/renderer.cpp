@@ -152,7 +152,7 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
                                  settings_.gamma);
     const bool adaptive = settings_.adaptive && settings_.traceScale > 1;
     // x unused: the weights are upsample's specialization constant (passes/upsample_pass.cpp).
-    u.upsampleMode = glm::vec4(0.0f, history ? 1.0f : 0.0f, adaptive ? resampleThreshold(settings_) : 0.0f,
+    u.upsampleMode = glm::vec4(settings_.diffuseSharpness, history ? 1.0f : 0.0f, adaptive ? resampleThreshold(settings_) : 0.0f,
                                kHistoryWeightCap);
     const glm::ivec2 jitter = glsl::jitterOffset(frameIndex_, int(settings_.traceScale));
     u.traceJitter = glm::ivec4(jitter, int(frameIndex_), 0);

@@ -44,6 +44,7 @@ struct RenderSettings {
     float beta = 20.0f;             // SG lobe weight exponent β
     float kappa = 100.0f;           // SG smoothing kernel sharpness κ
     float sigmaN = 0.1f;            // normal weight σ_n (σ_n² = 0.01)
+    float diffuseSharpness = 2.0f;  // sg diffuse lobe sharpness λ_d (SG fit of the cosine lobe; the Fig. 6 study)
     float gamma = 0.8f;             // temporal history decay γ
     bool temporal = true;           // reproject and accumulate last frame's result
     float tau = 0.0f;               // re-trace pixels whose sum of weights is below τ (0: the default for s)
@@ -70,11 +71,16 @@ inline const char* weightsName(RenderSettings::Weights weights) {
                                                         : "sg";
 }
 
-// Cap A_max on the accumulated history weight (DESIGN §3.5), in units of one fully agreeing spatial
-// neighbourhood (the spatial kernel sums to 1): the history never outweighs this many frames of new samples,
-// so it follows changing light within a few frames.
-constexpr float kHistoryWeightCap = 8.0f;
-// Default τ: re-trace where the weights kept less than this share of one full neighbourhood, history included.
+// Weight of a sample traced at the pixel itself in the accumulated history, in units of one fully agreeing
+// spatial neighbourhood (the spatial kernel sums to 1): glsl::EXACT_SAMPLE_WEIGHT (lib/upsample_weights.glsl says
+// why 64; renderer.cpp checks that the two agree).
+constexpr float kExactSampleWeight = 64.0f;
+// Cap A_max on the accumulated history weight (DESIGN §3.5): 8 pixel-own samples, so that the history never
+// outweighs that many frames of new samples and follows changing light. With γ = 0.8 and one own sample every
+// s² frames the sum stays below ~1.25 of them, so the cap binds only at scale 1.
+constexpr float kHistoryWeightCap = 8.0f * kExactSampleWeight;
+// Default τ: re-trace where the weights kept less than this share of one full neighbourhood, the history counted
+// in pixel-own samples (a neighbourhood's worth each).
 constexpr float kDefaultResampleThreshold = 0.25f;
 
 inline float resampleThreshold(const RenderSettings& settings) {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fstream>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
@@ -28,7 +27,8 @@ glm::vec3 finiteVec3(const json& value, const std::string& what) {
 }
 
 // Uniform Catmull-Rom between p1 and p2 at s in [0, 1].
-glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3, float s) {
+glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3,
+                     float s) {
     const float s2 = s * s, s3 = s2 * s;
     return 0.5f * (2.0f * p1 + (p2 - p0) * s + (2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3) * s2 +
                    (3.0f * p1 - p0 - 3.0f * p2 + p3) * s3);
@@ -37,13 +37,16 @@ glm::vec3 catmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& 
 // A view matrix looking from `eye` at `target`; an up vector that is not parallel to the view direction.
 glm::mat4 lookAtView(const glm::vec3& eye, const glm::vec3& target) {
     const glm::vec3 forward = glm::normalize(target - eye);
-    const glm::vec3 up = std::fabs(forward.y) > 0.999f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+    const glm::vec3 up =
+        std::fabs(forward.y) > 0.999f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
     return glm::lookAt(eye, target, up);
 }
 
 }  // namespace
 
-float CameraPath::duration() const { return keys.empty() ? 0.0f : keys.back().time - keys.front().time; }
+float CameraPath::duration() const {
+    return keys.empty() ? 0.0f : keys.back().time - keys.front().time;
+}
 
 CameraView CameraPath::evaluate(float timeSeconds, const CameraView& lens) const {
     CameraView view = lens;
@@ -53,7 +56,8 @@ CameraView CameraPath::evaluate(float timeSeconds, const CameraView& lens) const
     if (keys.empty()) return view;
     float t = timeSeconds;
     const float span = duration();
-    if (loop && span > 0.0f) t = keys.front().time + std::fmod(std::fmod(t - keys.front().time, span) + span, span);
+    if (loop && span > 0.0f)
+        t = keys.front().time + std::fmod(std::fmod(t - keys.front().time, span) + span, span);
     if (t <= keys.front().time || keys.size() == 1) {
         view.view = lookAtView(keys.front().position, keys.front().target);
         return view;
@@ -103,25 +107,29 @@ CameraPath loadCameraPath(const std::filesystem::path& file) {
         }
         if (root.contains("yfov")) {
             path.yfov = finiteNumber(root["yfov"], "\"yfov\"");
-            if (!(*path.yfov > 1e-3f && *path.yfov < 3.1f)) throw Error("\"yfov\" is not in (0.001, 3.1) radians");
+            if (!(*path.yfov > 1e-3f && *path.yfov < 3.1f))
+                throw Error("\"yfov\" is not in (0.001, 3.1) radians");
         }
         if (root.contains("znear")) path.znear = finiteNumber(root["znear"], "\"znear\"");
         if (root.contains("zfar")) path.zfar = finiteNumber(root["zfar"], "\"zfar\"");
         if (path.znear && !(*path.znear > 0.0f)) throw Error("\"znear\" is not positive");
-        if (path.zfar && !(*path.zfar > path.znear.value_or(0.0f))) throw Error("\"zfar\" is not beyond znear");
+        if (path.zfar && !(*path.zfar > path.znear.value_or(0.0f)))
+            throw Error("\"zfar\" is not beyond znear");
         if (!root.contains("keys") || !root["keys"].is_array() || root["keys"].empty())
             throw Error("\"keys\" is missing or empty");
         if (root["keys"].size() > 100000) throw Error("more than 100000 keys");
         for (size_t k = 0; k < root["keys"].size(); ++k) {
             const json& key = root["keys"][k];
             const std::string where = "key " + std::to_string(k) + ": ";
-            if (!key.is_object() || !key.contains("time") || !key.contains("position") || !key.contains("target"))
+            if (!key.is_object() || !key.contains("time") || !key.contains("position") ||
+                !key.contains("target"))
                 throw Error(where + "needs \"time\", \"position\" and \"target\"");
             CameraKey parsed;
             parsed.time = finiteNumber(key["time"], where + "\"time\"");
             parsed.position = finiteVec3(key["position"], where + "\"position\"");
             parsed.target = finiteVec3(key["target"], where + "\"target\"");
-            if (glm::length(parsed.target - parsed.position) < 1e-6f) throw Error(where + "target equals position");
+            if (glm::length(parsed.target - parsed.position) < 1e-6f)
+                throw Error(where + "target equals position");
             if (!path.keys.empty() && !(parsed.time > path.keys.back().time))
                 throw Error(where + "time does not increase");
             path.keys.push_back(parsed);

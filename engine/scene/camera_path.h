@@ -12,11 +12,10 @@
 #pragma once
 
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "render/camera.h"
 

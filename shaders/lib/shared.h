@@ -38,7 +38,7 @@ struct FrameUniforms {
     mat4 prevInvViewProj;  // last frame's inverse view-projection (history positions from the previous depth)
     vec4 prevCameraPosition;  // xyz last frame's camera position (history view vectors)
     vec4 upsampleParams;   // x: β, y: κ, z: σ_n², w: γ (history decay)
-    vec4 upsampleMode;     // x: unused (weights: a specialization constant), y: 1 when the history is valid (temporal on, no cut),
+    vec4 upsampleMode;     // x: λ_d, the sg diffuse lobe sharpness, y: 1 when the history is valid (temporal on, no cut),
                            // z: τ (re-trace below this sum of weights; 0 = no adaptive), w: A_max
     ivec4 traceJitter;     // xy: this frame's low-res sample offset o_k in full-res pixels, z: frame index
 };

@@ -148,13 +148,15 @@ VCT_INLINE float bsplineKernel(vec2 offsetLowTexels) {
 // pixel itself.
 const float BSPLINE_CENTRE = 0.5625f;
 
-// Share of an interpolated sample's weight in the accumulated history, against a sample traced at the pixel
-// itself (share 1). The spatial neighbourhood is a blur (the B-spline spans ±1.5 low-res texels): if its
-// samples counted as much as exact ones, the history would converge to the blurred trace, not the traced
-// pixels, however many frames the jitter covers. Counted this little, they fill a pixel until its own sample
-// arrives (normalised: alone they still give a full estimate) and then step aside. The sum of weights that τ
-// tests is unchanged by it (upsample.comp keeps both sums).
-const float EXACT_SHARE = 1.0f / 64.0f;
+// Weight of a sample traced at the pixel itself in the accumulated history, in units of one interpolated
+// neighbourhood (the spatial kernel sums to 1). The neighbourhood is a blur (the B-spline spans ±1.5 low-res
+// texels): if its samples counted as much as the pixel's own, the history would converge to the blurred trace,
+// not to the traced pixels, however many frames the jitter covers. Counted this much less, they fill a pixel
+// until its own sample arrives (alone they still give a full, normalised estimate) and then mostly step aside,
+// while still bringing this frame's light where a moving object changed it (cornell's cube: 64 measured best
+// at γ 0.8 against 16, 32, 256 and 4096; benchmarks/README.md). The sum of weights that τ tests counts every
+// sample by its plain kernel weight (upsample.comp keeps both sums); the re-trace writes this weight too.
+const float EXACT_SAMPLE_WEIGHT = 64.0f;
 
 // Low-res sample offsets o_k (DESIGN §3.5): frame k traces low-res pixel (x, y) at full-res pixel
 // s·(x, y) + o_k. The sequence visits all s×s offsets every s² frames in an order that spreads consecutive
