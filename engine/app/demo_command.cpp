@@ -357,13 +357,8 @@ void DemoApp::recordKey(const CameraView& camera) {
     if (!recording_) return;
     // A key every 0.25 s: Catmull-Rom through them replays the flight smoothly.
     const float t = float(now - recordStart_);
-    if (recorded_.keys.empty() || t - recorded_.keys.back().time >= 0.25f) {
-        const CameraKey key = cameraKey(camera, t);
-        // Keys at the same place and view add nothing and a still camera is kept by the spline anyway.
-        if (recorded_.keys.empty() || key.position != recorded_.keys.back().position ||
-            key.target != recorded_.keys.back().target || t - recorded_.keys.back().time >= 1.0f)
-            recorded_.keys.push_back(key);
-    }
+    if (recorded_.keys.empty() || t - recorded_.keys.back().time >= 0.25f)
+        recorded_.keys.push_back(cameraKey(camera, t));
     info_.recording = recording_;
     info_.recordedKeys = recorded_.keys.size();
 }
