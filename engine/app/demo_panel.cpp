@@ -81,11 +81,13 @@ void timerWindow(const PanelInfo& info) {
     const double gpu = info.timersA ? info.timersA->frameMedianMs() : 0.0;
     ImGui::Text("%.1f fps  frame %.1f ms  GPU %.2f ms",
                 info.cpuFrameMs > 0.0 ? 1000.0 / info.cpuFrameMs : 0.0, info.cpuFrameMs, gpu);
-    if (info.gi) ImGui::Text("re-traced %.2f%% of the pixels", 100.0 * double(info.resampled));
+    if (info.gi) ImGui::Text("re-traced %.3f%% of the pixels", 100.0 * double(info.resampled));
     if (info.frameTimes && !info.frameTimes->values().empty()) {
         const auto& values = info.frameTimes->values();
         ImGui::PlotLines("##frametime", values.data(), int(values.size()), 0, "frame ms (CPU wall clock)",
-                         0.0f, std::max(info.frameTimes->max() * 1.1f, 1.0f), ImVec2(-1.0f, 50.0f));
+                         0.0f, std::max(info.frameTimes->max() * 1.1f, 1.0f),
+                         // an explicit width: PlotLines (1.86) does not take -1 as "fill"
+                         ImVec2(ImGui::GetContentRegionAvail().x, 50.0f));
     }
     ImGui::Separator();
     ImGui::TextUnformatted("GPU median of the last 60 frames");
@@ -93,13 +95,13 @@ void timerWindow(const PanelInfo& info) {
     if (info.timersB) {
         ImGui::Separator();
         const double b = info.timersB->frameMedianMs();
-        ImGui::Text("split view B: %.2f ms (frame costs A + B = %.2f ms)", b, gpu + b);
-        bars(*info.timersB, "b");
+        ImGui::TextWrapped("split view: B %.2f ms, A + B = %.2f ms GPU per frame", b, gpu + b);
+        if (ImGui::CollapsingHeader("B per pass")) bars(*info.timersB, "b");
     }
     if (info.timersDisplay) {
         ImGui::Separator();
-        ImGui::TextUnformatted("window (view, panel, blit)");
-        bars(*info.timersDisplay, "d");
+        ImGui::Text("window: %.2f ms GPU (view, panel, blit)", info.timersDisplay->frameMedianMs());
+        if (ImGui::CollapsingHeader("window per step")) bars(*info.timersDisplay, "d");
     }
     ImGui::End();
 }
