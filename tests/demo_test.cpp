@@ -306,9 +306,9 @@ TEST(DemoWindow, RecordsACameraPathThatLoads) {
     REQUIRE_XVFB();
     const std::filesystem::path dir = test::freshOutputDir("demo/record");
     const std::filesystem::path recorded = dir / "recorded.camera.json";
-    const nlohmann::json steps = {{{"frame", 2}, {"set", {{"record-path", true}}}},
+    const nlohmann::json steps = {{{"frame", 2}, {"set", {{"record", true}}}},
                                   {{"frame", 12}, {"set", {{"camera-cut", true}}}},
-                                  {{"frame", 40}, {"set", {{"record-path", true}}}}};
+                                  {{"frame", 40}, {"set", {{"record", true}}}}};
     const test::RunResult run =
         runDemo({"--script", writeScript(dir, steps).string(), "--record-path", recorded.string()});
     expectClean(run);

@@ -116,12 +116,11 @@ RenderSettings DemoControls::settingsB() const {
 
 const std::vector<std::string>& demoOptionNames() {
     static const std::vector<std::string> names = {
-        "weights",       "trace-scale", "beta",       "kappa",       "sigma-n",     "gamma",
-        "tau",           "temporal",    "adaptive",   "toksvig",     "specular-aa", "anisotropy",
-        "exposure",      "gi",          "voxels",     "view",        "voxel-mip",   "split",
-        "wipe",          "b-NAME",      "panel",      "pause",       "play-path",   "camera-cut",
-        "reset-history", "step",        "hot-reload", "record-path", "screenshot",  "screenshot-ui",
-        "scene",         "quit"};
+        "weights",    "trace-scale",   "beta",       "kappa",         "sigma-n",    "gamma",      "tau",
+        "temporal",   "adaptive",      "toksvig",    "specular-aa",   "anisotropy", "exposure",   "gi",
+        "voxels",     "view",          "voxel-mip",  "split",         "wipe",       "b-NAME",     "panel",
+        "pause",      "play-path",     "camera-cut", "reset-history", "step",       "hot-reload", "record",
+        "screenshot", "screenshot-ui", "scene",      "quit"};
     return names;
 }
 
@@ -158,7 +157,7 @@ void applyOption(DemoControls& c, const std::string& name, const std::string& va
         c.step = true;
     } else if (name == "hot-reload") {
         c.hotReload = true;
-    } else if (name == "record-path") {
+    } else if (name == "record") {
         c.toggleRecording = true;
     } else if (name == "quit") {
         c.quit = true;

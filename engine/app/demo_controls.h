@@ -48,7 +48,7 @@ struct DemoControls {
 bool applySetting(RenderSettings& settings, const std::string& name, const std::string& value);
 
 // Applies a render setting (above), a demo option (view, voxel-mip, split, wipe, panel, pause, play-path,
-// b-NAME: NAME for side B only) or an action (camera-cut, reset-history, step, hot-reload, record-path,
+// b-NAME: NAME for side B only) or an action (camera-cut, reset-history, step, hot-reload, record,
 // quit, screenshot FILE, screenshot-ui FILE, scene FILE). UsageError for an unknown name or a bad value.
 void applyOption(DemoControls& controls, const std::string& name, const std::string& value);
 

@@ -192,7 +192,7 @@ void drawPanel(DemoControls& c, PanelInfo& info, char* sceneField, size_t sceneF
         if (ImGui::Button("camera cut (C)")) set("camera-cut", "on");
         if (info.hasCameraPath) toggle(set, "play camera path", "play-path", c.playPath);
         if (ImGui::Button(info.recording ? "stop recording (R)" : "record camera path (R)"))
-            set("record-path", "on");
+            set("record", "on");
         if (info.recording) {
             ImGui::SameLine();
             ImGui::Text("%zu keys", info.recordedKeys);
