@@ -134,6 +134,15 @@ class DemoApp {
         printAnisotropy(args.controls.settings.anisotropy, renderers_.a().settings().anisotropy);
     }
 
+    ~DemoApp() {
+        // A hot reload's SPIR-V directory (in the temp directory) is this process's own.
+        const std::filesystem::path dir = currentShaderDir();
+        if (dir.filename().string().rfind("vct-shaders-", 0) == 0) {
+            std::error_code ignored;
+            std::filesystem::remove_all(dir, ignored);
+        }
+    }
+
     // The frame loop; returns the number of frames shown.
     uint32_t run();
     Renderer& renderer() { return renderers_.a(); }
