@@ -277,6 +277,8 @@ void DemoApp::runJobs() {
             // The old pipelines keep running.
             info_.error = "shader compile failed, old pipelines kept:\n" + build->log;
             std::fprintf(stderr, "hot reload: %s\n", info_.error.c_str());
+            std::error_code ignored;
+            std::filesystem::remove_all(build->dir, ignored);
         } else {
             const std::filesystem::path previous = currentShaderDir();
             useShaderDir(build->dir);

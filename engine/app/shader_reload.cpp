@@ -38,6 +38,7 @@ std::filesystem::path shaderSourceDir() {
 
 ShaderBuild compileShaders(const std::filesystem::path& sourceDir, const std::filesystem::path& outDir) {
     ShaderBuild build;
+    build.dir = outDir;
     std::error_code error;
     std::vector<std::filesystem::path> sources;
     for (const auto& entry : std::filesystem::directory_iterator(sourceDir, error)) {
@@ -68,7 +69,6 @@ ShaderBuild compileShaders(const std::filesystem::path& sourceDir, const std::fi
         ++build.shaders;
     }
     build.ok = true;
-    build.dir = outDir;
     build.log = std::to_string(build.shaders) + " shaders compiled";
     return build;
 }
