@@ -6,6 +6,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools   # Vulkan (lavapipe), shaders
   libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev
   libopenvdb-dev libopenvdb-tools libboost-iostreams-dev                     # voxel export (vdb_print in tests)
+  libimgui-dev                                                               # the demo's panel (+ backend sources)
   libgtest-dev xvfb xauth                                                    # tests, headless window
 )
 missing=()

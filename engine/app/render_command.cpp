@@ -4,8 +4,6 @@
 #include <filesystem>
 #include <optional>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "app/aux_output.h"
 #include "app/cli.h"
 #include "app/commands.h"
@@ -44,15 +42,6 @@ const CommandSpec& renderSpec() {
         "render", "Renders frames headless (no window) and writes DIR/final.png, DIR/final.exr, DIR/timings.json.",
         renderOptions());
     return spec;
-}
-
-// The view after a camera cut: the camera turned 25° about the vertical axis through itself and moved a
-// little to the side, so most of the image changes but the scene stays in view.
-CameraView cutCamera(CameraView camera) {
-    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-    const glm::mat4 step = glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, 0.0f));
-    camera.view = step * turn * camera.view;  // applied in camera space
-    return camera;
 }
 
 }  // namespace

@@ -51,6 +51,7 @@ Window::Window(const std::string& title, uint32_t width, uint32_t height) {
     }
     glfwSetWindowUserPointer(window_, this);
     glfwSetFramebufferSizeCallback(window_, onFramebufferSize);
+    glfwSetDropCallback(window_, onDrop);
 }
 
 Window::~Window() {
@@ -73,6 +74,14 @@ VkExtent2D Window::framebufferSize() const {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
     return {uint32_t(std::max(width, 0)), uint32_t(std::max(height, 0))};
+}
+
+void Window::onDrop(GLFWwindow* window, int count, const char** paths) {
+    if (count > 0 && paths[0]) static_cast<Window*>(glfwGetWindowUserPointer(window))->dropped_ = paths[0];
+}
+
+std::string Window::takeDroppedFile() {
+    return std::exchange(dropped_, std::string());
 }
 
 bool Window::takeResized() {

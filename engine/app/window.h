@@ -29,11 +29,15 @@ public:
     VkExtent2D framebufferSize() const;
     // True once after each framebuffer resize.
     bool takeResized();
+    // The first file dropped on the window since the last call (empty: none).
+    std::string takeDroppedFile();
 
 private:
     static void onFramebufferSize(GLFWwindow* window, int width, int height);
+    static void onDrop(GLFWwindow* window, int count, const char** paths);
     GLFWwindow* window_ = nullptr;
     bool resized_ = false;
+    std::string dropped_;
 };
 
 // One acquired swapchain image and the semaphores its frame waits on and signals.

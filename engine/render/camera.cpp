@@ -32,4 +32,11 @@ CameraView sceneCamera(const Scene& scene, float timeSeconds) {
     throw Error("scene '" + scene.name + "' has no camera");
 }
 
+CameraView cutCamera(CameraView camera) {
+    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::mat4 step = glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, 0.0f));
+    camera.view = step * turn * camera.view;  // applied in camera space
+    return camera;
+}
+
 }  // namespace vct

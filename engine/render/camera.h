@@ -18,6 +18,11 @@ struct CameraView {
     glm::mat4 projection(float aspect) const;
 };
 
+// The view after a camera cut (`render --camera-cut`, the demo's cut): the camera turned 25° about the
+// vertical axis through itself and moved a little to the side, so most of the image changes but the scene
+// stays in view.
+CameraView cutCamera(CameraView camera);
+
 // The scene's first camera at time t (the loader guarantees one exists).
 CameraView sceneCamera(const Scene& scene, float timeSeconds);
 

@@ -122,6 +122,23 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     hasPrevious_ = false;
 }
 
+bool Renderer::canApplyLive(const RenderSettings& wanted) const {
+    // Requests that the constructor resolved (0 voxels, anisotropy from the device) match what it chose.
+    const bool voxels = wanted.voxelResolution == 0 || wanted.voxelResolution == settings_.voxelResolution;
+    const bool anisotropy = wanted.anisotropy == kAnisotropyFromDevice || wanted.anisotropy == settings_.anisotropy;
+    return wanted.width == settings_.width && wanted.height == settings_.height && wanted.gi == settings_.gi &&
+           wanted.traceScale == settings_.traceScale && wanted.adaptive == settings_.adaptive && voxels &&
+           anisotropy && wanted.voxelCache == settings_.voxelCache && wanted.textureLod0 == settings_.textureLod0;
+}
+
+void Renderer::applyLive(const RenderSettings& wanted) {
+    if (!canApplyLive(wanted)) throw Error("Renderer::applyLive: these settings need a new renderer");
+    RenderSettings next = wanted;
+    next.voxelResolution = settings_.voxelResolution;
+    next.anisotropy = settings_.anisotropy;
+    settings_ = next;
+}
+
 void Renderer::writeFrameUniforms(const FrameInput& input) {
     gpu::FrameUniforms u{};
     const float aspect = float(settings_.width) / float(settings_.height);

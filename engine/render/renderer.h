@@ -52,6 +52,14 @@ public:
     // Records, submits and waits for one frame; then reads its timestamps.
     void render(const FrameInput& input, const FrameSubmit& submit = {});
     void resize(uint32_t width, uint32_t height);
+    // The demo's live controls. True when going from the settings this renderer was built with to `wanted`
+    // changes only what the next frame reads from its uniforms and specialization constants (weights, beta,
+    // kappa, sigma_n, gamma, tau, temporal, Toksvig, specular AA, exposure, the sum-of-weights store); false
+    // when it changes targets, passes or the voxel grid (size, GI, trace scale, adaptive, voxels,
+    // anisotropy, cache): those need resize() or a new Renderer.
+    bool canApplyLive(const RenderSettings& wanted) const;
+    // Takes those live settings from `wanted` for the next frame; throws when !canApplyLive(wanted).
+    void applyLive(const RenderSettings& wanted);
 
     FrameTargets& targets() { return targets_; }
     const vk::GpuTimer& timer() const { return timer_; }

@@ -1,0 +1,39 @@
+// The demo's Dear ImGui windows: the control panel (every live setting, the views, the split view, scene,
+// animation, camera path, shader reload) and the timer overlay (per-pass GPU medians as bars, frame-time
+// graph, fps, re-traced fraction, device, sizes). Every change goes through applyOption, like --script.
+#pragma once
+
+#include <string>
+
+#include "app/demo_controls.h"
+#include "app/demo_timers.h"
+
+namespace vct {
+
+// What the panel shows besides the controls themselves.
+struct PanelInfo {
+    std::string device, scene;
+    uint32_t width = 0, height = 0;
+    uint32_t traceScale = 1, traceScaleB = 1;
+    uint32_t voxels = 0, anisotropy = 0, voxelMips = 1;  // what renderer A chose
+    bool gi = true, giB = true;
+    float resampled = 0.0f, resampledB = 0.0f;  // fraction of the pixels re-traced last frame
+    double cpuFrameMs = 0.0;                    // wall-clock time of the last frame (render + present)
+    const RollingTimers* timersA = nullptr;
+    const RollingTimers* timersB = nullptr;        // split view only
+    const RollingTimers* timersDisplay = nullptr;  // view, ui, blit
+    const History* frameTimes = nullptr;
+    float animationTime = 0.0f;
+    bool hasCameraPath = false;
+    bool recording = false;
+    size_t recordedKeys = 0;
+    std::string recordPath;
+    std::string progress;  // a scene loading or shaders compiling: shown with a spinner-like dot count
+    std::string message;   // the last thing that happened (screenshot written, shaders reloaded)
+    std::string error;     // the last error (scene file, renderer, shader compiler output)
+};
+
+// Draws both windows for this ImGui frame. `sceneField` is the file field's buffer (kept by the caller).
+void drawPanel(DemoControls& controls, PanelInfo& info, char* sceneField, size_t sceneFieldSize);
+
+}  // namespace vct
