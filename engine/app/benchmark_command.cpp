@@ -2,9 +2,9 @@
 //
 // upsampling (default): speed against error of the upsampling configurations. One scene, one renderer per
 //   configuration: the reference (every pixel traced every frame, trace scale 1) and the low-res
-//   configurations (bilinear / normal / SG weights, with and without adaptive re-tracing). After the last frame
-//   each configuration's diffuse, specular and final images are compared with the reference's (linear HDR).
-//   Writes DIR/benchmark.json and DIR/benchmark.md.
+//   configurations (bilinear / normal / SG weights, with and without adaptive re-tracing). After the last
+//   frame each configuration's diffuse, specular and final images are compared with the reference's (linear
+//   HDR). Writes DIR/benchmark.json and DIR/benchmark.md.
 // scenes: the default configuration on several scenes (app/benchmark_scenes.cpp).
 // scaling: per-pass cost against pixel count and voxel resolution (app/benchmark_scaling.cpp).
 // In every mode the renderers take turns in blocks of frames (app/benchmark_run.h), so all of them see the
@@ -13,8 +13,8 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "app/benchmark_modes.h"
 #include "app/benchmark_run.h"
@@ -24,6 +24,7 @@
 #include "core/error.h"
 #include "io/image_metrics.h"
 #include "scene/builtin_scenes.h"
+#include "scene/camera_path.h"
 
 namespace vct {
 
@@ -61,10 +62,11 @@ ImageRgba32f readImage(Renderer& renderer, vk::Image& image) {
 }
 
 // The upsampling mode: the reference and the five low-res configurations, errors against the reference.
-int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session, const BenchmarkFrames& timing,
-                           const std::filesystem::path& outDir) {
+int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session,
+                           const BenchmarkFrames& timing, const std::filesystem::path& outDir) {
     const std::string scaleText = args.get("trace-scale");
-    if (scaleText != "2" && scaleText != "4") throw UsageError("--trace-scale '" + scaleText + "': expected 2 or 4");
+    if (scaleText != "2" && scaleText != "4")
+        throw UsageError("--trace-scale '" + scaleText + "': expected 2 or 4");
     const uint32_t scale = uint32_t(std::stoul(scaleText));
 
     nlohmann::json report;
@@ -77,7 +79,15 @@ int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session
         for (BenchmarkRun& config : configs)
             config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
         printAnisotropy(session.settings.anisotropy, configs.front().renderer->settings().anisotropy);
-        renderInterleaved(configs, timing.frames, timing.warmup, timing.block);
+        const std::optional<CameraPath> path =
+            args.has("camera-path") ? std::optional<CameraPath>(loadCameraPath(args.get("camera-path")))
+                                    : std::nullopt;
+        FrameHooks hooks;
+        if (path)
+            hooks.frameInput = [&](const BenchmarkRun& run, uint32_t frame, uint32_t warmup) {
+                return fixedStepFrame(*run.scene, frame, warmup, &*path);
+            };
+        renderInterleaved(configs, timing.frames, timing.warmup, timing.block, hooks);
 
         Renderer& reference = *configs.front().renderer;
         const uint32_t w = session.settings.width, h = session.settings.height;
@@ -85,20 +95,28 @@ int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session
         const ImageRgba32f refDiffuse{w, h, refLight.diffuse};
         const ImageRgba32f refSpecular{w, h, refLight.specular};
         const ImageRgba32f refFinal = readImage(reference, reference.targets().hdr);
-        // The indirect light's cost: what tracing fewer pixels is meant to save (trace + upsample + re-trace).
+        // The indirect light's cost: what tracing fewer pixels is meant to save (trace + upsample +
+        // re-trace).
         auto indirectMs = [](const Renderer& r) {
             return passMedian(r, "trace") + passMedian(r, "upsample") + passMedian(r, "resample");
         };
         const double referenceIndirect = indirectMs(reference);
 
-        report = {{"device", context.deviceName()}, {"scene", session.scene}, {"width", w}, {"height", h},
-                  {"frames", timing.frames}, {"warmup", timing.warmup}, {"block", timing.block},
-                  {"trace_scale", scale}, {"configs", nlohmann::json::array()}};
+        report = {{"device", context.deviceName()},
+                  {"scene", session.scene},
+                  {"width", w},
+                  {"height", h},
+                  {"frames", timing.frames},
+                  {"warmup", timing.warmup},
+                  {"block", timing.block},
+                  {"trace_scale", scale},
+                  {"configs", nlohmann::json::array()}};
         char line[512];
-        std::snprintf(line, sizeof(line),
-                      "| %-20s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %10s | %10s | %10s | %8s |\n",
-                      "configuration", "trace", "upsample", "resample", "indirect", "ind/ref", "ups/trc", "frame",
-                      "re-traced", "MSE diff.", "MSE spec.", "MSE final", "PSNR fin");
+        std::snprintf(
+            line, sizeof(line),
+            "| %-20s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %10s | %10s | %10s | %8s |\n",
+            "configuration", "trace", "upsample", "resample", "indirect", "ind/ref", "ups/trc", "frame",
+            "re-traced", "MSE diff.", "MSE spec.", "MSE final", "PSNR fin");
         table += line;
         table += "|" + std::string(22, '-');
         for (int column = 0; column < 8; ++column) table += "|" + std::string(10, '-');
@@ -111,7 +129,10 @@ int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session
             const ImageError specular = compareImages(refSpecular, {w, h, std::move(light.specular)});
             const ImageError final = compareImages(refFinal, readImage(r, r.targets().hdr));
             auto errorJson = [](const ImageError& e) {
-                return nlohmann::json{{"mse", e.mse}, {"rel_mse", e.relMse}, {"psnr", e.psnr}, {"max", e.maxAbs},
+                return nlohmann::json{{"mse", e.mse},
+                                      {"rel_mse", e.relMse},
+                                      {"psnr", e.psnr},
+                                      {"max", e.maxAbs},
                                       {"non_finite", e.nonFinite}};
             };
             const double indirect = indirectMs(r), trace = passMedian(r, "trace");
@@ -125,40 +146,45 @@ int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session
             entry["indirect_over_reference"] = indirectRatio;
             entry["upsample_over_trace"] = upsampleRatio;
             entry["resampled_fraction"] = r.resampledFraction();
-            entry["error"] = {{"diffuse", errorJson(diffuse)}, {"specular", errorJson(specular)},
+            entry["error"] = {{"diffuse", errorJson(diffuse)},
+                              {"specular", errorJson(specular)},
                               {"final", errorJson(final)}};
             report["configs"].push_back(entry);
-            std::snprintf(line, sizeof(line),
-                          "| %-20s | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %7.2f%% | %10.4g | "
-                          "%10.4g | %10.4g | %8.2f |\n",
-                          config.name.c_str(), trace, passMedian(r, "upsample"), passMedian(r, "resample"), indirect,
-                          indirectRatio, upsampleRatio, r.timer().frameStats().medianMs,
-                          100.0 * r.resampledFraction(), diffuse.mse, specular.mse, final.mse, final.psnr);
+            std::snprintf(
+                line, sizeof(line),
+                "| %-20s | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %7.2f%% | %10.4g | "
+                "%10.4g | %10.4g | %8.2f |\n",
+                config.name.c_str(), trace, passMedian(r, "upsample"), passMedian(r, "resample"), indirect,
+                indirectRatio, upsampleRatio, r.timer().frameStats().medianMs, 100.0 * r.resampledFraction(),
+                diffuse.mse, specular.mse, final.mse, final.psnr);
             table += line;
         }
-        // The acceptance ratios (issue 8), same run: sg's upsample against normal's (both without re-tracing),
-        // and for the default configuration (sg + adaptive) upsample against trace, indirect against reference.
+        // The acceptance ratios (issue 8), same run: sg's upsample against normal's (both without
+        // re-tracing), and for the default configuration (sg + adaptive) upsample against trace, indirect
+        // against reference.
         const double normalUpsample = passMedian(*configs[2].renderer, "upsample");
         const double sgUpsample = passMedian(*configs[3].renderer, "upsample");
         const nlohmann::json& method = report["configs"].back();
         report["upsample_ratio_sg_over_normal"] = normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0;
         report["upsample_over_trace"] = method["upsample_over_trace"];
         report["indirect_over_reference"] = method["indirect_over_reference"];
-        std::snprintf(line, sizeof(line),
-                      "\nsg+adaptive: upsample / trace %.3f, indirect / reference indirect %.3f; upsample sg / "
-                      "normal %.3f (medians, same run)\n",
-                      method["upsample_over_trace"].get<double>(), method["indirect_over_reference"].get<double>(),
-                      normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0);
+        std::snprintf(
+            line, sizeof(line),
+            "\nsg+adaptive: upsample / trace %.3f, indirect / reference indirect %.3f; upsample sg / "
+            "normal %.3f (medians, same run)\n",
+            method["upsample_over_trace"].get<double>(), method["indirect_over_reference"].get<double>(),
+            normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0);
         table += line;
     }
     checkValidation(session);
     char caption[300];
-    std::snprintf(caption, sizeof(caption),
-                  "Device: %s, scene %s, %ux%u, %u frames in blocks of %u (medians after %u warm-up frames, ms), "
-                  "trace scale %u; indirect = trace + upsample + resample; errors of the last frame against the "
-                  "reference, linear HDR.",
-                  report["device"].get<std::string>().c_str(), session.scene.c_str(), session.settings.width,
-                  session.settings.height, timing.frames, timing.block, timing.warmup, scale);
+    std::snprintf(
+        caption, sizeof(caption),
+        "Device: %s, scene %s, %ux%u, %u frames in blocks of %u (medians after %u warm-up frames, ms), "
+        "trace scale %u; indirect = trace + upsample + resample; errors of the last frame against the "
+        "reference, linear HDR.",
+        report["device"].get<std::string>().c_str(), session.scene.c_str(), session.settings.width,
+        session.settings.height, timing.frames, timing.block, timing.warmup, scale);
     writeBenchmarkReport(outDir, "benchmark", report, caption, table);
     return 0;
 }
@@ -167,13 +193,23 @@ int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session
 
 int runBenchmarkCommand(int argc, char** argv, int first) {
     std::vector<Option> options = {
-        {"mode", "upsampling|scenes|scaling",
+        {"mode", "upsampling|scenes|scaling|report|study",
          "upsampling: configurations against trace scale 1; scenes: the default configuration on several "
-         "scenes; scaling: cost against pixel count and voxel resolution",
+         "scenes; scaling: cost against pixel count and voxel resolution; report: speed against error on the "
+         "report scenes, static, moving and cut cameras, errors every frame; study: the seed's Fig. 6 "
+         "parameter "
+         "study (beta x kappa, sigma_n, diffuse lobe) per material class",
          "upsampling"},
+        {"report-scenes", "FILE.json", "report, study: the scene list (names, scenes, camera paths)",
+         "scenes/report_scenes.json"},
+        {"cameras", "LIST", "report: which cameras, of static, moving (the scene's camera path) and cut",
+         "static,moving,cut"},
+        {"camera-path", "FILE.json", "upsampling: play this camera path instead of the scene camera", ""},
         {"scene", "NAME|FILE", "built-in scene name or a .gltf/.glb file (upsampling, scaling)", "cornell"},
-        {"scenes", "A,B,...", "scenes mode: built-in names and glTF files (default: cornell, plane and every "
-                               "glTF under --scenes-dir)", ""},
+        {"scenes", "A,B,...",
+         "scenes mode: built-in names and glTF files (default: cornell, plane and every "
+         "glTF under --scenes-dir)",
+         ""},
         {"scenes-dir", "DIR", "scenes mode: where to look for glTF models (DIR/*/glTF/*.gltf, DIR/*/*.glb)",
          "../shared/scenes"},
         {"size", "WxH", "image size in pixels (scaling: the size of the voxel-resolution sweep)", "320x180"},
@@ -203,7 +239,9 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
     if (mode == "upsampling") return runUpsamplingBenchmark(args, session, timing, outDir);
     if (mode == "scenes") return runScenesBenchmark(args, session, timing, outDir);
     if (mode == "scaling") return runScalingBenchmark(args, session, timing, outDir);
-    throw UsageError("--mode '" + mode + "': expected upsampling, scenes or scaling");
+    if (mode == "report") return runReportBenchmark(args, session, timing, outDir);
+    if (mode == "study") return runStudyBenchmark(args, session, timing, outDir);
+    throw UsageError("--mode '" + mode + "': expected upsampling, scenes, scaling, report or study");
 }
 
 }  // namespace vct

@@ -3,9 +3,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "app/cli.h"
 #include "app/session.h"
+#include "scene/camera_path.h"
 
 namespace vct {
 
@@ -25,5 +29,28 @@ int runScenesBenchmark(const ParsedArgs& args, const SessionOptions& session, co
 // voxel resolution (32³ … 256³ at --size). Writes DIR/scaling.json and DIR/scaling.md.
 int runScalingBenchmark(const ParsedArgs& args, const SessionOptions& session, const BenchmarkFrames& frames,
                         const std::filesystem::path& outDir);
+
+// report: per scene of the report list and per camera (static, moving along the scene's path, cut halfway),
+// the reference and trace scales 2/4 × bilinear/normal/sg × adaptive off/on (and a τ sweep on the moving
+// camera), with errors after every frame. Writes DIR/report.json and DIR/report.md
+// (app/benchmark_report.cpp).
+int runReportBenchmark(const ParsedArgs& args, const SessionOptions& session, const BenchmarkFrames& frames,
+                       const std::filesystem::path& outDir);
+
+// study: the seed's parameter study (004 Fig. 6): β × κ for sg, σ_n for normal, the diffuse lobe sharpness,
+// spatial upsampling only, errors per material class. Writes DIR/study.json and DIR/study.md.
+int runStudyBenchmark(const ParsedArgs& args, const SessionOptions& session, const BenchmarkFrames& frames,
+                      const std::filesystem::path& outDir);
+
+// A scene of the report list (scenes/report_scenes.json): a short name, the built-in name or glTF path, and
+// its camera path when it has one.
+struct ReportScene {
+    std::string name;
+    std::string scene;
+    std::optional<CameraPath> path;
+};
+// The report list's scenes (--report-scenes FILE, filtered by --scenes A,B); shared glTF models missing under
+// --scenes-dir are skipped with a note.
+std::vector<ReportScene> reportScenes(const ParsedArgs& args);
 
 }  // namespace vct

@@ -9,7 +9,8 @@
 
 namespace vct {
 
-void renderInterleaved(std::vector<BenchmarkRun>& runs, uint32_t frames, uint32_t warmup, uint32_t block) {
+void renderInterleaved(std::vector<BenchmarkRun>& runs, uint32_t frames, uint32_t warmup, uint32_t block,
+                       const FrameHooks& hooks) {
     block = std::max(block, 1u);
     size_t live = 0;
     for (const BenchmarkRun& run : runs) live += run.renderer ? 1 : 0;
@@ -19,16 +20,25 @@ void renderInterleaved(std::vector<BenchmarkRun>& runs, uint32_t frames, uint32_
     bool progress = false;
     for (uint32_t first = 0; first < frames; first += block) {
         const uint32_t last = std::min(frames, first + block);
-        for (BenchmarkRun& run : runs) {
+        for (size_t index = 0; index < runs.size(); ++index) {
+            BenchmarkRun& run = runs[index];
             if (!run.renderer) continue;
-            for (uint32_t frame = first; frame < last; ++frame, ++done)
-                run.renderer->render(fixedStepFrame(*run.scene, frame, warmup));
+            for (uint32_t frame = first; frame < last; ++frame, ++done) {
+                run.renderer->render(hooks.frameInput ? hooks.frameInput(run, frame, warmup)
+                                                      : fixedStepFrame(*run.scene, frame, warmup));
+                if (hooks.afterFrame) hooks.afterFrame(index, frame);
+            }
             // A progress line once the run has taken a few seconds (stderr: the tables stay clean on stdout).
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (seconds > 3.0) {
-                std::fprintf(stderr, "\rbenchmark: %3d%% of %llu frames, %.0f s", int(100 * done / total),
-                             static_cast<unsigned long long>(total), seconds);
+                // A bar, the share done and the time left at the rate so far.
+                const int percent = int(100 * done / std::max<uint64_t>(total, 1));
+                const double left = done ? seconds * double(total - done) / double(done) : 0.0;
+                const std::string bar =
+                    std::string(size_t(percent / 5), '#') + std::string(size_t(20 - percent / 5), '.');
+                std::fprintf(stderr, "\rbenchmark [%s] %3d%% of %llu frames, %.0f s, ~%.0f s left ",
+                             bar.c_str(), percent, static_cast<unsigned long long>(total), seconds, left);
                 progress = true;
             }
         }
@@ -81,8 +91,9 @@ std::string passTableCells(const Renderer& renderer, const std::vector<std::stri
     return cells + "\n";
 }
 
-void writeBenchmarkReport(const std::filesystem::path& dir, const std::string& name, const nlohmann::json& report,
-                          const std::string& caption, const std::string& table) {
+void writeBenchmarkReport(const std::filesystem::path& dir, const std::string& name,
+                          const nlohmann::json& report, const std::string& caption,
+                          const std::string& table) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     if (error) throw Error("cannot create output directory '" + dir.string() + "': " + error.message());
