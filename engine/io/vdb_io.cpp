@@ -7,9 +7,12 @@
 #include <system_error>
 
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 
 #include "core/error.h"
+#include "io/safe_write.h"
+#include "scene/input_limits.h"
 
 namespace vct {
 
@@ -77,6 +80,7 @@ void insertCommonMeta(openvdb::MetaMap& meta, const VoxelFileInfo& info) {
     meta.insertMeta("vct_voxel_size", openvdb::FloatMetadata(info.voxelSize));
     meta.insertMeta("vct_index_to_world", openvdb::StringMetadata(kIndexToWorld));
     meta.insertMeta("vct_time", openvdb::FloatMetadata(info.time));
+    meta.insertMeta("vct_scene_hash", openvdb::Int64Metadata(std::bit_cast<int64_t>(info.sceneHash)));
 }
 
 template <typename GridT>
@@ -116,35 +120,62 @@ VoxelFileInfo readInfo(const openvdb::MetaMap& meta, const std::filesystem::path
         throw Error("voxel file " + quoted(path) + ": bad vct_voxel_size " + std::to_string(info.voxelSize));
     info.scene = requireMeta<std::string>(meta, "vct_scene", path);
     info.time = requireMeta<float>(meta, "vct_time", path);
+    if (openvdb::Int64Metadata::ConstPtr hash = meta.getMetadata<openvdb::Int64Metadata>("vct_scene_hash"))
+        info.sceneHash = std::bit_cast<uint64_t>(hash->value());
     return info;
 }
 
-// Opens `path` for reading (no delayed loading: the file may be replaced while the program runs).
-void openFile(openvdb::io::File& file, const std::filesystem::path& path) {
-    std::error_code error;
-    if (!std::filesystem::exists(path, error)) throw Error("voxel file " + quoted(path) + " does not exist");
-    if (std::filesystem::is_directory(path, error)) throw Error("voxel file " + quoted(path) + " is a directory");
+// A whole voxel file in memory. OpenVDB reads lengths from the file and trusts them: past the end of a
+// truncated file its reads fail silently and leave garbage sizes (gigabytes allocated, minutes spent). So the
+// file is read by us (a regular file only: a FIFO must not block) and parsed from a stream that throws at the
+// first read past its end.
+struct VoxelStream {
+    openvdb::MetaMap::Ptr meta;
+    openvdb::GridPtrVecPtr grids;
+};
+
+VoxelStream openFile(const std::filesystem::path& path) {
+    FileRead file = readRegularFile(path);
+    if (!file.error.empty()) {
+        if (file.error == "no such file") throw Error("voxel file " + quoted(path) + " does not exist");
+        throw Error("voxel file " + quoted(path) + ": " + file.error);
+    }
+    std::istringstream in(std::string(file.bytes.begin(), file.bytes.end()));
+    file.bytes = {};
+    in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
     try {
-        file.open(/*delayedLoad=*/false);
+        openvdb::io::Stream stream(in, /*delayLoad=*/false);
+        return {stream.getMetadata(), stream.getGrids()};
+    } catch (const std::ios_base::failure&) {
+        throw Error("voxel file " + quoted(path) + " is not a readable OpenVDB file (it ends early: truncated?)");
+    } catch (const std::bad_alloc&) {
+        throw Error("voxel file " + quoted(path) + " is not a readable OpenVDB file (it declares sizes beyond memory)");
     } catch (const std::exception& e) {
         throw Error("voxel file " + quoted(path) + " is not a readable OpenVDB file (" + what(e) + ")");
     }
 }
 
 template <typename GridT>
-typename GridT::Ptr readGrid(openvdb::io::File& file, const char* name, const std::filesystem::path& path) {
-    if (!file.hasGrid(name)) throw Error("voxel file " + quoted(path) + " has no '" + name + "' grid");
+typename GridT::Ptr readGrid(const VoxelStream& file, const char* name, uint32_t n, const std::filesystem::path& path) {
     openvdb::GridBase::Ptr base;
-    try {
-        base = file.readGrid(name);
-    } catch (const std::exception& e) {
-        throw Error("voxel file " + quoted(path) + ": cannot read grid '" + name + "' (" + what(e) + ")");
-    }
+    for (const openvdb::GridBase::Ptr& grid : *file.grids)
+        if (grid && grid->getName() == name) base = grid;
+    if (!base) throw Error("voxel file " + quoted(path) + " has no '" + name + "' grid");
     typename GridT::Ptr grid = openvdb::gridPtrCast<GridT>(base);
     if (!grid)
         throw Error("voxel file " + quoted(path) + ": grid '" + name + "' holds " + base->valueType() + ", expected " +
                     openvdb::typeNameAsString<typename GridT::ValueType>());
-    // Files from other tools may store uniform blocks as tiles: make every active value a voxel.
+    // Files from other tools may store uniform blocks as tiles: every active value must lie in the grid before
+    // they become voxels (a root-level tile alone is 4096^3 of them).
+    const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
+    if (grid->activeVoxelCount() > 0 &&
+        (!inGrid(ivec(box.min()), n) || !inGrid(ivec(box.max()), n) || grid->activeVoxelCount() > uint64_t(n) * n * n)) {
+        std::ostringstream message;
+        message << "voxel file " << quoted(path) << ": grid '" << name << "' has active values from ("
+                << box.min().x() << ", " << box.min().y() << ", " << box.min().z() << ") to (" << box.max().x()
+                << ", " << box.max().y() << ", " << box.max().z() << "), outside the " << n << "^3 grid";
+        throw Error(message.str());
+    }
     grid->tree().voxelizeActiveTiles();
     return grid;
 }
@@ -260,13 +291,16 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
                         openvdb::StringMetadata("albedo, normal, emission, opacity, radiance: the frame at vct_time; "
                                                 "static_*: the static geometry's exact voxelize accumulator (the "
                                                 "voxel cache read by vct render --voxel-cache)"));
-    try {
-        openvdb::io::File file(path.string());
-        file.write(grids, fileMeta);
-        file.close();
-    } catch (const std::exception& e) {
-        throw Error("cannot write voxel file " + quoted(path) + " (" + what(e) + ")");
-    }
+    // Under a fresh name, renamed over `path`: a symlink planted there is replaced, not followed.
+    writeReplacing(path, [&](const std::filesystem::path& temporary) {
+        try {
+            openvdb::io::File file(temporary.string());
+            file.write(grids, fileMeta);
+            file.close();
+        } catch (const std::exception& e) {
+            throw Error("cannot write voxel file " + quoted(path) + " (" + what(e) + ")");
+        }
+    });
 
     std::vector<VoxelGridSummary> summary;
     for (const openvdb::GridBase::Ptr& grid : grids)
@@ -276,26 +310,21 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
 
 VoxelFileInfo readVoxelFileInfo(const std::filesystem::path& path) {
     initializeOpenVdb();
-    openvdb::io::File file(path.string());
-    openFile(file, path);
-    VoxelFileInfo info = readInfo(*file.getMetadata(), path);
-    file.close();
-    return info;
+    return readInfo(*openFile(path).meta, path);
 }
 
 VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame) {
     initializeOpenVdb();
-    openvdb::io::File file(path.string());
-    openFile(file, path);
+    const VoxelStream file = openFile(path);
     VoxelFile data;
-    data.info = readInfo(*file.getMetadata(), path);
+    data.info = readInfo(*file.meta, path);
     const uint32_t n = data.info.resolution;
 
     {
-        auto count = readGrid<openvdb::Int32Grid>(file, kStaticCount, path);
-        auto albedoSum = readGrid<openvdb::Vec3IGrid>(file, kStaticAlbedo, path);
-        auto normalSum = readGrid<openvdb::Vec3IGrid>(file, kStaticNormal, path);
-        auto emissionSum = readGrid<openvdb::Vec3IGrid>(file, kStaticEmission, path);
+        auto count = readGrid<openvdb::Int32Grid>(file, kStaticCount, n, path);
+        auto albedoSum = readGrid<openvdb::Vec3IGrid>(file, kStaticAlbedo, n, path);
+        auto normalSum = readGrid<openvdb::Vec3IGrid>(file, kStaticNormal, n, path);
+        auto emissionSum = readGrid<openvdb::Vec3IGrid>(file, kStaticEmission, n, path);
         auto c = count->getConstAccessor();
         auto a = albedoSum->getConstAccessor();
         auto nr = normalSum->getConstAccessor();
@@ -312,11 +341,11 @@ VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame) {
         }
     }
     if (frame) {
-        auto opacity = readGrid<openvdb::FloatGrid>(file, kOpacity, path);
-        auto albedo = readGrid<openvdb::Vec3SGrid>(file, kAlbedo, path);
-        auto normal = readGrid<openvdb::Vec3SGrid>(file, kNormal, path);
-        auto emission = readGrid<openvdb::Vec3SGrid>(file, kEmission, path);
-        auto radiance = readGrid<openvdb::Vec3SGrid>(file, kRadiance, path);
+        auto opacity = readGrid<openvdb::FloatGrid>(file, kOpacity, n, path);
+        auto albedo = readGrid<openvdb::Vec3SGrid>(file, kAlbedo, n, path);
+        auto normal = readGrid<openvdb::Vec3SGrid>(file, kNormal, n, path);
+        auto emission = readGrid<openvdb::Vec3SGrid>(file, kEmission, n, path);
+        auto radiance = readGrid<openvdb::Vec3SGrid>(file, kRadiance, n, path);
         auto o = opacity->getConstAccessor();
         auto a = albedo->getConstAccessor();
         auto nr = normal->getConstAccessor();
@@ -334,7 +363,6 @@ VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame) {
             data.voxels.push_back(v);
         }
     }
-    file.close();
     return data;
 }
 

@@ -22,7 +22,7 @@
 // world = origin + (ijk + 0.5)·s — OpenVDB's cell-centred convention, so other tools place the voxels right;
 // origin is the grid's min corner (VoxelGrid::origin()) and active indices lie in [0, N)³.
 // Metadata (file and every grid): vct_format, vct_scene, vct_resolution, vct_grid_origin (Vec3s, min corner),
-// vct_voxel_size, vct_index_to_world, vct_time; each grid also gets vct_description (one of the lines above).
+// vct_voxel_size, vct_index_to_world, vct_time, vct_scene_hash; each grid also gets vct_description (one of the lines above).
 #pragma once
 
 #include <array>
@@ -47,6 +47,8 @@ struct VoxelFileInfo {
     float voxelSize = 0.0f;
     std::string scene;   // --scene as given when it was written
     float time = 0.0f;   // animation time of the frame the albedo..radiance grids come from
+    // sceneContentHash (scene/scene.h) of the scene voxelized; 0 when unknown (files written before it existed).
+    uint64_t sceneHash = 0;
     bool operator==(const VoxelFileInfo&) const = default;
 };
 
@@ -98,7 +100,8 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
 
 // Reads a file written by writeVoxelFile. `frame` false skips the albedo..radiance grids (the cache needs
 // only the static_* ones). Throws vct::Error with a one-line message naming the path for a missing file, a
-// file that is not OpenVDB, an OpenVDB file without vct's metadata or grids, or voxels outside the grid.
+// file that is not a regular file or is larger than kMaxInputFileBytes, a file that is not OpenVDB (or is
+// truncated), an OpenVDB file without vct's metadata or grids, or active values (voxels or tiles) outside the grid.
 VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame = true);
 
 // Only the metadata (cheap: no grid is read). Same errors as readVoxelFile.

@@ -11,10 +11,17 @@
 
 #include "core/error.h"
 #include "lib/shared.h"
+#include "scene/input_limits.h"
 #include "vk/barrier.h"
 #include "vk/check.h"
 
 namespace vct {
+
+namespace {
+
+constexpr VkDeviceSize kAccumVoxelBytes = VCT_VOXEL_ACCUM_STRIDE * sizeof(uint32_t);
+
+}  // namespace
 
 uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings& settings) {
     uint32_t n = settings.voxelResolution;
@@ -27,6 +34,20 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
     }
     if (n < 32 || n > 256 || !std::has_single_bit(n))
         throw UsageError("voxel resolution " + std::to_string(n) + " must be a power of two in 32..256");
+    // The voxelize and resolve passes bind each accumulator whole as one storage buffer: N³ × 40 bytes must fit
+    // the device's range (only 2^27 bytes guaranteed: lavapipe's 128 MiB holds 128³, not 256³).
+    const VkDeviceSize maxRange = context.properties().limits.maxStorageBufferRange;
+    auto accumulatorBytes = [](uint64_t size) { return size * size * size * kAccumVoxelBytes; };
+    if (accumulatorBytes(n) > maxRange) {
+        uint32_t largest = n;
+        while (largest > 32 && accumulatorBytes(largest) > maxRange) largest /= 2;
+        throw UsageError("--voxels " + std::to_string(n) + ": the voxel accumulator needs " +
+                         byteSizeText(accumulatorBytes(n)) + ", more than this device's maxStorageBufferRange (" +
+                         byteSizeText(maxRange) + "); the largest N it holds is " + std::to_string(largest));
+    }
+    if (n > context.properties().limits.maxImageDimension3D)
+        throw UsageError("--voxels " + std::to_string(n) + ": more than this device's maxImageDimension3D (" +
+                         std::to_string(context.properties().limits.maxImageDimension3D) + ")");
     return n;
 }
 
@@ -46,7 +67,7 @@ Aabb voxelSceneBounds(const Scene& scene) {
 }
 
 VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution)
-    : context_(context), resolution_(resolution) {
+    : context_(context), scene_(scene), resolution_(resolution) {
     mipCount_ = uint32_t(std::countr_zero(resolution)) + 1;
     Aabb bounds = voxelSceneBounds(scene);
     if (bounds.empty()) bounds = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
@@ -85,14 +106,12 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     info.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;  // outside the grid: empty, no light
     info.minLod = 0.0f;
     info.maxLod = float(mipCount_ - 1);
-    VK_CHECK(vkCreateSampler(context.device(), &info, nullptr, &sampler_));
+    sampler_ = vk::Sampler(context, info);
 }
 
-VoxelGrid::~VoxelGrid() { vkDestroySampler(context_.device(), sampler_, nullptr); }
+VoxelGrid::~VoxelGrid() = default;
 
 namespace {
-
-constexpr VkDeviceSize kAccumVoxelBytes = VCT_VOXEL_ACCUM_STRIDE * sizeof(uint32_t);
 
 std::string formatVec3(glm::vec3 v) {
     std::ostringstream s;
@@ -121,6 +140,13 @@ void VoxelGrid::loadStaticCache(const std::filesystem::path& path) {
                     formatVec3(info.origin) + ", voxel size " + std::to_string(info.voxelSize) +
                     ") than this scene's (origin " + formatVec3(origin()) + ", voxel size " +
                     std::to_string(voxelSize()) + ")");
+
+    // Same bounds do not make the same scene: the file records what it voxelized (older files only the name).
+    if (info.sceneHash != 0 && info.sceneHash != sceneContentHash(scene_))
+        throw Error(name + " was voxelized from another scene ('" + info.scene +
+                    "': other geometry, materials or placement) than '" + scene_.name + "'");
+    if (info.sceneHash == 0 && std::filesystem::path(info.scene).stem().string() != scene_.name)
+        throw Error(name + " was voxelized from scene '" + info.scene + "', not '" + scene_.name + "'");
 
     // Pack the voxels back to back; one copy region per run of consecutive linear indices.
     staticCache_ = vk::Buffer(context_, std::max<VkDeviceSize>(1, file.staticAccum.size()) * kAccumVoxelBytes,

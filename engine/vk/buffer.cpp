@@ -9,6 +9,17 @@ namespace vct::vk {
 
 Buffer::Buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory)
     : device_(context.device()), size_(size) {
+    // A constructor that throws runs no destructor: free what was made so far here.
+    try {
+        create(context, usage, memory);
+    } catch (...) {
+        reset();
+        throw;
+    }
+}
+
+void Buffer::create(const Context& context, VkBufferUsageFlags usage, MemoryUsage memory) {
+    const VkDeviceSize size = size_;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size;
     info.usage = usage;

@@ -31,6 +31,8 @@ public:
     void reset();
 
 private:
+    void create(const Context& context, VkBufferUsageFlags usage, MemoryUsage memory);
+
     VkDevice device_ = VK_NULL_HANDLE;
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;

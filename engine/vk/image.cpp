@@ -67,6 +67,17 @@ AccessInfo accessInfo(ImageAccess access, bool depth) {
 }
 
 Image::Image(const Context& context, const ImageDesc& desc) : device_(context.device()), desc_(desc) {
+    // A constructor that throws runs no destructor: free what was made so far here.
+    try {
+        create(context);
+    } catch (...) {
+        reset();
+        throw;
+    }
+}
+
+void Image::create(const Context& context) {
+    const ImageDesc& desc = desc_;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     info.format = desc.format;

@@ -64,6 +64,8 @@ public:
     void reset();
 
 private:
+    void create(const Context& context);
+
     VkDevice device_ = VK_NULL_HANDLE;
     VkImage image_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
