@@ -128,13 +128,14 @@ TEST(HostileVoxelCache, TruncatedFilesFailFast) {
     }
 }
 
-// A tile of active values instead of voxels, at the root level (4096^3 voxels) or one level down (128^3).
+// A tile of active values instead of voxels, at the root level (4096^3 voxels), one level down (128^3) or an
+// 8^3 tile just outside the 32^3 grid.
 TEST(HostileVoxelCache, ActiveTilesOutsideTheGridFailFast) {
     const fs::path dir = caseDir();
     const CacheScene c = cacheScene(dir);
     writeVoxelFile(dir / "cache.vdb", c.file);
     openvdb::initialize();
-    for (int level : {1, 2, 3}) {
+    for (auto [level, at] : {std::pair{3, openvdb::Coord(0)}, {2, openvdb::Coord(0)}, {1, openvdb::Coord(32, 0, 0)}}) {
         openvdb::io::File in((dir / "cache.vdb").string());
         in.open(false);
         openvdb::GridPtrVecPtr grids = in.getGrids();
@@ -142,7 +143,7 @@ TEST(HostileVoxelCache, ActiveTilesOutsideTheGridFailFast) {
         in.close();
         for (openvdb::GridBase::Ptr& grid : *grids)
             if (grid->getName() == "static_count")
-                openvdb::gridPtrCast<openvdb::Int32Grid>(grid)->tree().addTile(level, openvdb::Coord(0), 7, true);
+                openvdb::gridPtrCast<openvdb::Int32Grid>(grid)->tree().addTile(level, at, 7, true);
         const fs::path tiled = dir / ("tile" + std::to_string(level) + ".vdb");
         openvdb::io::File out(tiled.string());
         out.write(*grids, *meta);

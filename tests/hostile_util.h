@@ -82,7 +82,7 @@ inline GltfScene triangleScene(float size = 1.0f) {
            {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}}}}}}},
         {"materials",
          {{{"name", "textured"},
-           {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+           {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}}},
            {"doubleSided", true}}}},
         {"textures", {{{"source", 0}}}},
         {"images", {{{"uri", "texture.png"}}}},
@@ -166,12 +166,23 @@ inline std::vector<std::pair<std::string, size_t>> nonFiniteExrValues(const fs::
     return counts;
 }
 
+// Pixels of DIR/albedo.exr (written by --aux) where something was drawn: the background's albedo is 0, the base
+// scene's (non-metallic, textured) is not.
+inline size_t coveredPixels(const fs::path& out) {
+    if (!fs::exists(out / "albedo.exr")) return 0;
+    const std::vector<float> albedo = readExr(out / "albedo.exr").pixels;
+    size_t covered = 0;
+    for (size_t i = 0; i < albedo.size(); i += 4) covered += albedo[i] + albedo[i + 1] + albedo[i + 2] > 0.0f ? 1 : 0;
+    return covered;
+}
+
 enum class Outcome { Either, MustRender, MustFail };
 
 struct Expectation {
     Outcome outcome = Outcome::Either;
     std::vector<std::string> mentions;  // in the error line (case-insensitive), when it fails
     int failCode = 0;                   // 1 or 2 when it must be that one; 0: either
+    bool mustCover = false;             // when it renders, the scene must be in view (not an empty image)
 };
 
 // The promise every hostile case is held to (see the file comment). Returns the run for further checks.
@@ -190,6 +201,9 @@ inline test::RunResult expectGraceful(const std::vector<std::string>& args, cons
         EXPECT_TRUE(fs::is_regular_file(out / "final.png") || args[0] != "render") << r.describe();
         for (const auto& [name, count] : nonFiniteExrValues(out))
             EXPECT_EQ(count, 0u) << name << " has non-finite values; " << r.describe();
+        if (expect.mustCover) {
+            EXPECT_GT(coveredPixels(out), 0u) << "an empty image: " << r.describe();
+        }
         return r;
     }
     EXPECT_NE(expect.outcome, Outcome::MustRender) << r.describe();

@@ -658,7 +658,7 @@ void fitCameraDepthRanges(Scene& scene) {
         Camera& cam = scene.cameras[size_t(scene.nodes[n].camera)];
         const std::string name = "camera '" + (cam.name.empty() ? "#" + std::to_string(scene.nodes[n].camera) : cam.name) + "'";
         if (cam.yfov > 0.0f && cam.yfov < kMinYfov) {
-            scene.notes.push_back(name + ": yfov " + std::to_string(cam.yfov) + " widened to " + std::to_string(kMinYfov));
+            scene.notes.push_back(name + ": yfov " + numberText(cam.yfov) + " widened to " + numberText(kMinYfov));
             cam.yfov = kMinYfov;
         }
         if (!(cam.znear > 0.0f) || !std::isfinite(cam.znear)) continue;  // validate() names it
@@ -670,8 +670,8 @@ void fitCameraDepthRanges(Scene& scene) {
         const float zfar = std::min(cam.zfar, std::max(100.0f * reach, cam.znear * kMaxDepthRatio));
         const float znear = std::max(cam.znear, zfar / kMaxDepthRatio);
         if (std::isfinite(zfar) && std::isfinite(znear)) {
-            scene.notes.push_back(name + ": depth range " + std::to_string(cam.znear) + " .. " + std::to_string(cam.zfar) +
-                                  " narrowed to " + std::to_string(znear) + " .. " + std::to_string(zfar) +
+            scene.notes.push_back(name + ": depth range " + numberText(cam.znear) + " .. " + numberText(cam.zfar) +
+                                  " narrowed to " + numberText(znear) + " .. " + numberText(zfar) +
                                   " (float depth resolves a ratio of at most 1e6)");
             cam.znear = znear;
             cam.zfar = zfar;

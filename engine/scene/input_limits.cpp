@@ -41,6 +41,12 @@ std::string byteSizeText(uint64_t bytes) {
     return text;
 }
 
+std::string numberText(double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", value);
+    return text;
+}
+
 std::optional<std::string> regularFileProblem(const std::filesystem::path& path, uint64_t maxBytes) {
     struct stat info {};
     if (stat(path.c_str(), &info) != 0) return std::string(errno == ENOENT ? "no such file" : std::strerror(errno));

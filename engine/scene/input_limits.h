@@ -53,5 +53,7 @@ inline bool rangeWithin(uint64_t offset, uint64_t length, uint64_t size) {
 
 // "1.5 GB" style sizes for messages.
 std::string byteSizeText(uint64_t bytes);
+// A number for messages, %g style ("1e-20", "0.5", "inf"): std::to_string prints 1e-20 as 0.000000.
+std::string numberText(double value);
 
 }  // namespace vct

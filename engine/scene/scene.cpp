@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "scene/input_limits.h"
 
 namespace vct {
 
@@ -280,7 +281,9 @@ Aabb Scene::bounds() const {
 void Scene::normalizeScale() {
     const Aabb box = bounds();
     if (box.empty()) return;
-    const float extent = glm::length(box.max - box.min);
+    // The largest side, not the diagonal: squaring a side of 1e-30 would underflow to 0.
+    const glm::vec3 size = box.max - box.min;
+    const float extent = std::max(size.x, std::max(size.y, size.z));
     constexpr float kMinExtent = 1e-2f, kMaxExtent = 1e6f;
     if (!(extent > 0.0f) || (extent >= kMinExtent && extent <= kMaxExtent)) return;
     // A power of two: every scaled value keeps its bits, so the image is the one the scene would give if
@@ -311,10 +314,10 @@ void Scene::normalizeScale() {
         // A point or spot light's irradiance falls with the squared distance, which scaled by s².
         if (light.type != LightType::Directional) light.intensity *= s * s;
         if (!std::isfinite(light.intensity) || !finite(light.color * light.intensity))
-            throw Error("light '" + light.name + "': its intensity at this scene's scale (" + std::to_string(extent) +
+            throw Error("light '" + light.name + "': its intensity at this scene's scale (" + numberText(extent) +
                         " across) overflows float");
     }
-    notes.push_back("scene is " + std::to_string(extent) + " units across: scaled by 2^" + std::to_string(exponent) +
+    notes.push_back("scene is " + numberText(extent) + " units across: scaled by 2^" + std::to_string(exponent) +
                     " to keep float math in range (lights and cameras scaled with it; the image is the same)");
 }
 
@@ -446,22 +449,22 @@ void Scene::validate() const {
         if (!finite(light.color) || light.color.x < 0.0f || light.color.y < 0.0f || light.color.z < 0.0f)
             fail(where + "color is not finite and non-negative");
         if (!std::isfinite(light.intensity) || light.intensity < 0.0f)
-            fail(where + "intensity " + std::to_string(light.intensity) + " is not finite and non-negative");
+            fail(where + "intensity " + numberText(light.intensity) + " is not finite and non-negative");
         if (!finite(light.color * light.intensity)) fail(where + "color x intensity overflows float");
         if (!std::isfinite(light.range) || light.range < 0.0f)
-            fail(where + "range " + std::to_string(light.range) + " is not finite and non-negative");
+            fail(where + "range " + numberText(light.range) + " is not finite and non-negative");
         if (light.type == LightType::Spot &&
             !(light.innerConeAngle >= 0.0f && light.innerConeAngle < light.outerConeAngle &&
               light.outerConeAngle <= kHalfPi))
-            fail(where + "spot cone angles " + std::to_string(light.innerConeAngle) + ", " +
-                 std::to_string(light.outerConeAngle) + " are not 0 <= inner < outer <= pi/2");
+            fail(where + "spot cone angles " + numberText(light.innerConeAngle) + ", " +
+                 numberText(light.outerConeAngle) + " are not 0 <= inner < outer <= pi/2");
     }
     for (size_t c = 0; c < cameras.size(); ++c) {
         const Camera& cam = cameras[c];
         const std::string where = "camera " + quoted(cam.name, c) + ": ";
-        if (!(cam.yfov > 0.0f && cam.yfov < kPi)) fail(where + "yfov " + std::to_string(cam.yfov) + " is not in (0, pi)");
+        if (!(cam.yfov > 0.0f && cam.yfov < kPi)) fail(where + "yfov " + numberText(cam.yfov) + " is not in (0, pi)");
         if (!(cam.znear > 0.0f) || !std::isfinite(cam.znear))
-            fail(where + "znear " + std::to_string(cam.znear) + " is not finite and positive");
+            fail(where + "znear " + numberText(cam.znear) + " is not finite and positive");
         if (!std::isfinite(cam.zfar)) fail(where + "zfar is not finite");
     }
     // Each node may be finite while their product is not (a scale of 1e20 over a translation of 1e20): the
@@ -484,6 +487,18 @@ void Scene::validate() const {
     const Aabb box = bounds();
     if (!finite(box.min) || !finite(box.max))
         fail("scene " + quoted(name, 0) + ": the transformed vertices are not finite (bounds overflow float)");
+    // A camera a million scene sizes away sees at most a pixel of it, and its view products overflow float
+    // long before a float position does.
+    const glm::vec3 size = box.max - box.min, centre = 0.5f * box.min + 0.5f * box.max;
+    const double reach = 1e6 * std::max(double(std::max(size.x, std::max(size.y, size.z))), 1e-30);
+    const std::vector<glm::mat4> world = evaluate(0.0f);
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        if (nodes[n].camera < 0) continue;
+        const glm::dvec3 offset = glm::dvec3(glm::vec3(world[n][3])) - glm::dvec3(centre);
+        if (glm::length(offset) > reach)
+            fail("node " + quoted(nodes[n].name, n) + ": its camera is " + numberText(glm::length(offset)) +
+                 " units from the scene, more than 1e6 times the scene's size: nothing would be in view");
+    }
 }
 
 namespace {
