@@ -1,11 +1,10 @@
 // Hostile files and flags around the scene (issue 11, classes 4, 5, 7, 8, 10, 12, 13): uris and caches that
-// name FIFOs or devices, damaged and oversized voxel caches, caches of another scene, outputs that are files or
-// planted symlinks, and flag combinations that used to fail late. Same promise as hostile_gltf_test.cpp.
-#include <sys/stat.h>
-#include <unistd.h>
-
+// name FIFOs or devices, damaged and oversized voxel caches, caches of another scene, outputs that are files
+// or planted symlinks, and flag combinations that used to fail late. Same promise as hostile_gltf_test.cpp.
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <iterator>
@@ -23,7 +22,9 @@ std::string readText(const fs::path& path) {
     return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-void makeFifo(const fs::path& path) { ASSERT_EQ(mkfifo(path.c_str(), 0600), 0) << path; }
+void makeFifo(const fs::path& path) {
+    ASSERT_EQ(mkfifo(path.c_str(), 0600), 0) << path;
+}
 
 // ---- class 4: uris, caches and paths that are not regular files ----
 
@@ -65,7 +66,8 @@ TEST_P(HostileSpecialFile, IsRefusedWithoutBlocking) {
 std::vector<SpecialCase> specialCases() {
     std::vector<SpecialCase> cases;
     for (const char* field : {"buffer", "image", "scene", "voxel-cache", "camera-path"})
-        for (auto [kind, label] : {std::pair{Special::Fifo, "Fifo"}, {Special::Directory, "Directory"},
+        for (auto [kind, label] : {std::pair{Special::Fifo, "Fifo"},
+                                   {Special::Directory, "Directory"},
                                    {Special::DevZero, "DevZero"}})
             cases.push_back({std::string(field == std::string("voxel-cache")   ? "VoxelCache"
                                          : field == std::string("camera-path") ? "CameraPath"
@@ -118,12 +120,12 @@ TEST(HostileVoxelCache, TruncatedFilesFailFast) {
     const CacheScene c = cacheScene(dir);
     writeVoxelFile(dir / "cache.vdb", c.file);
     const std::string bytes = readText(dir / "cache.vdb");
-    for (size_t length : {size_t(0), size_t(8), size_t(100), size_t(400), size_t(1500), bytes.size() / 2,
-                          bytes.size() - 1}) {
+    for (size_t length :
+         {size_t(0), size_t(8), size_t(100), size_t(400), size_t(1500), bytes.size() / 2, bytes.size() - 1}) {
         const fs::path cut = dir / ("cut" + std::to_string(length) + ".vdb");
         test::writeTextFile(cut, bytes.substr(0, length));
-        const test::RunResult r =
-            expectGraceful(cacheArgs(c, dir, cut), dir / "out", {Outcome::MustFail, {cut.filename().string()}, 1});
+        const test::RunResult r = expectGraceful(cacheArgs(c, dir, cut), dir / "out",
+                                                 {Outcome::MustFail, {cut.filename().string()}, 1});
         EXPECT_LT(r.seconds, 20.0) << r.describe();
     }
 }
@@ -135,7 +137,8 @@ TEST(HostileVoxelCache, ActiveTilesOutsideTheGridFailFast) {
     const CacheScene c = cacheScene(dir);
     writeVoxelFile(dir / "cache.vdb", c.file);
     openvdb::initialize();
-    for (auto [level, at] : {std::pair{3, openvdb::Coord(0)}, {2, openvdb::Coord(0)}, {1, openvdb::Coord(32, 0, 0)}}) {
+    for (auto [level, at] :
+         {std::pair{3, openvdb::Coord(0)}, {2, openvdb::Coord(0)}, {1, openvdb::Coord(32, 0, 0)}}) {
         openvdb::io::File in((dir / "cache.vdb").string());
         in.open(false);
         openvdb::GridPtrVecPtr grids = in.getGrids();
@@ -148,8 +151,8 @@ TEST(HostileVoxelCache, ActiveTilesOutsideTheGridFailFast) {
         openvdb::io::File out(tiled.string());
         out.write(*grids, *meta);
         out.close();
-        const test::RunResult r =
-            expectGraceful(cacheArgs(c, dir, tiled), dir / "out", {Outcome::MustFail, {tiled.filename().string()}, 1});
+        const test::RunResult r = expectGraceful(cacheArgs(c, dir, tiled), dir / "out",
+                                                 {Outcome::MustFail, {tiled.filename().string()}, 1});
         EXPECT_LT(r.seconds, 20.0) << r.describe();
     }
 }
@@ -160,7 +163,8 @@ TEST(HostileVoxelCache, CacheOfAnotherSceneWithTheSameBoundsIsRefused) {
     c.file.info.scene = "/elsewhere/other.gltf";
     c.file.info.sceneHash ^= 1;  // other content, same bounds
     writeVoxelFile(dir / "other.vdb", c.file);
-    expectGraceful(cacheArgs(c, dir, dir / "other.vdb"), dir / "out", {Outcome::MustFail, {"other.vdb", "scene"}, 1});
+    expectGraceful(cacheArgs(c, dir, dir / "other.vdb"), dir / "out",
+                   {Outcome::MustFail, {"other.vdb", "scene"}, 1});
 }
 
 // Class 10: every cache the renderer refuses ends in one line, with no leaked Vulkan object reported by the
@@ -182,12 +186,14 @@ TEST(HostileVoxelCache, RefusedCachesLeakNothing) {
 TEST(HostileFlags, GiOffAuxWritesOnlyFiniteImagesOfPassesThatRan) {
     const fs::path dir = caseDir();
     const fs::path scene = writeGltf(dir, triangleScene());
-    expectGraceful(renderArgs(scene, dir / "out", {"--gi", "off"}), dir / "out", {Outcome::MustRender, {}, 0});
+    expectGraceful(renderArgs(scene, dir / "out", {"--gi", "off"}), dir / "out",
+                   {Outcome::MustRender, {}, 0});
     EXPECT_FALSE(fs::exists(dir / "out" / "diffuse_indirect.exr"));
     EXPECT_FALSE(fs::exists(dir / "out" / "specular_indirect.exr"));
     for (const char* view : {"diffuse", "specular", "weights", "resample", "voxels"}) {
-        const test::RunResult r = expectGraceful(renderArgs(scene, dir / "out2", {"--gi", "off", "--view", view}),
-                                                 dir / "out2", {Outcome::MustFail, {view}, 2});
+        const test::RunResult r =
+            expectGraceful(renderArgs(scene, dir / "out2", {"--gi", "off", "--view", view}), dir / "out2",
+                           {Outcome::MustFail, {view}, 2});
         EXPECT_LT(r.seconds, 10.0) << "refused only after rendering: " << r.describe();
     }
 }
@@ -210,24 +216,28 @@ TEST(HostileFlags, OutputPathThatIsAFileIsRefusedBeforeRendering) {
     test::writeTextFile(dir / "file", "x");
     const test::RunResult r =
         expectGraceful(renderArgs(scene, dir / "file"), dir / "file", {Outcome::MustFail, {"file"}, 0});
-    EXPECT_EQ(r.out.find("device:"), std::string::npos) << "refused only after starting Vulkan: " << r.describe();
+    EXPECT_EQ(r.out.find("device:"), std::string::npos)
+        << "refused only after starting Vulkan: " << r.describe();
     EXPECT_EQ(readText(dir / "file"), "x");
-    expectGraceful({"benchmark", "--scene", scene.string(), "--frames", "2", "--out", (dir / "file").string()},
-                   dir / "file", {Outcome::MustFail, {"file"}, 0});
+    expectGraceful(
+        {"benchmark", "--scene", scene.string(), "--frames", "2", "--out", (dir / "file").string()},
+        dir / "file", {Outcome::MustFail, {"file"}, 0});
     // voxelize: a .vdb under a file, and a .vdb name that is a directory.
     fs::create_directories(dir / "dir.vdb");
     for (auto [out, named] : {std::pair{dir / "file" / "x.vdb", "file"}, {dir / "dir.vdb", "dir.vdb"}}) {
-        const test::RunResult v = expectGraceful({"voxelize", "--scene", scene.string(), "--voxels", "32", "--out", out.string()},
-                                                 dir / "none", {Outcome::MustFail, {named}, 0});
-        EXPECT_EQ(v.out.find("device:"), std::string::npos) << "refused only after starting Vulkan: " << v.describe();
+        const test::RunResult v =
+            expectGraceful({"voxelize", "--scene", scene.string(), "--voxels", "32", "--out", out.string()},
+                           dir / "none", {Outcome::MustFail, {named}, 0});
+        EXPECT_EQ(v.out.find("device:"), std::string::npos)
+            << "refused only after starting Vulkan: " << v.describe();
     }
 }
 
 TEST(HostileFlags, BenchmarkWithFewFramesNeedsNoWarmupFlag) {
     const fs::path dir = caseDir();
     const fs::path scene = writeGltf(dir, triangleScene());
-    expectGraceful({"benchmark", "--scene", scene.string(), "--size", "32x18", "--frames", "3", "--voxels", "32",
-                    "--block", "2", "--out", (dir / "out").string(), "--validate"},
+    expectGraceful({"benchmark", "--scene", scene.string(), "--size", "32x18", "--frames", "3", "--voxels",
+                    "32", "--block", "2", "--out", (dir / "out").string(), "--validate"},
                    dir / "out", {Outcome::MustRender, {}, 0});
     expectGraceful({"benchmark", "--scene", scene.string(), "--frames", "3", "--warmup", "3", "--out",
                     (dir / "out").string()},
@@ -240,21 +250,24 @@ TEST(HostileOutputs, PlantedSymlinksAreReplacedNotFollowed) {
     const fs::path dir = caseDir();
     const fs::path scene = writeGltf(dir, triangleScene());
     fs::create_directories(dir / "out");
-    const char* outputs[] = {"final.png", "final.exr", "timings.json", "direct.exr", "depth.exr", "resample_mask.png"};
+    const char* outputs[] = {"final.png",  "final.exr", "timings.json",
+                             "direct.exr", "depth.exr", "resample_mask.png"};
     for (const char* name : outputs) {
         test::writeTextFile(dir / (std::string("victim_") + name), "precious");
         fs::create_symlink(dir / (std::string("victim_") + name), dir / "out" / name);
     }
     expectGraceful(renderArgs(scene, dir / "out"), dir / "out", {Outcome::MustRender, {}, 0});
     for (const char* name : outputs) {
-        EXPECT_EQ(readText(dir / (std::string("victim_") + name)), "precious") << name << " followed the symlink";
+        EXPECT_EQ(readText(dir / (std::string("victim_") + name)), "precious")
+            << name << " followed the symlink";
         EXPECT_FALSE(fs::is_symlink(dir / "out" / name)) << name;
         EXPECT_TRUE(fs::is_regular_file(dir / "out" / name)) << name;
     }
     // The voxel file of `vct voxelize` too.
     test::writeTextFile(dir / "victim.vdb", "precious");
     fs::create_symlink(dir / "victim.vdb", dir / "out" / "grid.vdb");
-    expectGraceful({"voxelize", "--scene", scene.string(), "--voxels", "32", "--out", (dir / "out" / "grid.vdb").string()},
+    expectGraceful({"voxelize", "--scene", scene.string(), "--voxels", "32", "--out",
+                    (dir / "out" / "grid.vdb").string()},
                    dir / "out", {Outcome::MustRender, {}, 0});
     EXPECT_EQ(readText(dir / "victim.vdb"), "precious");
     EXPECT_FALSE(fs::is_symlink(dir / "out" / "grid.vdb"));

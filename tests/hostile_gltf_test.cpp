@@ -1,7 +1,7 @@
 // Hostile glTF files (issue 11, classes 1-6, 9, 11): generators that mutate the valid one-triangle scene of
 // hostile_util.h along one parameter each (an offset that wraps, a nesting depth, a uri that names a FIFO, a
-// count that would allocate gigabytes, a light or camera value that overflows float, ...). Every case must end
-// in one stderr line naming the file (exit 1) or in a finite image (hostile_util.h, expectGraceful).
+// count that would allocate gigabytes, a light or camera value that overflows float, ...). Every case must
+// end in one stderr line naming the file (exit 1) or in a finite image (hostile_util.h, expectGraceful).
 #include <sys/stat.h>
 
 #include <cmath>
@@ -39,33 +39,43 @@ std::vector<GltfCase> boundsCases() {
     std::vector<GltfCase> cases;
     for (uint64_t offset : {kMax64 - 7, kMax64 - 35, uint64_t(1) << 63})
         cases.push_back({"ViewOffsetWraps" + std::to_string(cases.size()),
-                         [offset](GltfScene& s) { s.doc["bufferViews"][0]["byteOffset"] = offset; }, fails()});
-    cases.push_back({"ViewLengthWraps", [](GltfScene& s) {
+                         [offset](GltfScene& s) { s.doc["bufferViews"][0]["byteOffset"] = offset; },
+                         fails()});
+    cases.push_back({"ViewLengthWraps",
+                     [](GltfScene& s) {
                          s.doc["bufferViews"][0]["byteOffset"] = 16;
                          s.doc["bufferViews"][0]["byteLength"] = kMax64 - 7;
-                     }, fails()});
+                     },
+                     fails()});
     for (uint64_t offset : {kMax64 - 7, kMax64 - 11, uint64_t(1) << 62})
         cases.push_back({"AccessorOffsetWraps" + std::to_string(cases.size()),
                          [offset](GltfScene& s) { s.doc["accessors"][0]["byteOffset"] = offset; }, fails()});
-    cases.push_back({"AccessorCountOverflowsStride", [](GltfScene& s) {
-                         s.doc["accessors"][0]["count"] = (uint64_t(1) << 62) + 1;
-                     }, fails()});
+    cases.push_back({"AccessorCountOverflowsStride",
+                     [](GltfScene& s) { s.doc["accessors"][0]["count"] = (uint64_t(1) << 62) + 1; },
+                     fails()});
     for (int which : {0, 1})  // through the sparse indices' view or the sparse values' view
-        cases.push_back({std::string("SparseViewWraps") + (which ? "Values" : "Indices"), [which](GltfScene& s) {
-                             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", kMax64 - 3}, {"byteLength", 8}});
-                             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 12}});
-                             const int wrapping = int(s.doc["bufferViews"].size()) - 2;
-                             s.doc["accessors"][0]["sparse"] = {
-                                 {"count", 1},
-                                 {"indices", {{"bufferView", which ? wrapping + 1 : wrapping}, {"componentType", 5125}}},
-                                 {"values", {{"bufferView", which ? wrapping : wrapping + 1}}}};
-                         }, fails()});
-    cases.push_back({"SparseOffsetWraps", [](GltfScene& s) {
-                         s.doc["accessors"][0]["sparse"] = {
-                             {"count", 1},
-                             {"indices", {{"bufferView", 0}, {"byteOffset", kMax64 - 1}, {"componentType", 5125}}},
-                             {"values", {{"bufferView", 0}}}};
-                     }, fails()});
+        cases.push_back(
+            {std::string("SparseViewWraps") + (which ? "Values" : "Indices"),
+             [which](GltfScene& s) {
+                 s.doc["bufferViews"].push_back(
+                     {{"buffer", 0}, {"byteOffset", kMax64 - 3}, {"byteLength", 8}});
+                 s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 12}});
+                 const int wrapping = int(s.doc["bufferViews"].size()) - 2;
+                 s.doc["accessors"][0]["sparse"] = {
+                     {"count", 1},
+                     {"indices", {{"bufferView", which ? wrapping + 1 : wrapping}, {"componentType", 5125}}},
+                     {"values", {{"bufferView", which ? wrapping : wrapping + 1}}}};
+             },
+             fails()});
+    cases.push_back(
+        {"SparseOffsetWraps",
+         [](GltfScene& s) {
+             s.doc["accessors"][0]["sparse"] = {
+                 {"count", 1},
+                 {"indices", {{"bufferView", 0}, {"byteOffset", kMax64 - 1}, {"componentType", 5125}}},
+                 {"values", {{"bufferView", 0}}}};
+         },
+         fails()});
     return cases;
 }
 
@@ -106,18 +116,21 @@ std::vector<GltfCase> nestingCases() {
     for (int depth : {20000, 100000})
         for (int kind : {0, 1, 2})
             for (bool glb : {false, true})
-                cases.push_back({"Nested" + std::to_string(depth) + "Kind" + std::to_string(kind) + (glb ? "Glb" : ""),
-                                 [depth, kind](GltfScene& s) {
-                                     json& where = kind == 1 ? s.doc["nodes"][0] : kind == 2 ? s.doc["asset"] : s.doc;
-                                     where["extras"] = "@NESTED@";
-                                     s.replaceInText = {"\"@NESTED@\"", nestedText(depth, kind)};
-                                 },
-                                 fails({"nest"}), glb});
+                cases.push_back(
+                    {"Nested" + std::to_string(depth) + "Kind" + std::to_string(kind) + (glb ? "Glb" : ""),
+                     [depth, kind](GltfScene& s) {
+                         json& where = kind == 1 ? s.doc["nodes"][0] : kind == 2 ? s.doc["asset"] : s.doc;
+                         where["extras"] = "@NESTED@";
+                         s.replaceInText = {"\"@NESTED@\"", nestedText(depth, kind)};
+                     },
+                     fails({"nest"}), glb});
     // Moderately deep extras are harmless either way.
-    cases.push_back({"Nested5000", [](GltfScene& s) {
+    cases.push_back({"Nested5000",
+                     [](GltfScene& s) {
                          s.doc["extras"] = "@NESTED@";
                          s.replaceInText = {"\"@NESTED@\"", nestedText(5000, 0)};
-                     }, rendersOrFails()});
+                     },
+                     rendersOrFails()});
     return cases;
 }
 
@@ -128,26 +141,35 @@ std::vector<GltfCase> allocationCases() {
         cases.push_back({"HugeCount" + std::to_string(cases.size()),
                          [count](GltfScene& s) { s.doc["accessors"][0]["count"] = count; }, fails()});
     for (uint64_t count : {uint64_t(1) << 27, uint64_t(1) << 33})  // no bufferView: zeros, then sparse values
-        cases.push_back({"HugeCountWithoutView" + std::to_string(cases.size()), [count](GltfScene& s) {
+        cases.push_back({"HugeCountWithoutView" + std::to_string(cases.size()),
+                         [count](GltfScene& s) {
                              s.doc["accessors"][0].erase("bufferView");
                              s.doc["accessors"][0]["count"] = count;
                              s.doc["accessors"][1]["count"] = count;
                              s.doc["accessors"][1].erase("bufferView");
-                         }, fails()});
-    cases.push_back({"HugeSparseCount", [](GltfScene& s) {
-                         s.doc["accessors"][0]["sparse"] = {{"count", uint64_t(1) << 30},
-                                                            {"indices", {{"bufferView", 0}, {"componentType", 5125}}},
-                                                            {"values", {{"bufferView", 0}}}};
-                     }, fails()});
-    cases.push_back({"HugeIndexCount", [](GltfScene& s) {
-                         s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 12}});
-                         s.doc["accessors"].push_back({{"bufferView", s.doc["bufferViews"].size() - 1},
-                                                       {"componentType", 5125}, {"count", uint64_t(1) << 29},
-                                                       {"type", "SCALAR"}});
-                         s.doc["meshes"][0]["primitives"][0]["indices"] = s.doc["accessors"].size() - 1;
-                     }, fails()});
-    cases.push_back({"HugeBufferByteLength", [](GltfScene& s) { s.doc["buffers"][0]["byteLength"] = uint64_t(1) << 40; },
+                         },
+                         fails()});
+    cases.push_back({"HugeSparseCount",
+                     [](GltfScene& s) {
+                         s.doc["accessors"][0]["sparse"] = {
+                             {"count", uint64_t(1) << 30},
+                             {"indices", {{"bufferView", 0}, {"componentType", 5125}}},
+                             {"values", {{"bufferView", 0}}}};
+                     },
                      fails()});
+    cases.push_back(
+        {"HugeIndexCount",
+         [](GltfScene& s) {
+             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 12}});
+             s.doc["accessors"].push_back({{"bufferView", s.doc["bufferViews"].size() - 1},
+                                           {"componentType", 5125},
+                                           {"count", uint64_t(1) << 29},
+                                           {"type", "SCALAR"}});
+             s.doc["meshes"][0]["primitives"][0]["indices"] = s.doc["accessors"].size() - 1;
+         },
+         fails()});
+    cases.push_back({"HugeBufferByteLength",
+                     [](GltfScene& s) { s.doc["buffers"][0]["byteLength"] = uint64_t(1) << 40; }, fails()});
     return cases;
 }
 
@@ -156,7 +178,8 @@ void addLight(GltfScene& s, json light, json node = json::object()) {
     s.doc["extensionsUsed"] = {"KHR_lights_punctual"};
     s.doc["extensions"]["KHR_lights_punctual"]["lights"] = {light};
     node["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
-    if (!node.contains("rotation") && !node.contains("matrix")) node["rotation"] = {-0.3826834, 0, 0, 0.9238795};
+    if (!node.contains("rotation") && !node.contains("matrix"))
+        node["rotation"] = {-0.3826834, 0, 0, 0.9238795};
     s.doc["nodes"].push_back(node);
     s.doc["scenes"][0]["nodes"].push_back(s.doc["nodes"].size() - 1);
 }
@@ -175,8 +198,8 @@ std::vector<GltfCase> lightCases() {
         {{"type", "point"}, {"range", -1}},
     };
     for (size_t i = 0; i < std::size(bad); ++i)
-        cases.push_back({"LightValue" + std::to_string(i), [light = bad[i]](GltfScene& s) { addLight(s, light); },
-                         rendersOrFails({"light"})});
+        cases.push_back({"LightValue" + std::to_string(i),
+                         [light = bad[i]](GltfScene& s) { addLight(s, light); }, rendersOrFails({"light"})});
     const json degenerateNodes[] = {
         {{"scale", {0, 0, 0}}},
         {{"scale", {1, 1, 0}}},
@@ -194,23 +217,33 @@ std::vector<GltfCase> lightCases() {
                              },
                              rendersOrFails()});
     // An animation that scales the light's node to 0 (rendered at t = 0 and t = 1/60 .. : frames 1-3).
-    cases.push_back({"LightAnimatedToScaleZero", [](GltfScene& s) {
-                         addLight(s, {{"type", "directional"}, {"intensity", 2}});
-                         const size_t offset = s.bin.size();
-                         appendFloats(s.bin, {0.0f, 0.01f, 1, 1, 1, 0, 0, 0});
-                         s.doc["buffers"][0]["byteLength"] = s.bin.size();
-                         s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 32}});
-                         const size_t view = s.doc["bufferViews"].size() - 1;
-                         s.doc["accessors"].push_back({{"bufferView", view}, {"componentType", 5126}, {"count", 2},
-                                                       {"type", "SCALAR"}, {"min", {0}}, {"max", {0.01}}});
-                         s.doc["accessors"].push_back({{"bufferView", view}, {"byteOffset", 8}, {"componentType", 5126},
-                                                       {"count", 2}, {"type", "VEC3"}});
-                         const size_t keys = s.doc["accessors"].size() - 2;
-                         s.doc["animations"] = {{{"channels", {{{"sampler", 0},
-                                                                {"target", {{"node", s.doc["nodes"].size() - 1},
-                                                                            {"path", "scale"}}}}}},
-                                                 {"samplers", {{{"input", keys}, {"output", keys + 1}}}}}};
-                     }, rendersOrFails()});
+    cases.push_back(
+        {"LightAnimatedToScaleZero",
+         [](GltfScene& s) {
+             addLight(s, {{"type", "directional"}, {"intensity", 2}});
+             const size_t offset = s.bin.size();
+             appendFloats(s.bin, {0.0f, 0.01f, 1, 1, 1, 0, 0, 0});
+             s.doc["buffers"][0]["byteLength"] = s.bin.size();
+             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 32}});
+             const size_t view = s.doc["bufferViews"].size() - 1;
+             s.doc["accessors"].push_back({{"bufferView", view},
+                                           {"componentType", 5126},
+                                           {"count", 2},
+                                           {"type", "SCALAR"},
+                                           {"min", {0}},
+                                           {"max", {0.01}}});
+             s.doc["accessors"].push_back({{"bufferView", view},
+                                           {"byteOffset", 8},
+                                           {"componentType", 5126},
+                                           {"count", 2},
+                                           {"type", "VEC3"}});
+             const size_t keys = s.doc["accessors"].size() - 2;
+             s.doc["animations"] = {
+                 {{"channels",
+                   {{{"sampler", 0}, {"target", {{"node", s.doc["nodes"].size() - 1}, {"path", "scale"}}}}}},
+                  {"samplers", {{{"input", keys}, {"output", keys + 1}}}}}};
+         },
+         rendersOrFails()});
     return cases;
 }
 
@@ -236,7 +269,8 @@ std::vector<GltfCase> cameraCases() {
         {{"yfov", 0.8}, {"znear", 0.01}, {"aspectRatio", 1e-30}},
     };
     for (size_t i = 0; i < std::size(lenses); ++i)
-        cases.push_back({"CameraLens" + std::to_string(i), [lens = lenses[i]](GltfScene& s) { addCamera(s, lens); },
+        cases.push_back({"CameraLens" + std::to_string(i),
+                         [lens = lenses[i]](GltfScene& s) { addCamera(s, lens); },
                          rendersOrFails({"camera"})});
     const json nodes[] = {
         {{"scale", {0, 0, 0}}, {"translation", {0.3, 0.3, 2}}},
@@ -247,14 +281,25 @@ std::vector<GltfCase> cameraCases() {
     };
     for (size_t i = 0; i < std::size(nodes); ++i)
         cases.push_back({"CameraNode" + std::to_string(i),
-                         [node = nodes[i]](GltfScene& s) { addCamera(s, {{"yfov", 0.8}, {"znear", 0.01}}, node); },
+                         [node = nodes[i]](GltfScene& s) {
+                             addCamera(s, {{"yfov", 0.8}, {"znear", 0.01}}, node);
+                         },
                          rendersOrFails()});
+    // The mesh itself flattened (no inverse for its normals) or scaled to nothing.
+    for (auto [name, scale] : {std::pair{"MeshFlattened", json{1, 1, 0}},
+                               {"MeshFlattenedAcross", json{1, 0, 1}},
+                               {"MeshScaleZero", json{0, 0, 0}}})
+        cases.push_back({name,
+                         [scale = scale](GltfScene& s) { s.doc["nodes"][0]["scale"] = scale; },
+                         {Outcome::Either, {"scene."}, 1, false}});
     // Composed transforms that overflow: each node is finite, the product is not.
-    cases.push_back({"ComposedTransformOverflows", [](GltfScene& s) {
+    cases.push_back({"ComposedTransformOverflows",
+                     [](GltfScene& s) {
                          s.doc["nodes"][0]["scale"] = {1e20, 1e20, 1e20};
                          s.doc["nodes"].push_back({{"translation", {1e20, 0, 0}}, {"mesh", 0}});
                          s.doc["nodes"][0]["children"] = {s.doc["nodes"].size() - 1};
-                     }, rendersOrFails()});
+                     },
+                     rendersOrFails()});
     return cases;
 }
 
@@ -262,10 +307,12 @@ std::vector<GltfCase> cameraCases() {
 std::vector<GltfCase> textureCases() {
     std::vector<GltfCase> cases;
     for (auto [w, h] : {std::pair{16385u, 1u}, {1u, 16385u}, {40000u, 2u}})
-        cases.push_back({"TextureWide" + std::to_string(w) + "x" + std::to_string(h), [w = w, h = h](GltfScene& s) {
+        cases.push_back({"TextureWide" + std::to_string(w) + "x" + std::to_string(h),
+                         [w = w, h = h](GltfScene& s) {
                              s.doc["images"][0]["uri"] = "wide.png";
                              s.doc["extras"] = {{"wide", {w, h}}};  // read by the runner below
-                         }, rendersOrFails({"wide.png"})});
+                         },
+                         rendersOrFails({"wide.png"})});
     return cases;
 }
 
@@ -276,7 +323,8 @@ TEST_P(HostileGltf, EndsInOneLineOrAFiniteImage) {
     const fs::path dir = caseDir();
     GltfScene scene = triangleScene();
     c.mutate(scene);
-    if (scene.doc.contains("extras") && scene.doc["extras"].is_object() && scene.doc["extras"].contains("wide")) {
+    if (scene.doc.contains("extras") && scene.doc["extras"].is_object() &&
+        scene.doc["extras"].contains("wide")) {
         const uint32_t w = scene.doc["extras"]["wide"][0], h = scene.doc["extras"]["wide"][1];
         scene.doc.erase("extras");
         writeTexture(dir / "wide.png", w, h);
@@ -286,7 +334,9 @@ TEST_P(HostileGltf, EndsInOneLineOrAFiniteImage) {
     EXPECT_LT(r.seconds, 30.0) << "too slow for bad input: " << r.describe();
 }
 
-std::string caseName(const ::testing::TestParamInfo<GltfCase>& info) { return info.param.name; }
+std::string caseName(const ::testing::TestParamInfo<GltfCase>& info) {
+    return info.param.name;
+}
 
 INSTANTIATE_TEST_SUITE_P(Bounds, HostileGltf, ::testing::ValuesIn(boundsCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(ImageViews, HostileGltf, ::testing::ValuesIn(imageViewCases()), caseName);
@@ -295,7 +345,6 @@ INSTANTIATE_TEST_SUITE_P(Allocation, HostileGltf, ::testing::ValuesIn(allocation
 INSTANTIATE_TEST_SUITE_P(Lights, HostileGltf, ::testing::ValuesIn(lightCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(Cameras, HostileGltf, ::testing::ValuesIn(cameraCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(Textures, HostileGltf, ::testing::ValuesIn(textureCases()), caseName);
-
 
 // Class 11: a scene of any finite size without a camera is framed by the default camera: it renders, finite,
 // and the triangle covers pixels (albedo.exr is black where nothing was drawn).
@@ -314,7 +363,8 @@ TEST_P(HostileSceneScale, DefaultCameraFramesTheScene) {
     EXPECT_GT(coveredPixels(dir / "out"), 32u * 18u / 20u) << "the triangle is hardly in view";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scales, HostileSceneScale, ::testing::Values(1e-5f, 1e-10f, 1e-20f, 1e-30f, 1e20f, 1e30f),
+INSTANTIATE_TEST_SUITE_P(Scales, HostileSceneScale,
+                         ::testing::Values(1e-5f, 1e-10f, 1e-20f, 1e-30f, 1e20f, 1e30f),
                          [](const auto& param) { return "Scale" + std::to_string(param.index); });
 
 }  // namespace

@@ -6,13 +6,12 @@
 
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -149,8 +148,9 @@ inline fs::path writeGlb(const fs::path& dir, GltfScene scene, const std::string
 // `vct render` of `scene` at the suite's tiny size, with validation and every auxiliary image.
 inline std::vector<std::string> renderArgs(const fs::path& scene, const fs::path& out,
                                            std::vector<std::string> extra = {}) {
-    std::vector<std::string> args = {"render", "--scene", scene.string(), "--size", "32x18", "--frames", "1",
-                                     "--voxels", "32", "--out", out.string(), "--validate", "--aux"};
+    std::vector<std::string> args = {"render",     "--scene",    scene.string(), "--size", "32x18",
+                                     "--frames",   "1",          "--voxels",     "32",     "--out",
+                                     out.string(), "--validate", "--aux"};
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
 }
@@ -162,17 +162,19 @@ inline std::vector<std::pair<std::string, size_t>> nonFiniteExrValues(const fs::
     if (!fs::is_directory(dir, error)) return counts;
     for (const fs::directory_entry& entry : fs::directory_iterator(dir))
         if (entry.path().extension() == ".exr")
-            counts.push_back({entry.path().filename().string(), test::countNonFinite(readExr(entry.path()).pixels)});
+            counts.push_back(
+                {entry.path().filename().string(), test::countNonFinite(readExr(entry.path()).pixels)});
     return counts;
 }
 
-// Pixels of DIR/albedo.exr (written by --aux) where something was drawn: the background's albedo is 0, the base
-// scene's (non-metallic, textured) is not.
+// Pixels of DIR/albedo.exr (written by --aux) where something was drawn: the background's albedo is 0, the
+// base scene's (non-metallic, textured) is not.
 inline size_t coveredPixels(const fs::path& out) {
     if (!fs::exists(out / "albedo.exr")) return 0;
     const std::vector<float> albedo = readExr(out / "albedo.exr").pixels;
     size_t covered = 0;
-    for (size_t i = 0; i < albedo.size(); i += 4) covered += albedo[i] + albedo[i + 1] + albedo[i + 2] > 0.0f ? 1 : 0;
+    for (size_t i = 0; i < albedo.size(); i += 4)
+        covered += albedo[i] + albedo[i + 1] + albedo[i + 2] > 0.0f ? 1 : 0;
     return covered;
 }
 
@@ -216,7 +218,8 @@ inline test::RunResult expectGraceful(const std::vector<std::string>& args, cons
     EXPECT_FALSE(err.empty()) << "nothing on stderr: " << r.describe();
     EXPECT_EQ(err.find_first_of("\r\n"), std::string::npos) << "stderr is not one line:\n" << r.err;
     for (const std::string& m : expect.mentions)
-        EXPECT_NE(lower(err).find(lower(m)), std::string::npos) << "stderr does not mention '" << m << "': " << err;
+        EXPECT_NE(lower(err).find(lower(m)), std::string::npos)
+            << "stderr does not mention '" << m << "': " << err;
     return r;
 }
 

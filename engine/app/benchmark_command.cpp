@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "app/benchmark_modes.h"
@@ -173,8 +172,10 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
          "scenes; scaling: cost against pixel count and voxel resolution",
          "upsampling"},
         {"scene", "NAME|FILE", "built-in scene name or a .gltf/.glb file (upsampling, scaling)", "cornell"},
-        {"scenes", "A,B,...", "scenes mode: built-in names and glTF files (default: cornell, plane and every "
-                               "glTF under --scenes-dir)", ""},
+        {"scenes", "A,B,...",
+         "scenes mode: built-in names and glTF files (default: cornell, plane and every "
+         "glTF under --scenes-dir)",
+         ""},
         {"scenes-dir", "DIR", "scenes mode: where to look for glTF models (DIR/*/glTF/*.gltf, DIR/*/*.glb)",
          "../shared/scenes"},
         {"size", "WxH", "image size in pixels (scaling: the size of the voxel-resolution sweep)", "320x180"},
@@ -197,7 +198,8 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
     const SessionOptions session = sessionOptions(args);
     BenchmarkFrames timing;
     timing.frames = args.getUint("frames", 2, 100000);
-    timing.warmup = args.has("warmup") ? args.getUint("warmup", 0, timing.frames - 1) : std::min(10u, timing.frames / 4);
+    timing.warmup =
+        args.has("warmup") ? args.getUint("warmup", 0, timing.frames - 1) : std::min(10u, timing.frames / 4);
     timing.block = args.getUint("block", 1, 100000);
     const std::filesystem::path outDir = args.get("out");
     prepareOutputDirectory(outDir, "--out");  // before any frame: not only once the report is written

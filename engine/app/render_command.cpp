@@ -2,9 +2,8 @@
 #include <bit>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <optional>
 
 #include "app/aux_output.h"
 #include "app/cli.h"

@@ -10,8 +10,8 @@
 #include "app/cli.h"
 #include "app/commands.h"
 #include "app/session.h"
-#include "io/safe_write.h"
 #include "core/error.h"
+#include "io/safe_write.h"
 #include "io/vdb_io.h"
 
 namespace vct {
@@ -127,7 +127,8 @@ int runVoxelizeCommand(int argc, char** argv, int first) {
                     double(grid.origin().y), double(grid.origin().z), double(grid.voxelSize()));
         for (const VoxelGridSummary& g : grids)
             std::printf("  %-20s %-6s %9llu active voxels (%.1f%%)\n", g.name.c_str(), g.type.c_str(),
-                        static_cast<unsigned long long>(g.activeVoxels), 100.0 * double(g.activeVoxels) / double(total));
+                        static_cast<unsigned long long>(g.activeVoxels),
+                        100.0 * double(g.activeVoxels) / double(total));
         const uint64_t fileBytes = std::filesystem::file_size(out, error);
         const uint64_t denseBytes = denseVoxelBytes(n);
         std::printf("wrote %s: %s (%llu bytes), dense %s (%.1f%% of it)\n", out.c_str(), megabytes(fileBytes).c_str(),

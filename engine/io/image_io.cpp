@@ -54,7 +54,6 @@ void writeExrFile(const std::filesystem::path& temporary, const std::filesystem:
     }
 }
 
-
 }  // namespace
 
 void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height,
@@ -82,9 +81,10 @@ ImageRgba8 readPng(const std::filesystem::path& path) {
 void writeExr(const std::filesystem::path& path, uint32_t width, uint32_t height,
               const std::vector<float>& rgba32f) {
     checkSize(path, width, height, rgba32f.size());
-    writeReplacing(path, [&](const std::filesystem::path& temporary) { writeExrFile(temporary, path, width, height, rgba32f); });
+    writeReplacing(path, [&](const std::filesystem::path& temporary) {
+        writeExrFile(temporary, path, width, height, rgba32f);
+    });
 }
-
 
 ImageRgba32f readExr(const std::filesystem::path& path) {
     try {

@@ -26,8 +26,10 @@ mode_t createdFileMode() {
 
 }  // namespace
 
-void writeReplacing(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write) {
-    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+void writeReplacing(const std::filesystem::path& path,
+                    const std::function<void(const std::filesystem::path&)>& write) {
+    const std::filesystem::path dir =
+        path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     std::string pattern = (dir / ("." + path.filename().string() + ".XXXXXX")).string();
     std::vector<char> name(pattern.begin(), pattern.end());
     name.push_back('\0');
@@ -51,7 +53,8 @@ void writeTextReplacing(const std::filesystem::path& path, const std::string& te
     writeReplacing(path, [&](const std::filesystem::path& temporary) {
         FILE* file = std::fopen(temporary.c_str(), "wb");
         const bool ok = file && std::fwrite(text.data(), 1, text.size(), file) == text.size();
-        if (file && std::fclose(file) != 0) throw Error("cannot write " + path.string() + ": " + std::strerror(errno));
+        if (file && std::fclose(file) != 0)
+            throw Error("cannot write " + path.string() + ": " + std::strerror(errno));
         if (!ok) throw Error("cannot write " + path.string() + ": " + std::strerror(errno));
     });
 }

@@ -12,7 +12,8 @@ namespace vct {
 // Calls `write(temporary)` to make the file under a fresh name in `path`'s directory, then renames it to
 // `path`. Throws vct::Error naming `path` when the directory is missing or not writable; whatever `write`
 // throws propagates (the temporary file is removed).
-void writeReplacing(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
+void writeReplacing(const std::filesystem::path& path,
+                    const std::function<void(const std::filesystem::path&)>& write);
 
 // `text` into `path` the same way.
 void writeTextReplacing(const std::filesystem::path& path, const std::string& text);

@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include <glm/gtc/matrix_transform.hpp>
 #include <cstdio>
 #include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 
 #include "vk/check.h"
@@ -28,6 +27,24 @@ Texture solidTexture(TextureKind kind, uint8_t r, uint8_t g, uint8_t b, uint8_t 
     texture.width = texture.height = 1;
     texture.mips = {{r, g, b, a}};
     return texture;
+}
+
+// Normals transform by the inverse transpose. A flattened instance (a zero scale on one axis, an animation
+// to scale 0) has no inverse: its cofactor matrix, the inverse transpose times the determinant, still gives
+// the normals' direction (the shaders normalise), where the inverse would give NaN.
+glm::mat4 normalMatrix(const glm::mat4& world) {
+    const glm::mat3 linear(world);
+    const float det = glm::determinant(linear);
+    if (det != 0.0f && std::isfinite(det)) {
+        const glm::mat4 inverseTranspose = glm::transpose(glm::inverse(world));
+        bool finite = true;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(inverseTranspose[c][r]);
+        if (finite) return inverseTranspose;
+    }
+    const glm::mat3 cofactor(glm::cross(linear[1], linear[2]), glm::cross(linear[2], linear[0]),
+                             glm::cross(linear[0], linear[1]));
+    return glm::mat4(cofactor);
 }
 
 }  // namespace
@@ -53,7 +70,8 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
                                {VkDeviceSize(scene.indices.size() * sizeof(uint32_t)), "indices"}})
         if (bytes > maxRange)
             throw Error("scene '" + scene.name + "': its " + what + " take " + std::to_string(bytes) +
-                        " bytes, more than the device's maxStorageBufferRange (" + std::to_string(maxRange) + ")");
+                        " bytes, more than the device's maxStorageBufferRange (" + std::to_string(maxRange) +
+                        ")");
     vertices_ = vk::Buffer::withData(context, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     indices_ = vk::Buffer::withData(context, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),
@@ -111,14 +129,17 @@ vk::Image GpuScene::uploadTexture(const Texture& texture) {
     while (first + 1 < texture.mips.size() && (std::max(1u, texture.width >> first) > maxSize ||
                                                std::max(1u, texture.height >> first) > maxSize))
         ++first;
-    const uint32_t width = std::max(1u, texture.width >> first), height = std::max(1u, texture.height >> first);
+    const uint32_t width = std::max(1u, texture.width >> first),
+                   height = std::max(1u, texture.height >> first);
     if (width > maxSize || height > maxSize)
         throw Error("texture '" + texture.name + "' (" + std::to_string(texture.width) + "x" +
                     std::to_string(texture.height) + ") exceeds the device's maxImageDimension2D " +
                     std::to_string(maxSize));
     if (first > 0)
-        std::printf("note: texture '%s' (%ux%u) exceeds the device's maxImageDimension2D %u: using its mip %u (%ux%u)\n",
-                    texture.name.c_str(), texture.width, texture.height, maxSize, first, width, height);
+        std::printf(
+            "note: texture '%s' (%ux%u) exceeds the device's maxImageDimension2D %u: using its mip %u "
+            "(%ux%u)\n",
+            texture.name.c_str(), texture.width, texture.height, maxSize, first, width, height);
     const uint32_t levels = uint32_t(texture.mips.size()) - first;
     vk::ImageDesc desc;
     desc.width = width;
@@ -201,7 +222,7 @@ void GpuScene::update(float timeSeconds, bool cut) {
     for (size_t i = 0; i < next.size(); ++i) {
         gpuInstances[i].world = next[i].world;
         gpuInstances[i].prevWorld = previousWorld_[i];
-        gpuInstances[i].normalMatrix = glm::transpose(glm::inverse(next[i].world));
+        gpuInstances[i].normalMatrix = normalMatrix(next[i].world);
         previousWorld_[i] = next[i].world;
     }
     // Exact comparison: a scene without animation evaluates to the very same matrices every time.

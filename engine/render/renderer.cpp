@@ -105,7 +105,8 @@ void Renderer::createSamplers() {
         return vk::Sampler(context_, info);
     };
     // Owned (RAII): a constructor that throws later (a bad voxel cache) must not leak them.
-    samplerOwners_ = {make(VK_FILTER_LINEAR, false), make(VK_FILTER_NEAREST, false), make(VK_FILTER_LINEAR, true)};
+    samplerOwners_ = {make(VK_FILTER_LINEAR, false), make(VK_FILTER_NEAREST, false),
+                      make(VK_FILTER_LINEAR, true)};
     samplers_.linearClamp = samplerOwners_[0].handle();
     samplers_.nearestClamp = samplerOwners_[1].handle();
     samplers_.shadowCompare = samplerOwners_[2].handle();

@@ -17,9 +17,8 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "io/vdb_io.h"
 #include "render/settings.h"
@@ -47,7 +46,7 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
 Aabb voxelSceneBounds(const Scene& scene);
 
 class VoxelGrid {
-public:
+  public:
     VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution);
     ~VoxelGrid();
     VoxelGrid(const VoxelGrid&) = delete;
@@ -82,10 +81,10 @@ public:
 
     // ---- voxel cache (vct voxelize → OpenVDB file → --voxel-cache; io/vdb_io.h) ----
     // Reads the static accumulator from `path` and stages it for upload. Throws vct::Error (one line naming
-    // the file) when it is missing, not a vct voxel file, or made for another resolution, grid bounds or scene
-    // (VoxelFileInfo::sceneHash against sceneContentHash).
-    // The upload itself is recorded by the voxelize pass in the first frame, in place of voxelizing the
-    // static instances, so it is timed in the frame where it happens.
+    // the file) when it is missing, not a vct voxel file, or made for another resolution, grid bounds or
+    // scene (VoxelFileInfo::sceneHash against sceneContentHash). The upload itself is recorded by the
+    // voxelize pass in the first frame, in place of voxelizing the static instances, so it is timed in the
+    // frame where it happens.
     void loadStaticCache(const std::filesystem::path& path);
     bool hasStaticCache() const { return staticCache_.handle() != VK_NULL_HANDLE; }
     // Copies the staged voxels into the (already cleared) static accumulator; transfer stage.
@@ -100,7 +99,7 @@ public:
     // The static accumulator's voxels with at least one sample, in linear-index order.
     std::vector<StaticAccumVoxel> readStaticAccumulator();
 
-private:
+  private:
     const vk::Context& context_;
     const Scene& scene_;  // outlives the grid (the Renderer's GpuScene holds it too)
     uint32_t resolution_ = 0;

@@ -72,9 +72,9 @@ double readComponent(const unsigned char* p, int type, bool normalized) {
     // clang-format on
 }
 
-// Pointer to `count` elements of `elementSize` bytes, `stride` apart, in a buffer view. Every range is checked
-// with overflow-safe arithmetic (offsets near 2^64 must not wrap into the buffer), so a truncated .bin or a
-// bad offset is an error instead of a read outside the buffer.
+// Pointer to `count` elements of `elementSize` bytes, `stride` apart, in a buffer view. Every range is
+// checked with overflow-safe arithmetic (offsets near 2^64 must not wrap into the buffer), so a truncated
+// .bin or a bad offset is an error instead of a read outside the buffer.
 const unsigned char* viewData(const tinygltf::Model& model, int viewIndex, uint64_t offset, uint64_t count,
                               uint64_t elementSize, size_t& stride, const std::string& what) {
     if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size())
@@ -109,15 +109,17 @@ AccessorData readAccessor(const tinygltf::Model& model, int index, const std::st
     int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
     int components = tinygltf::GetNumComponentsInType(uint32_t(acc.type));
     if (componentSize <= 0 || components <= 0) fail(name + " has an unknown component type or type");
-    const uint64_t limit = acc.bufferView >= 0 ? kMaxAccessorElements : std::min(kMaxAccessorElements, zeroFillLimit);
+    const uint64_t limit =
+        acc.bufferView >= 0 ? kMaxAccessorElements : std::min(kMaxAccessorElements, zeroFillLimit);
     if (acc.count > limit)
-        fail(name + " has " + std::to_string(acc.count) + " elements, more than the " + std::to_string(limit) +
+        fail(name + " has " + std::to_string(acc.count) + " elements, more than the " +
+             std::to_string(limit) +
              (acc.bufferView >= 0 ? " allowed" : " an accessor without a bufferView may have in this file"));
     size_t elementSize = size_t(componentSize) * size_t(components);
     // Ranges first: nothing is allocated for data the file does not hold.
     size_t stride = 0;
     const unsigned char* p = acc.bufferView >= 0 ? viewData(model, acc.bufferView, acc.byteOffset, acc.count,
-                                                             elementSize, stride, name)
+                                                            elementSize, stride, name)
                                                  : nullptr;
     const auto& sparse = acc.sparse;
     size_t n = 0, indexStride = 0, valueStride = elementSize;
@@ -144,14 +146,14 @@ AccessorData readAccessor(const tinygltf::Model& model, int index, const std::st
     if (p)
         for (size_t i = 0; i < acc.count; ++i)
             for (int c = 0; c < components; ++c)
-                data.values[i * size_t(components) + size_t(c)] =
-                    readComponent(p + i * stride + size_t(c * componentSize), acc.componentType, acc.normalized);
+                data.values[i * size_t(components) + size_t(c)] = readComponent(
+                    p + i * stride + size_t(c * componentSize), acc.componentType, acc.normalized);
     for (size_t s = 0; s < n; ++s) {
         auto target = size_t(readComponent(ip + s * indexStride, sparse.indices.componentType, false));
         if (target >= acc.count) fail(name + ": sparse index " + std::to_string(target) + " is out of range");
         for (int c = 0; c < components; ++c)
-            data.values[target * size_t(components) + size_t(c)] =
-                readComponent(vp + s * valueStride + size_t(c * componentSize), acc.componentType, acc.normalized);
+            data.values[target * size_t(components) + size_t(c)] = readComponent(
+                vp + s * valueStride + size_t(c * componentSize), acc.componentType, acc.normalized);
     }
     return data;
 }
@@ -175,7 +177,8 @@ class GltfImporter {
   public:
     // `inputBytes`: the JSON and every buffer together, what bounds accessors without a bufferView.
     // `refused`: files the loader would not read, and why (named in the error of a texture that needs one).
-    GltfImporter(const tinygltf::Model& model, uint64_t inputBytes, const std::map<std::string, std::string>& refused)
+    GltfImporter(const tinygltf::Model& model, uint64_t inputBytes,
+                 const std::map<std::string, std::string>& refused)
         : model_(model), zeroFillLimit_(std::max<uint64_t>(4096, inputBytes)), refused_(refused) {}
 
     Scene run() {
@@ -228,7 +231,8 @@ class GltfImporter {
                                                       : "image " + std::to_string(src.source);
         if (image.image.empty() || image.width <= 0 || image.height <= 0) {
             for (const auto& [file, why] : refused_)
-                if (!image.uri.empty() && std::filesystem::path(file).filename() == std::filesystem::path(image.uri).filename())
+                if (!image.uri.empty() &&
+                    std::filesystem::path(file).filename() == std::filesystem::path(image.uri).filename())
                     fail("texture image '" + imageName + "': " + why);
             fail("texture image '" + imageName + "' is missing or could not be decoded");
         }
@@ -431,7 +435,8 @@ class GltfImporter {
             cam.zfar = float(src.perspective.zfar);  // 0 (infinite) is made finite once the bounds are known
             cam.aspectRatio = float(src.perspective.aspectRatio);
         }
-        // Past float's range a far plane is as good as none: made finite from the bounds like an infinite one.
+        // Past float's range a far plane is as good as none: made finite from the bounds like an infinite
+        // one.
         if (!std::isfinite(cam.zfar)) cam.zfar = 0.0f;
         if (!(cam.aspectRatio > 0.0f) || !std::isfinite(cam.aspectRatio)) cam.aspectRatio = 0.0f;
         scene_.cameras.push_back(cam);
@@ -568,7 +573,9 @@ bool fileExists(const std::string& path, void*) {
     return stat(path.c_str(), &info) == 0;  // stat, not open: a FIFO must never be opened blocking
 }
 
-std::string expandFilePath(const std::string& path, void*) { return path; }
+std::string expandFilePath(const std::string& path, void*) {
+    return path;
+}
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     FileRead read = readRegularFile(path);
@@ -592,27 +599,31 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
     const LoadContext& context = *static_cast<const LoadContext*>(user);
-    const std::string name = "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'");
+    const std::string name =
+        "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'");
     auto refuse = [&](const std::string& why) {
         if (err) *err += name + ": " + why + "\n";
         return false;
     };
     if (image->bufferView >= 0) {
         const tinygltf::Model& model = *context.model;
-        if (size_t(image->bufferView) >= model.bufferViews.size()) return refuse("bufferView is out of range");
+        if (size_t(image->bufferView) >= model.bufferViews.size())
+            return refuse("bufferView is out of range");
         const tinygltf::BufferView& view = model.bufferViews[size_t(image->bufferView)];
         if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
             return refuse("bufferView has no valid buffer");
         const size_t bufferSize = model.buffers[size_t(view.buffer)].data.size();
         if (!rangeWithin(view.byteOffset, view.byteLength, bufferSize) || view.byteLength > size_t(INT_MAX))
-            return refuse("bufferView " + std::to_string(image->bufferView) + " (" + std::to_string(view.byteLength) +
-                          " bytes at " + std::to_string(view.byteOffset) + ") lies outside buffer " +
-                          std::to_string(view.buffer) + " (" + std::to_string(bufferSize) + " bytes)");
+            return refuse("bufferView " + std::to_string(image->bufferView) + " (" +
+                          std::to_string(view.byteLength) + " bytes at " + std::to_string(view.byteOffset) +
+                          ") lies outside buffer " + std::to_string(view.buffer) + " (" +
+                          std::to_string(bufferSize) + " bytes)");
     }
     if (!bytes || size <= 0) return refuse("no image data");
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, size, &width, &height, &channels))
-        return refuse(std::string("cannot be decoded (") + (stbi_failure_reason() ? stbi_failure_reason() : "?") + ")");
+        return refuse(std::string("cannot be decoded (") +
+                      (stbi_failure_reason() ? stbi_failure_reason() : "?") + ")");
     if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxTexturePixels)
         return refuse("is " + std::to_string(width) + "x" + std::to_string(height) + ", more than the " +
                       std::to_string(kMaxTexturePixels) + " pixels a texture may have");
@@ -622,7 +633,8 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
                 : static_cast<void*>(stbi_load_from_memory(bytes, size, &width, &height, &channels, 0)),
         stbi_image_free);
     if (!pixels)
-        return refuse(std::string("cannot be decoded (") + (stbi_failure_reason() ? stbi_failure_reason() : "?") + ")");
+        return refuse(std::string("cannot be decoded (") +
+                      (stbi_failure_reason() ? stbi_failure_reason() : "?") + ")");
     const size_t byteCount = size_t(width) * size_t(height) * size_t(channels) * (sixteen ? 2 : 1);
     const auto* first = static_cast<const unsigned char*>(pixels.get());
     image->image.assign(first, first + byteCount);
@@ -630,7 +642,8 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
     image->height = height;
     image->component = channels;
     image->bits = sixteen ? 16 : 8;
-    image->pixel_type = sixteen ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->pixel_type =
+        sixteen ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
     return true;
 }
 
@@ -656,9 +669,11 @@ void fitCameraDepthRanges(Scene& scene) {
     for (size_t n = 0; n < scene.nodes.size(); ++n) {
         if (scene.nodes[n].camera < 0) continue;
         Camera& cam = scene.cameras[size_t(scene.nodes[n].camera)];
-        const std::string name = "camera '" + (cam.name.empty() ? "#" + std::to_string(scene.nodes[n].camera) : cam.name) + "'";
+        const std::string name =
+            "camera '" + (cam.name.empty() ? "#" + std::to_string(scene.nodes[n].camera) : cam.name) + "'";
         if (cam.yfov > 0.0f && cam.yfov < kMinYfov) {
-            scene.notes.push_back(name + ": yfov " + numberText(cam.yfov) + " widened to " + numberText(kMinYfov));
+            scene.notes.push_back(name + ": yfov " + numberText(cam.yfov) + " widened to " +
+                                  numberText(kMinYfov));
             cam.yfov = kMinYfov;
         }
         if (!(cam.znear > 0.0f) || !std::isfinite(cam.znear)) continue;  // validate() names it
@@ -670,28 +685,28 @@ void fitCameraDepthRanges(Scene& scene) {
         const float zfar = std::min(cam.zfar, std::max(100.0f * reach, cam.znear * kMaxDepthRatio));
         const float znear = std::max(cam.znear, zfar / kMaxDepthRatio);
         if (std::isfinite(zfar) && std::isfinite(znear)) {
-            scene.notes.push_back(name + ": depth range " + numberText(cam.znear) + " .. " + numberText(cam.zfar) +
-                                  " narrowed to " + numberText(znear) + " .. " + numberText(zfar) +
-                                  " (float depth resolves a ratio of at most 1e6)");
+            scene.notes.push_back(name + ": depth range " + numberText(cam.znear) + " .. " +
+                                  numberText(cam.zfar) + " narrowed to " + numberText(znear) + " .. " +
+                                  numberText(zfar) + " (float depth resolves a ratio of at most 1e6)");
             cam.znear = znear;
             cam.zfar = zfar;
         }
     }
 }
 
-}  // namespace
-
-Scene loadGltf(const std::string& path) {
+// loadGltf without the file name in its errors (loadGltf adds it to every one, whatever threw).
+Scene importGltf(const std::string& path) {
     FileRead file = readRegularFile(path);
-    if (!file.error.empty()) throw Error(path + ": " + file.error);
+    if (!file.error.empty()) throw Error(file.error);
 
     // .glb starts with the magic "glTF"; decide by content so a misnamed file still loads.
     const bool binary = file.bytes.size() >= 4 && std::memcmp(file.bytes.data(), "glTF", 4) == 0;
     const std::string_view json =
-        binary ? glbJson(file.bytes) : std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size());
+        binary ? glbJson(file.bytes)
+               : std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size());
     // tinygltf converts JSON recursively: deep nesting would overflow the stack before it could say so.
     if (jsonNestingDepth(json, kMaxJsonDepth) > kMaxJsonDepth)
-        throw Error(path + ": JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        throw Error("JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
 
     tinygltf::TinyGLTF gltf;
     tinygltf::Model model;
@@ -701,24 +716,33 @@ Scene loadGltf(const std::string& path) {
     gltf.SetImageLoader(&loadImage, &context);
     std::string err, warn;
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
-    const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, file.bytes.data(),
-                                                       unsigned(file.bytes.size()), baseDir)
-                           : gltf.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()), baseDir);
-    if (!ok) throw Error(path + ": " + (err.empty() ? std::string("not a valid glTF file") : oneLine(err)));
+    const bool ok =
+        binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, file.bytes.data(),
+                                           unsigned(file.bytes.size()), baseDir)
+               : gltf.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()), baseDir);
+    if (!ok) throw Error(err.empty() ? std::string("not a valid glTF file") : err);
 
+    uint64_t inputBytes = file.bytes.size();
+    for (const tinygltf::Buffer& buffer : model.buffers) inputBytes += buffer.data.size();
+    file.bytes = {};
+    Scene scene = GltfImporter(model, inputBytes, context.refused).run();
+    scene.name = std::filesystem::path(path).stem().string();
+    fitCameraDepthRanges(scene);
+    // Check the data before anything derives a camera or light from it (NaN bounds would spread).
+    scene.validate();
+    scene.normalizeScale();
+    scene.addDefaultsIfMissing();
+    return scene;
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path) {
     try {
-        uint64_t inputBytes = file.bytes.size();
-        for (const tinygltf::Buffer& buffer : model.buffers) inputBytes += buffer.data.size();
-        file.bytes = {};
-        Scene scene = GltfImporter(model, inputBytes, context.refused).run();
-        scene.name = std::filesystem::path(path).stem().string();
-        fitCameraDepthRanges(scene);
-        // Check the data before anything derives a camera or light from it (NaN bounds would spread).
-        scene.validate();
-        scene.normalizeScale();
-        scene.addDefaultsIfMissing();
-        return scene;
-    } catch (const Error& e) {
+        return importGltf(path);
+    } catch (const std::bad_alloc&) {
+        throw Error(path + ": out of memory (the file declares more data than this machine can hold)");
+    } catch (const std::exception& e) {  // ours, tinygltf's, the standard library's (length_error, ...)
         throw Error(path + ": " + oneLine(e.what()));
     }
 }

@@ -34,10 +34,14 @@ std::optional<std::string> statProblem(const struct stat& info, uint64_t maxByte
 
 std::string byteSizeText(uint64_t bytes) {
     char text[32];
-    if (bytes < 10'000) std::snprintf(text, sizeof(text), "%llu bytes", (unsigned long long)bytes);
-    else if (bytes < 10'000'000) std::snprintf(text, sizeof(text), "%.1f kB", double(bytes) / 1e3);
-    else if (bytes < 10'000'000'000ull) std::snprintf(text, sizeof(text), "%.1f MB", double(bytes) / 1e6);
-    else std::snprintf(text, sizeof(text), "%.1f GB", double(bytes) / 1e9);
+    if (bytes < 10'000)
+        std::snprintf(text, sizeof(text), "%llu bytes", (unsigned long long)bytes);
+    else if (bytes < 10'000'000)
+        std::snprintf(text, sizeof(text), "%.1f kB", double(bytes) / 1e3);
+    else if (bytes < 10'000'000'000ull)
+        std::snprintf(text, sizeof(text), "%.1f MB", double(bytes) / 1e6);
+    else
+        std::snprintf(text, sizeof(text), "%.1f GB", double(bytes) / 1e9);
     return text;
 }
 
@@ -49,7 +53,8 @@ std::string numberText(double value) {
 
 std::optional<std::string> regularFileProblem(const std::filesystem::path& path, uint64_t maxBytes) {
     struct stat info {};
-    if (stat(path.c_str(), &info) != 0) return std::string(errno == ENOENT ? "no such file" : std::strerror(errno));
+    if (stat(path.c_str(), &info) != 0)
+        return std::string(errno == ENOENT ? "no such file" : std::strerror(errno));
     return statProblem(info, maxBytes);
 }
 
@@ -90,9 +95,12 @@ int jsonNestingDepth(std::string_view text, int limit) {
     bool inString = false, escaped = false;
     for (char c : text) {
         if (inString) {
-            if (escaped) escaped = false;
-            else if (c == '\\') escaped = true;
-            else if (c == '"') inString = false;
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                inString = false;
             continue;
         }
         if (c == '"') {

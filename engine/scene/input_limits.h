@@ -44,8 +44,12 @@ std::optional<std::string> regularFileProblem(const std::filesystem::path& path,
 int jsonNestingDepth(std::string_view text, int limit);
 
 // Overflow-checked size arithmetic: false when the exact result does not fit in 64 bits.
-inline bool checkedAdd(uint64_t a, uint64_t b, uint64_t& out) { return !__builtin_add_overflow(a, b, &out); }
-inline bool checkedMul(uint64_t a, uint64_t b, uint64_t& out) { return !__builtin_mul_overflow(a, b, &out); }
+inline bool checkedAdd(uint64_t a, uint64_t b, uint64_t& out) {
+    return !__builtin_add_overflow(a, b, &out);
+}
+inline bool checkedMul(uint64_t a, uint64_t b, uint64_t& out) {
+    return !__builtin_mul_overflow(a, b, &out);
+}
 // Whether [offset, offset + length) lies within [0, size), without overflow.
 inline bool rangeWithin(uint64_t offset, uint64_t length, uint64_t size) {
     return offset <= size && length <= size - offset;

@@ -39,7 +39,6 @@ bool finite(const glm::vec4& v) {
     return finite(glm::vec3(v)) && std::isfinite(v.w);
 }
 
-
 glm::quat toQuat(const glm::vec4& xyzw) {
     return glm::quat(xyzw.w, xyzw.x, xyzw.y, xyzw.z);
 }
@@ -237,8 +236,8 @@ std::vector<glm::mat4> Scene::evaluate(float timeSeconds, std::vector<glm::quat>
             node.parent >= 0 ? world[static_cast<size_t>(node.parent)] * local : local;
         if (worldRotations) {
             const glm::quat r = node.matrix ? matrixRotation(*node.matrix) : p.r;
-            (*worldRotations)[static_cast<size_t>(n)] =
-                normalizedQuat(node.parent >= 0 ? (*worldRotations)[static_cast<size_t>(node.parent)] * r : r);
+            (*worldRotations)[static_cast<size_t>(n)] = normalizedQuat(
+                node.parent >= 0 ? (*worldRotations)[static_cast<size_t>(node.parent)] * r : r);
         }
     }
     return world;
@@ -314,11 +313,12 @@ void Scene::normalizeScale() {
         // A point or spot light's irradiance falls with the squared distance, which scaled by s².
         if (light.type != LightType::Directional) light.intensity *= s * s;
         if (!std::isfinite(light.intensity) || !finite(light.color * light.intensity))
-            throw Error("light '" + light.name + "': its intensity at this scene's scale (" + numberText(extent) +
-                        " across) overflows float");
+            throw Error("light '" + light.name + "': its intensity at this scene's scale (" +
+                        numberText(extent) + " across) overflows float");
     }
-    notes.push_back("scene is " + numberText(extent) + " units across: scaled by 2^" + std::to_string(exponent) +
-                    " to keep float math in range (lights and cameras scaled with it; the image is the same)");
+    notes.push_back(
+        "scene is " + numberText(extent) + " units across: scaled by 2^" + std::to_string(exponent) +
+        " to keep float math in range (lights and cameras scaled with it; the image is the same)");
 }
 
 void Scene::addDefaultsIfMissing() {
@@ -369,7 +369,6 @@ void Scene::addDefaultsIfMissing() {
         notes.push_back("scene has no light: added a default directional light");
     }
 }
-
 
 void Scene::validate() const {
     auto fail = [](const std::string& what) { throw Error(what); };
@@ -462,7 +461,8 @@ void Scene::validate() const {
     for (size_t c = 0; c < cameras.size(); ++c) {
         const Camera& cam = cameras[c];
         const std::string where = "camera " + quoted(cam.name, c) + ": ";
-        if (!(cam.yfov > 0.0f && cam.yfov < kPi)) fail(where + "yfov " + numberText(cam.yfov) + " is not in (0, pi)");
+        if (!(cam.yfov > 0.0f && cam.yfov < kPi))
+            fail(where + "yfov " + numberText(cam.yfov) + " is not in (0, pi)");
         if (!(cam.znear > 0.0f) || !std::isfinite(cam.znear))
             fail(where + "znear " + numberText(cam.znear) + " is not finite and positive");
         if (!std::isfinite(cam.zfar)) fail(where + "zfar is not finite");
@@ -471,7 +471,8 @@ void Scene::validate() const {
     // world transforms at t = 0 and at every key time (up to a few thousand) must be finite too.
     std::vector<float> times{0.0f};
     for (const Animation& anim : animations)
-        for (const AnimationChannel& ch : anim.channels) times.insert(times.end(), ch.times.begin(), ch.times.end());
+        for (const AnimationChannel& ch : anim.channels)
+            times.insert(times.end(), ch.times.begin(), ch.times.end());
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
     const size_t step = std::max<size_t>(1, times.size() / 4096);
@@ -480,13 +481,15 @@ void Scene::validate() const {
         for (size_t n = 0; n < world.size(); ++n)
             for (int col = 0; col < 4; ++col)
                 if (!finite(world[n][col]))
-                    fail("node " + quoted(nodes[n].name, n) + ": world transform at t = " + std::to_string(times[t]) +
+                    fail("node " + quoted(nodes[n].name, n) +
+                         ": world transform at t = " + std::to_string(times[t]) +
                          " is not finite (the product of its ancestors' transforms overflows float)");
     }
     if (instances(0.0f).empty()) fail("scene " + quoted(name, 0) + " has no mesh instances: nothing to draw");
     const Aabb box = bounds();
     if (!finite(box.min) || !finite(box.max))
-        fail("scene " + quoted(name, 0) + ": the transformed vertices are not finite (bounds overflow float)");
+        fail("scene " + quoted(name, 0) +
+             ": the transformed vertices are not finite (bounds overflow float)");
     // A camera a million scene sizes away sees at most a pixel of it, and its view products overflow float
     // long before a float position does.
     const glm::vec3 size = box.max - box.min, centre = 0.5f * box.min + 0.5f * box.max;

@@ -2,10 +2,9 @@
 // renderer uploads once. Per frame only the node transforms change (rigid TRS animation).
 #pragma once
 
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
-
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -173,12 +172,14 @@ struct Scene {
     std::vector<Node> nodes;
     std::vector<int> roots;
     std::vector<Animation> animations;
-    std::vector<std::string> notes;  // things the loader changed or added, printed once ("no light: added ...")
+    std::vector<std::string>
+        notes;  // things the loader changed or added, printed once ("no light: added ...")
 
     // Node poses at time t (seconds; animations loop). Returns world matrices, one per node; with
     // `worldRotations`, also each node's rotation composed from its ancestors' (scale left out), which still
     // orients a node whose matrix a zero scale has flattened.
-    std::vector<glm::mat4> evaluate(float timeSeconds, std::vector<glm::quat>* worldRotations = nullptr) const;
+    std::vector<glm::mat4> evaluate(float timeSeconds,
+                                    std::vector<glm::quat>* worldRotations = nullptr) const;
     // Mesh instances with their world matrices at time t; `moving` marks animated ones.
     std::vector<Instance> instances(float timeSeconds) const;
     // World-space bounds of all instances at t = 0 (static pose).
@@ -198,12 +199,12 @@ struct Scene {
 };
 
 // A 64-bit fingerprint (FNV-1a) of what the static voxelization depends on: vertices, indices, materials,
-// textures and the mesh instances at t = 0. Equal scenes give equal hashes in every run; a voxel cache records
-// it so that the cache of another scene with the same bounds is refused.
+// textures and the mesh instances at t = 0. Equal scenes give equal hashes in every run; a voxel cache
+// records it so that the cache of another scene with the same bounds is refused.
 uint64_t sceneContentHash(const Scene& scene);
 
-// Orthonormal axes of a world matrix (columns: local X, Y, Z), as cameras and lights are oriented (they ignore
-// scale). Where a zero or collapsed scale leaves no axes, those of `worldRotation` (Scene::evaluate).
+// Orthonormal axes of a world matrix (columns: local X, Y, Z), as cameras and lights are oriented (they
+// ignore scale). Where a zero or collapsed scale leaves no axes, those of `worldRotation` (Scene::evaluate).
 glm::mat3 worldAxes(const glm::mat4& world, const glm::quat& worldRotation);
 
 }  // namespace vct

@@ -28,15 +28,17 @@ void Buffer::create(const Context& context, VkBufferUsageFlags usage, MemoryUsag
 
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(device_, buffer_, &requirements);
-    VkMemoryPropertyFlags flags = memory == MemoryUsage::HostVisible
-                                      ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                      : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    VkMemoryPropertyFlags flags =
+        memory == MemoryUsage::HostVisible
+            ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+            : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = requirements.size;
     alloc.memoryTypeIndex = context.memoryType(requirements.memoryTypeBits, flags);
     VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
     VK_CHECK(vkBindBufferMemory(device_, buffer_, memory_, 0));
-    if (memory == MemoryUsage::HostVisible) VK_CHECK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    if (memory == MemoryUsage::HostVisible)
+        VK_CHECK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
@@ -61,7 +63,8 @@ void Buffer::reset() {
     device_ = VK_NULL_HANDLE;
 }
 
-Buffer Buffer::withData(const Context& context, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
+Buffer Buffer::withData(const Context& context, const void* data, VkDeviceSize size,
+                        VkBufferUsageFlags usage) {
     size = size ? size : 4;  // zero-sized buffers are invalid; keep a placeholder
     Buffer staging(context, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::HostVisible);
     if (data) std::memcpy(staging.mapped(), data, size);

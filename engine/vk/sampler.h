@@ -9,7 +9,7 @@
 namespace vct::vk {
 
 class Sampler {
-public:
+  public:
     Sampler() = default;
     Sampler(const Context& context, const VkSamplerCreateInfo& info);
     ~Sampler() { reset(); }
@@ -21,7 +21,7 @@ public:
     VkSampler handle() const { return sampler_; }
     void reset();
 
-private:
+  private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;
 };
