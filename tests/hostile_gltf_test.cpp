@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 
 #include "hostile_util.h"
@@ -310,9 +312,46 @@ std::vector<GltfCase> textureCases() {
         cases.push_back({"TextureWide" + std::to_string(w) + "x" + std::to_string(h),
                          [w = w, h = h](GltfScene& s) {
                              s.doc["images"][0]["uri"] = "wide.png";
-                             s.doc["extras"] = {{"wide", {w, h}}};  // read by the runner below
+                             s.extraFiles = [w, h](const fs::path& dir) {
+                                 writeTexture(dir / "wide.png", w, h);
+                             };
                          },
                          rendersOrFails({"wide.png"})});
+    return cases;
+}
+
+// Class 5 (images): a few hundred bytes of PNG whose header declares a size that would take gigabytes.
+uint32_t crc32(const unsigned char* data, size_t size) {
+    uint32_t crc = 0xFFFFFFFFu;
+    for (size_t i = 0; i < size; ++i) {
+        crc ^= data[i];
+        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+void writePngDeclaring(const fs::path& path, uint32_t width, uint32_t height) {
+    writeTexture(path, 1, 1);
+    std::ifstream in(path, std::ios::binary);
+    std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), {});
+    auto put32 = [&](size_t at, uint32_t v) {
+        for (int i = 0; i < 4; ++i) png[at + size_t(i)] = (unsigned char)(v >> (24 - 8 * i));
+    };
+    put32(16, width);  // IHDR data starts at 16: signature (8), length (4), "IHDR" (4)
+    put32(20, height);
+    put32(29, crc32(png.data() + 12, 17));  // over "IHDR" and its 13 data bytes
+    test::writeBinaryFile(path, png);
+}
+std::vector<GltfCase> imageBombCases() {
+    std::vector<GltfCase> cases;
+    for (auto [w, h] : {std::pair{100000u, 100000u}, {16777216u, 8u}, {65536u, 65536u}})
+        cases.push_back({"PngDeclares" + std::to_string(w) + "x" + std::to_string(h),
+                         [w = w, h = h](GltfScene& s) {
+                             s.doc["images"][0]["uri"] = "bomb.png";
+                             s.extraFiles = [w, h](const fs::path& dir) {
+                                 writePngDeclaring(dir / "bomb.png", w, h);
+                             };
+                         },
+                         fails({"bomb.png"})});
     return cases;
 }
 
@@ -323,12 +362,6 @@ TEST_P(HostileGltf, EndsInOneLineOrAFiniteImage) {
     const fs::path dir = caseDir();
     GltfScene scene = triangleScene();
     c.mutate(scene);
-    if (scene.doc.contains("extras") && scene.doc["extras"].is_object() &&
-        scene.doc["extras"].contains("wide")) {
-        const uint32_t w = scene.doc["extras"]["wide"][0], h = scene.doc["extras"]["wide"][1];
-        scene.doc.erase("extras");
-        writeTexture(dir / "wide.png", w, h);
-    }
     const fs::path path = c.glb ? writeGlb(dir, scene) : writeGltf(dir, scene);
     const test::RunResult r = expectGraceful(renderArgs(path, dir / "out"), dir / "out", c.expect);
     EXPECT_LT(r.seconds, 30.0) << "too slow for bad input: " << r.describe();
@@ -345,6 +378,7 @@ INSTANTIATE_TEST_SUITE_P(Allocation, HostileGltf, ::testing::ValuesIn(allocation
 INSTANTIATE_TEST_SUITE_P(Lights, HostileGltf, ::testing::ValuesIn(lightCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(Cameras, HostileGltf, ::testing::ValuesIn(cameraCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(Textures, HostileGltf, ::testing::ValuesIn(textureCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(ImageBombs, HostileGltf, ::testing::ValuesIn(imageBombCases()), caseName);
 
 // Class 11: a scene of any finite size without a camera is framed by the default camera: it renders, finite,
 // and the triangle covers pixels (albedo.exr is black where nothing was drawn).

@@ -48,6 +48,8 @@ struct GltfScene {
     bool texture = true;             // write texture.png beside the scene
     // Text spliced into the written JSON in place of the first: for values too large to build as json.
     std::pair<std::string, std::string> replaceInText;
+    // Writes further files the document names into the scene's directory.
+    std::function<void(const fs::path& dir)> extraFiles;
 };
 
 inline std::string documentText(const GltfScene& scene) {
@@ -117,6 +119,7 @@ inline fs::path writeGltf(const fs::path& dir, const GltfScene& scene, const std
     test::writeTextFile(dir / "scene.gltf", text.empty() ? documentText(scene) : text);
     test::writeBinaryFile(dir / "scene.bin", scene.bin);
     if (scene.texture) writeTexture(dir / "texture.png");
+    if (scene.extraFiles) scene.extraFiles(dir);
     return dir / "scene.gltf";
 }
 
@@ -142,6 +145,7 @@ inline fs::path writeGlb(const fs::path& dir, GltfScene scene, const std::string
     bytes.insert(bytes.end(), bin.begin(), bin.end());
     test::writeBinaryFile(dir / "scene.glb", bytes);
     if (scene.texture) writeTexture(dir / "texture.png");
+    if (scene.extraFiles) scene.extraFiles(dir);
     return dir / "scene.glb";
 }
 

@@ -566,6 +566,10 @@ class GltfImporter {
 struct LoadContext {
     const tinygltf::Model* model = nullptr;      // being filled: buffers and views come before images
     std::map<std::string, std::string> refused;  // file → why it could not be read (image uris are optional)
+    // The last file read and its size: tinygltf reads an image's uri right before decoding it, without saying
+    // which uri the bytes came from.
+    std::string lastRead;
+    size_t lastReadBytes = 0;
 };
 
 bool fileExists(const std::string& path, void*) {
@@ -584,6 +588,9 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
         static_cast<LoadContext*>(user)->refused[path] = read.error;
         return false;
     }
+    auto& context = *static_cast<LoadContext*>(user);
+    context.lastRead = std::filesystem::path(path).filename().string();
+    context.lastReadBytes = read.bytes.size();
     *out = std::move(read.bytes);
     return true;
 }
@@ -599,8 +606,11 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
     const LoadContext& context = *static_cast<const LoadContext*>(user);
-    const std::string name =
-        "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'");
+    std::string name = "image " + std::to_string(index);
+    if (!image->name.empty()) name += " '" + image->name + "'";
+    if (image->bufferView < 0 && !context.lastRead.empty() &&
+        context.lastReadBytes == size_t(std::max(size, 0)))
+        name += " (" + context.lastRead + ")";
     auto refuse = [&](const std::string& why) {
         if (err) *err += name + ": " + why + "\n";
         return false;
