@@ -23,6 +23,7 @@
 #include "app/session.h"
 #include "core/error.h"
 #include "io/image_metrics.h"
+#include "io/safe_write.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera_path.h"
 
@@ -214,7 +215,7 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
          "../shared/scenes"},
         {"size", "WxH", "image size in pixels (scaling: the size of the voxel-resolution sweep)", "320x180"},
         {"frames", "N", "frames per configuration (>= warmup + 30 for claims)", "64"},
-        {"warmup", "K", "frames left out of the timing statistics", "10"},
+        {"warmup", "K", "frames left out of the timing statistics (default: min(10, frames/4))", ""},
         {"block", "B", "frames a configuration renders in a row before the next takes its turn", "8"},
         {"trace-scale", "2|4", "upsampling: trace scale of the upsampled configurations", "4"},
         {"out", "DIR", "where the report (.json, .md) goes", "out/benchmark"},
@@ -232,9 +233,11 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
     const SessionOptions session = sessionOptions(args);
     BenchmarkFrames timing;
     timing.frames = args.getUint("frames", 2, 100000);
-    timing.warmup = args.getUint("warmup", 0, timing.frames - 1);
+    timing.warmup =
+        args.has("warmup") ? args.getUint("warmup", 0, timing.frames - 1) : std::min(10u, timing.frames / 4);
     timing.block = args.getUint("block", 1, 100000);
     const std::filesystem::path outDir = args.get("out");
+    prepareOutputDirectory(outDir, "--out");  // before any frame: not only once the report is written
     const std::string mode = args.get("mode");
     if (mode == "upsampling") return runUpsamplingBenchmark(args, session, timing, outDir);
     if (mode == "scenes") return runScenesBenchmark(args, session, timing, outDir);

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "io/safe_write.h"
 #include "io/settings_json.h"
 
 namespace vct {
@@ -98,10 +99,8 @@ void writeBenchmarkReport(const std::filesystem::path& dir, const std::string& n
     std::filesystem::create_directories(dir, error);
     if (error) throw Error("cannot create output directory '" + dir.string() + "': " + error.message());
     const std::filesystem::path json = dir / (name + ".json"), md = dir / (name + ".md");
-    std::ofstream(json) << report.dump(2) << "\n";
-    std::ofstream(md) << caption << "\n\n" << table;
-    if (!std::filesystem::is_regular_file(json) || !std::filesystem::is_regular_file(md))
-        throw Error("cannot write '" + json.string() + "' or '" + md.string() + "'");
+    writeTextReplacing(json, report.dump(2) + "\n");
+    writeTextReplacing(md, caption + "\n\n" + table);
     std::printf("%s", table.c_str());
     std::printf("wrote %s, %s\n", json.c_str(), md.c_str());
 }

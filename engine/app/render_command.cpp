@@ -10,6 +10,7 @@
 #include "app/session.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/safe_write.h"
 #include "io/timings_json.h"
 #include "scene/camera_path.h"
 
@@ -72,11 +73,10 @@ int runRenderCommand(int argc, char** argv, int first) {
     if (view == AuxView::Voxels && options.settings.voxelResolution != 0)
         voxelMip(uint32_t(std::bit_width(options.settings.voxelResolution)));
 
+    // Before any work: an --out that cannot take the files would otherwise fail after the last frame.
+    prepareOutputDirectory(outDir, "--out");
     {
         Session session(options);
-        std::error_code error;
-        std::filesystem::create_directories(outDir, error);
-        if (error) throw Error("cannot create output directory '" + outDir.string() + "': " + error.message());
 
         Renderer& renderer = session.renderer();
         const uint32_t mip = view == AuxView::Voxels ? voxelMip(renderer.voxelGrid()->mipCount()) : 0;

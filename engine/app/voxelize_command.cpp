@@ -11,6 +11,7 @@
 #include "app/commands.h"
 #include "app/session.h"
 #include "core/error.h"
+#include "io/safe_write.h"
 #include "io/vdb_io.h"
 
 namespace vct {
@@ -96,6 +97,11 @@ int runVoxelizeCommand(int argc, char** argv, int first) {
     options.context.deviceSubstring = args.get("device");
     options.context.validation = args.has("validate");
 
+    // Before any work: where the file goes must be a directory, and the file not one.
+    if (out.has_parent_path()) prepareOutputDirectory(out.parent_path(), "--out");
+    std::error_code error;
+    if (std::filesystem::is_directory(out, error))
+        throw UsageError("--out '" + out.string() + "' is a directory, expected a .vdb file name");
     {
         Session session(options);
         Renderer& renderer = session.renderer();
@@ -109,15 +115,10 @@ int runVoxelizeCommand(int argc, char** argv, int first) {
         file.info.voxelSize = grid.voxelSize();
         file.info.scene = options.scene;
         file.info.time = input.timeSeconds;
+        file.info.sceneHash = sceneContentHash(session.scene());
         file.voxels = readFrameVoxels(grid);
         file.staticAccum = grid.readStaticAccumulator();
 
-        if (out.has_parent_path()) {
-            std::error_code error;
-            std::filesystem::create_directories(out.parent_path(), error);
-            if (error)
-                throw Error("cannot create directory '" + out.parent_path().string() + "': " + error.message());
-        }
         const std::vector<VoxelGridSummary> grids = writeVoxelFile(out, file);
 
         const uint32_t n = grid.resolution();
@@ -126,8 +127,8 @@ int runVoxelizeCommand(int argc, char** argv, int first) {
                     double(grid.origin().y), double(grid.origin().z), double(grid.voxelSize()));
         for (const VoxelGridSummary& g : grids)
             std::printf("  %-20s %-6s %9llu active voxels (%.1f%%)\n", g.name.c_str(), g.type.c_str(),
-                        static_cast<unsigned long long>(g.activeVoxels), 100.0 * double(g.activeVoxels) / double(total));
-        std::error_code error;
+                        static_cast<unsigned long long>(g.activeVoxels),
+                        100.0 * double(g.activeVoxels) / double(total));
         const uint64_t fileBytes = std::filesystem::file_size(out, error);
         const uint64_t denseBytes = denseVoxelBytes(n);
         std::printf("wrote %s: %s (%llu bytes), dense %s (%.1f%% of it)\n", out.c_str(), megabytes(fileBytes).c_str(),

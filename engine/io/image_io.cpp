@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "io/safe_write.h"
 
 namespace vct {
 namespace {
@@ -33,15 +34,35 @@ void checkSize(const std::filesystem::path& path, uint32_t width, uint32_t heigh
 
 constexpr const char* kChannels[4] = {"R", "G", "B", "A"};
 
+void writeExrFile(const std::filesystem::path& temporary, const std::filesystem::path& path, uint32_t width,
+                  uint32_t height, const std::vector<float>& rgba32f) {
+    try {
+        Imf::Header header(static_cast<int>(width), static_cast<int>(height));
+        Imf::FrameBuffer frameBuffer;
+        const size_t xStride = 4 * sizeof(float);
+        const size_t yStride = xStride * width;
+        for (int c = 0; c < 4; ++c) {
+            header.channels().insert(kChannels[c], Imf::Channel(Imf::FLOAT));
+            frameBuffer.insert(kChannels[c], Imf::Slice::Make(Imf::FLOAT, rgba32f.data() + c,
+                                                              header.dataWindow(), xStride, yStride));
+        }
+        Imf::OutputFile file(temporary.c_str(), header);
+        file.setFrameBuffer(frameBuffer);
+        file.writePixels(int(height));
+    } catch (const std::exception& e) {
+        throw Error("cannot write EXR " + path.string() + ": " + oneLine(e.what()));
+    }
+}
+
 }  // namespace
 
 void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height,
               const std::vector<uint8_t>& rgba8) {
     checkSize(path, width, height, rgba8.size());
-    if (stbi_write_png(path.string().c_str(), int(width), int(height), 4, rgba8.data(), int(width * 4)) ==
-        0) {
-        throw Error("cannot write PNG " + path.string());
-    }
+    writeReplacing(path, [&](const std::filesystem::path& temporary) {
+        if (stbi_write_png(temporary.c_str(), int(width), int(height), 4, rgba8.data(), int(width * 4)) == 0)
+            throw Error("cannot write PNG " + path.string());
+    });
 }
 
 ImageRgba8 readPng(const std::filesystem::path& path) {
@@ -60,22 +81,9 @@ ImageRgba8 readPng(const std::filesystem::path& path) {
 void writeExr(const std::filesystem::path& path, uint32_t width, uint32_t height,
               const std::vector<float>& rgba32f) {
     checkSize(path, width, height, rgba32f.size());
-    try {
-        Imf::Header header(static_cast<int>(width), static_cast<int>(height));
-        Imf::FrameBuffer frameBuffer;
-        const size_t xStride = 4 * sizeof(float);
-        const size_t yStride = xStride * width;
-        for (int c = 0; c < 4; ++c) {
-            header.channels().insert(kChannels[c], Imf::Channel(Imf::FLOAT));
-            frameBuffer.insert(kChannels[c], Imf::Slice::Make(Imf::FLOAT, rgba32f.data() + c,
-                                                              header.dataWindow(), xStride, yStride));
-        }
-        Imf::OutputFile file(path.string().c_str(), header);
-        file.setFrameBuffer(frameBuffer);
-        file.writePixels(int(height));
-    } catch (const std::exception& e) {
-        throw Error("cannot write EXR " + path.string() + ": " + oneLine(e.what()));
-    }
+    writeReplacing(path, [&](const std::filesystem::path& temporary) {
+        writeExrFile(temporary, path, width, height, rgba32f);
+    });
 }
 
 ImageRgba32f readExr(const std::filesystem::path& path) {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "io/safe_write.h"
 #include "io/settings_json.h"
 
 namespace vct {
@@ -24,10 +25,7 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                            {"fps", report.frame.medianMs > 0.0 ? 1000.0 / report.frame.medianMs : 0.0},
                            {"settings", settingsJson(report.settings)},
                            {"resampled_fraction", report.resampledFraction}};
-    std::ofstream file(path);
-    if (!file) throw Error("cannot write '" + path.string() + "'");
-    file << json.dump(2) << "\n";
-    if (!file) throw Error("cannot write '" + path.string() + "'");
+    writeTextReplacing(path, json.dump(2) + "\n");  // replaces a planted symlink instead of following it
 }
 
 std::string formatTimingTable(const TimingReport& report) {

@@ -1,21 +1,25 @@
 #include "io/vdb_io.h"
 
+#include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
+#include <openvdb/openvdb.h>
+
 #include <algorithm>
 #include <bit>
 #include <mutex>
 #include <sstream>
 #include <system_error>
 
-#include <openvdb/io/File.h>
-#include <openvdb/openvdb.h>
-
 #include "core/error.h"
+#include "io/safe_write.h"
+#include "scene/input_limits.h"
 
 namespace vct {
 
 namespace {
 
-static_assert(VCT_VOXEL_ACCUM_STRIDE == 10, "static_* grids assume albedo rgb, normal xyz, emission rgb, count");
+static_assert(VCT_VOXEL_ACCUM_STRIDE == 10,
+              "static_* grids assume albedo rgb, normal xyz, emission rgb, count");
 
 // Grid names, in file order.
 constexpr const char* kAlbedo = "albedo";
@@ -29,7 +33,8 @@ constexpr const char* kStaticNormal = "static_normal_sum";
 constexpr const char* kStaticEmission = "static_emission_sum";
 
 constexpr const char* kIndexToWorld =
-    "index (i,j,k) is the voxel centred at vct_grid_origin + (ijk + 0.5) * vct_voxel_size (OpenVDB's cell-centred "
+    "index (i,j,k) is the voxel centred at vct_grid_origin + (ijk + 0.5) * vct_voxel_size (OpenVDB's "
+    "cell-centred "
     "convention); vct_grid_origin is the grid's min corner; active voxels lie in [0, vct_resolution)^3";
 
 void initializeOpenVdb() {
@@ -37,7 +42,9 @@ void initializeOpenVdb() {
     std::call_once(once, [] { openvdb::initialize(); });
 }
 
-std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+std::string quoted(const std::filesystem::path& path) {
+    return "'" + path.string() + "'";
+}
 
 // OpenVDB's messages about a damaged file may quote its bytes (NULs, kilobytes of padding): printable
 // characters only, runs of blanks folded, at most 160 characters.
@@ -53,20 +60,30 @@ std::string what(const std::exception& e) {
     return text;
 }
 
-openvdb::Coord coord(glm::ivec3 v) { return openvdb::Coord(v.x, v.y, v.z); }
-glm::ivec3 ivec(const openvdb::Coord& c) { return glm::ivec3(c.x(), c.y(), c.z()); }
-openvdb::Vec3s vec3s(glm::vec3 v) { return openvdb::Vec3s(v.x, v.y, v.z); }
-glm::vec3 vec3(const openvdb::Vec3s& v) { return glm::vec3(v.x(), v.y(), v.z()); }
+openvdb::Coord coord(glm::ivec3 v) {
+    return openvdb::Coord(v.x, v.y, v.z);
+}
+glm::ivec3 ivec(const openvdb::Coord& c) {
+    return glm::ivec3(c.x(), c.y(), c.z());
+}
+openvdb::Vec3s vec3s(glm::vec3 v) {
+    return openvdb::Vec3s(v.x, v.y, v.z);
+}
+glm::vec3 vec3(const openvdb::Vec3s& v) {
+    return glm::vec3(v.x(), v.y(), v.z());
+}
 // The accumulator's uints keep their bits in the int32 grids (normal sums are two's complement anyway).
 openvdb::Vec3i vec3i(const uint32_t* u) {
-    return openvdb::Vec3i(std::bit_cast<int32_t>(u[0]), std::bit_cast<int32_t>(u[1]), std::bit_cast<int32_t>(u[2]));
+    return openvdb::Vec3i(std::bit_cast<int32_t>(u[0]), std::bit_cast<int32_t>(u[1]),
+                          std::bit_cast<int32_t>(u[2]));
 }
 void fromVec3i(const openvdb::Vec3i& v, uint32_t* u) {
     for (int c = 0; c < 3; ++c) u[c] = std::bit_cast<uint32_t>(v[c]);
 }
 
 bool inGrid(glm::ivec3 ijk, uint32_t n) {
-    return glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(int(n))));
+    return glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) &&
+           glm::all(glm::lessThan(ijk, glm::ivec3(int(n))));
 }
 
 void insertCommonMeta(openvdb::MetaMap& meta, const VoxelFileInfo& info) {
@@ -77,12 +94,14 @@ void insertCommonMeta(openvdb::MetaMap& meta, const VoxelFileInfo& info) {
     meta.insertMeta("vct_voxel_size", openvdb::FloatMetadata(info.voxelSize));
     meta.insertMeta("vct_index_to_world", openvdb::StringMetadata(kIndexToWorld));
     meta.insertMeta("vct_time", openvdb::FloatMetadata(info.time));
+    meta.insertMeta("vct_scene_hash", openvdb::Int64Metadata(std::bit_cast<int64_t>(info.sceneHash)));
 }
 
 template <typename GridT>
 typename GridT::Ptr makeGrid(const char* name, const char* description, const VoxelFileInfo& info,
                              const openvdb::math::Transform::Ptr& transform) {
-    typename GridT::Ptr grid = GridT::create(typename GridT::ValueType(openvdb::zeroVal<typename GridT::ValueType>()));
+    typename GridT::Ptr grid =
+        GridT::create(typename GridT::ValueType(openvdb::zeroVal<typename GridT::ValueType>()));
     grid->setName(name);
     grid->setTransform(transform);
     insertCommonMeta(*grid, info);
@@ -101,7 +120,8 @@ T requireMeta(const openvdb::MetaMap& meta, const char* name, const std::filesys
 
 VoxelFileInfo readInfo(const openvdb::MetaMap& meta, const std::filesystem::path& path) {
     openvdb::StringMetadata::ConstPtr format = meta.getMetadata<openvdb::StringMetadata>("vct_format");
-    if (!format) throw Error("voxel file " + quoted(path) + " is an OpenVDB file but not one written by vct voxelize");
+    if (!format)
+        throw Error("voxel file " + quoted(path) + " is an OpenVDB file but not one written by vct voxelize");
     if (format->value() != kVoxelFileFormat)
         throw Error("voxel file " + quoted(path) + " has format '" + format->value() + "', expected '" +
                     kVoxelFileFormat + "'");
@@ -116,35 +136,69 @@ VoxelFileInfo readInfo(const openvdb::MetaMap& meta, const std::filesystem::path
         throw Error("voxel file " + quoted(path) + ": bad vct_voxel_size " + std::to_string(info.voxelSize));
     info.scene = requireMeta<std::string>(meta, "vct_scene", path);
     info.time = requireMeta<float>(meta, "vct_time", path);
+    if (openvdb::Int64Metadata::ConstPtr hash = meta.getMetadata<openvdb::Int64Metadata>("vct_scene_hash"))
+        info.sceneHash = std::bit_cast<uint64_t>(hash->value());
     return info;
 }
 
-// Opens `path` for reading (no delayed loading: the file may be replaced while the program runs).
-void openFile(openvdb::io::File& file, const std::filesystem::path& path) {
-    std::error_code error;
-    if (!std::filesystem::exists(path, error)) throw Error("voxel file " + quoted(path) + " does not exist");
-    if (std::filesystem::is_directory(path, error)) throw Error("voxel file " + quoted(path) + " is a directory");
+// A whole voxel file in memory. OpenVDB reads lengths from the file and trusts them: past the end of a
+// truncated file its reads fail silently and leave garbage sizes (gigabytes allocated, minutes spent). So the
+// file is read by us (a regular file only: a FIFO must not block) and parsed from a stream that throws at the
+// first read past its end.
+struct VoxelStream {
+    openvdb::MetaMap::Ptr meta;
+    openvdb::GridPtrVecPtr grids;
+};
+
+VoxelStream openFile(const std::filesystem::path& path) {
+    FileRead file = readRegularFile(path);
+    if (!file.error.empty()) {
+        std::error_code error;
+        if (file.error == "no such file") throw Error("voxel file " + quoted(path) + " does not exist");
+        if (std::filesystem::is_directory(path, error))
+            throw Error("voxel file " + quoted(path) + " is a directory");
+        throw Error("voxel file " + quoted(path) + ": " + file.error);
+    }
+    std::istringstream in(std::string(file.bytes.begin(), file.bytes.end()));
+    file.bytes = {};
+    in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
     try {
-        file.open(/*delayedLoad=*/false);
+        openvdb::io::Stream stream(in, /*delayLoad=*/false);
+        return {stream.getMetadata(), stream.getGrids()};
+    } catch (const std::ios_base::failure&) {
+        throw Error("voxel file " + quoted(path) +
+                    " is not a readable OpenVDB file (it ends early: truncated?)");
+    } catch (const std::bad_alloc&) {
+        throw Error("voxel file " + quoted(path) +
+                    " is not a readable OpenVDB file (it declares sizes beyond memory)");
     } catch (const std::exception& e) {
         throw Error("voxel file " + quoted(path) + " is not a readable OpenVDB file (" + what(e) + ")");
     }
 }
 
 template <typename GridT>
-typename GridT::Ptr readGrid(openvdb::io::File& file, const char* name, const std::filesystem::path& path) {
-    if (!file.hasGrid(name)) throw Error("voxel file " + quoted(path) + " has no '" + name + "' grid");
+typename GridT::Ptr readGrid(const VoxelStream& file, const char* name, uint32_t n,
+                             const std::filesystem::path& path) {
     openvdb::GridBase::Ptr base;
-    try {
-        base = file.readGrid(name);
-    } catch (const std::exception& e) {
-        throw Error("voxel file " + quoted(path) + ": cannot read grid '" + name + "' (" + what(e) + ")");
-    }
+    for (const openvdb::GridBase::Ptr& grid : *file.grids)
+        if (grid && grid->getName() == name) base = grid;
+    if (!base) throw Error("voxel file " + quoted(path) + " has no '" + name + "' grid");
     typename GridT::Ptr grid = openvdb::gridPtrCast<GridT>(base);
     if (!grid)
-        throw Error("voxel file " + quoted(path) + ": grid '" + name + "' holds " + base->valueType() + ", expected " +
-                    openvdb::typeNameAsString<typename GridT::ValueType>());
-    // Files from other tools may store uniform blocks as tiles: make every active value a voxel.
+        throw Error("voxel file " + quoted(path) + ": grid '" + name + "' holds " + base->valueType() +
+                    ", expected " + openvdb::typeNameAsString<typename GridT::ValueType>());
+    // Files from other tools may store uniform blocks as tiles: every active value must lie in the grid
+    // before they become voxels (a root-level tile alone is 4096^3 of them).
+    const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
+    if (grid->activeVoxelCount() > 0 && (!inGrid(ivec(box.min()), n) || !inGrid(ivec(box.max()), n) ||
+                                         grid->activeVoxelCount() > uint64_t(n) * n * n)) {
+        std::ostringstream message;
+        message << "voxel file " << quoted(path) << ": grid '" << name << "' has active values from ("
+                << box.min().x() << ", " << box.min().y() << ", " << box.min().z() << ") to ("
+                << box.max().x() << ", " << box.max().y() << ", " << box.max().z() << "), outside the " << n
+                << "^3 grid";
+        throw Error(message.str());
+    }
     grid->tree().voxelizeActiveTiles();
     return grid;
 }
@@ -159,8 +213,8 @@ std::vector<glm::ivec3> activeVoxels(const GridT& grid, uint32_t n, const std::f
         const glm::ivec3 ijk = ivec(it.getCoord());
         if (!inGrid(ijk, n)) {
             std::ostringstream message;
-            message << "voxel file " << quoted(path) << ": grid '" << grid.getName() << "' has a voxel at (" << ijk.x
-                    << ", " << ijk.y << ", " << ijk.z << "), outside the " << n << "^3 grid";
+            message << "voxel file " << quoted(path) << ": grid '" << grid.getName() << "' has a voxel at ("
+                    << ijk.x << ", " << ijk.y << ", " << ijk.z << "), outside the " << n << "^3 grid";
             throw Error(message.str());
         }
         voxels.push_back(ijk);
@@ -174,7 +228,8 @@ std::vector<glm::ivec3> activeVoxels(const GridT& grid, uint32_t n, const std::f
 
 uint64_t denseVoxelBytes(uint32_t resolution) {
     // albedo, normal, emission, radiance (vec3s) + opacity (float) + static_count (int32) + 3 sums (vec3i).
-    constexpr uint64_t perVoxel = 4 * sizeof(openvdb::Vec3s) + sizeof(float) + sizeof(int32_t) + 3 * sizeof(openvdb::Vec3i);
+    constexpr uint64_t perVoxel =
+        4 * sizeof(openvdb::Vec3s) + sizeof(float) + sizeof(int32_t) + 3 * sizeof(openvdb::Vec3i);
     return uint64_t(resolution) * resolution * resolution * perVoxel;
 }
 
@@ -183,36 +238,40 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
     const VoxelFileInfo& info = data.info;
     const uint32_t n = info.resolution;
     if (n < 1 || n > 4096 || !(info.voxelSize > 0.0f))
-        throw Error("cannot write voxel file " + quoted(path) + ": bad grid (resolution " + std::to_string(n) +
-                    ", voxel size " + std::to_string(info.voxelSize) + ")");
+        throw Error("cannot write voxel file " + quoted(path) + ": bad grid (resolution " +
+                    std::to_string(n) + ", voxel size " + std::to_string(info.voxelSize) + ")");
 
     // Index → world: scale by the voxel size, then move index 0 to the centre of the min-corner voxel.
-    openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(double(info.voxelSize));
+    openvdb::math::Transform::Ptr transform =
+        openvdb::math::Transform::createLinearTransform(double(info.voxelSize));
     const glm::dvec3 firstCentre = glm::dvec3(info.origin) + 0.5 * double(info.voxelSize);
     transform->postTranslate(openvdb::Vec3d(firstCentre.x, firstCentre.y, firstCentre.z));
 
     auto albedo = makeGrid<openvdb::Vec3SGrid>(
-        kAlbedo, "resolved albedo (linear RGB) of the frame at vct_time: static + moving instances", info, transform);
-    auto normal = makeGrid<openvdb::Vec3SGrid>(
-        kNormal, "averaged surface normal (world space, not renormalised: shorter where surfaces disagree)", info,
+        kAlbedo, "resolved albedo (linear RGB) of the frame at vct_time: static + moving instances", info,
         transform);
+    auto normal = makeGrid<openvdb::Vec3SGrid>(
+        kNormal, "averaged surface normal (world space, not renormalised: shorter where surfaces disagree)",
+        info, transform);
     auto emission = makeGrid<openvdb::Vec3SGrid>(kEmission, "emitted radiance (linear RGB)", info, transform);
-    auto opacity = makeGrid<openvdb::FloatGrid>(kOpacity, "coverage: 1 where any surface touches the voxel", info,
-                                                transform);
+    auto opacity = makeGrid<openvdb::FloatGrid>(kOpacity, "coverage: 1 where any surface touches the voxel",
+                                                info, transform);
     auto radiance = makeGrid<openvdb::Vec3SGrid>(
         kRadiance,
-        "injected outgoing radiance of mip 0 at vct_time (direct light + emission), premultiplied by opacity", info,
-        transform);
+        "injected outgoing radiance of mip 0 at vct_time (direct light + emission), premultiplied by opacity",
+        info, transform);
     auto count = makeGrid<openvdb::Int32Grid>(
-        kStaticCount, "voxelize samples of static geometry (the accumulator's count; the voxel cache)", info, transform);
+        kStaticCount, "voxelize samples of static geometry (the accumulator's count; the voxel cache)", info,
+        transform);
     auto albedoSum = makeGrid<openvdb::Vec3IGrid>(
-        kStaticAlbedo, "static geometry: sum of albedo x 1023 over static_count samples (uint32 bits)", info, transform);
+        kStaticAlbedo, "static geometry: sum of albedo x 1023 over static_count samples (uint32 bits)", info,
+        transform);
     auto normalSum = makeGrid<openvdb::Vec3IGrid>(
-        kStaticNormal, "static geometry: sum of normal x 1023 over static_count samples (two's complement)", info,
-        transform);
+        kStaticNormal, "static geometry: sum of normal x 1023 over static_count samples (two's complement)",
+        info, transform);
     auto emissionSum = makeGrid<openvdb::Vec3IGrid>(
-        kStaticEmission, "static geometry: sum of emission x 256 over static_count samples (uint32 bits)", info,
-        transform);
+        kStaticEmission, "static geometry: sum of emission x 256 over static_count samples (uint32 bits)",
+        info, transform);
     opacity->setGridClass(openvdb::GRID_FOG_VOLUME);
     normal->setVectorType(openvdb::VEC_COVARIANT);
 
@@ -253,20 +312,31 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
         }
     }
 
-    openvdb::GridPtrVec grids{albedo, normal, emission, opacity, radiance, count, albedoSum, normalSum, emissionSum};
+    openvdb::GridPtrVec grids{albedo, normal,    emission,  opacity,    radiance,
+                              count,  albedoSum, normalSum, emissionSum};
     openvdb::MetaMap fileMeta;
     insertCommonMeta(fileMeta, info);
-    fileMeta.insertMeta("vct_grids",
-                        openvdb::StringMetadata("albedo, normal, emission, opacity, radiance: the frame at vct_time; "
-                                                "static_*: the static geometry's exact voxelize accumulator (the "
-                                                "voxel cache read by vct render --voxel-cache)"));
-    try {
-        openvdb::io::File file(path.string());
-        file.write(grids, fileMeta);
-        file.close();
-    } catch (const std::exception& e) {
-        throw Error("cannot write voxel file " + quoted(path) + " (" + what(e) + ")");
-    }
+    fileMeta.insertMeta(
+        "vct_grids",
+        openvdb::StringMetadata("albedo, normal, emission, opacity, radiance: the frame at vct_time; "
+                                "static_*: the static geometry's exact voxelize accumulator (the "
+                                "voxel cache read by vct render --voxel-cache)"));
+    // Under a fresh name, renamed over `path`: a symlink planted there is replaced, not followed.
+    const std::filesystem::path dir =
+        path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    std::error_code error;
+    if (!std::filesystem::is_directory(dir, error))
+        throw Error("cannot write voxel file " + quoted(path) + ": directory '" + dir.string() +
+                    "' does not exist");
+    writeReplacing(path, [&](const std::filesystem::path& temporary) {
+        try {
+            openvdb::io::File file(temporary.string());
+            file.write(grids, fileMeta);
+            file.close();
+        } catch (const std::exception& e) {
+            throw Error("cannot write voxel file " + quoted(path) + " (" + what(e) + ")");
+        }
+    });
 
     std::vector<VoxelGridSummary> summary;
     for (const openvdb::GridBase::Ptr& grid : grids)
@@ -276,26 +346,22 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
 
 VoxelFileInfo readVoxelFileInfo(const std::filesystem::path& path) {
     initializeOpenVdb();
-    openvdb::io::File file(path.string());
-    openFile(file, path);
-    VoxelFileInfo info = readInfo(*file.getMetadata(), path);
-    file.close();
-    return info;
+    return readInfo(*openFile(path).meta, path);
 }
 
-VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame) {
-    initializeOpenVdb();
-    openvdb::io::File file(path.string());
-    openFile(file, path);
+namespace {
+
+VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
+    const VoxelStream file = openFile(path);
     VoxelFile data;
-    data.info = readInfo(*file.getMetadata(), path);
+    data.info = readInfo(*file.meta, path);
     const uint32_t n = data.info.resolution;
 
     {
-        auto count = readGrid<openvdb::Int32Grid>(file, kStaticCount, path);
-        auto albedoSum = readGrid<openvdb::Vec3IGrid>(file, kStaticAlbedo, path);
-        auto normalSum = readGrid<openvdb::Vec3IGrid>(file, kStaticNormal, path);
-        auto emissionSum = readGrid<openvdb::Vec3IGrid>(file, kStaticEmission, path);
+        auto count = readGrid<openvdb::Int32Grid>(file, kStaticCount, n, path);
+        auto albedoSum = readGrid<openvdb::Vec3IGrid>(file, kStaticAlbedo, n, path);
+        auto normalSum = readGrid<openvdb::Vec3IGrid>(file, kStaticNormal, n, path);
+        auto emissionSum = readGrid<openvdb::Vec3IGrid>(file, kStaticEmission, n, path);
         auto c = count->getConstAccessor();
         auto a = albedoSum->getConstAccessor();
         auto nr = normalSum->getConstAccessor();
@@ -312,11 +378,11 @@ VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame) {
         }
     }
     if (frame) {
-        auto opacity = readGrid<openvdb::FloatGrid>(file, kOpacity, path);
-        auto albedo = readGrid<openvdb::Vec3SGrid>(file, kAlbedo, path);
-        auto normal = readGrid<openvdb::Vec3SGrid>(file, kNormal, path);
-        auto emission = readGrid<openvdb::Vec3SGrid>(file, kEmission, path);
-        auto radiance = readGrid<openvdb::Vec3SGrid>(file, kRadiance, path);
+        auto opacity = readGrid<openvdb::FloatGrid>(file, kOpacity, n, path);
+        auto albedo = readGrid<openvdb::Vec3SGrid>(file, kAlbedo, n, path);
+        auto normal = readGrid<openvdb::Vec3SGrid>(file, kNormal, n, path);
+        auto emission = readGrid<openvdb::Vec3SGrid>(file, kEmission, n, path);
+        auto radiance = readGrid<openvdb::Vec3SGrid>(file, kRadiance, n, path);
         auto o = opacity->getConstAccessor();
         auto a = albedo->getConstAccessor();
         auto nr = normal->getConstAccessor();
@@ -334,8 +400,23 @@ VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame) {
             data.voxels.push_back(v);
         }
     }
-    file.close();
     return data;
+}
+
+}  // namespace
+
+VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame) {
+    initializeOpenVdb();
+    try {
+        return readVoxels(path, frame);
+    } catch (const Error&) {
+        throw;  // names the file already
+    } catch (const std::bad_alloc&) {
+        throw Error("voxel file " + quoted(path) +
+                    ": out of memory (it declares more voxels than this machine can hold)");
+    } catch (const std::exception& e) {
+        throw Error("voxel file " + quoted(path) + ": " + what(e));
+    }
 }
 
 }  // namespace vct

@@ -1,14 +1,14 @@
-// OpenVDB files of the voxelized scene (`vct voxelize --out FILE.vdb`, `--voxel-cache FILE.vdb`). Pure CPU: the
-// data goes in and out as plain arrays of occupied voxels, so this is testable without Vulkan; only
+// OpenVDB files of the voxelized scene (`vct voxelize --out FILE.vdb`, `--voxel-cache FILE.vdb`). Pure CPU:
+// the data goes in and out as plain arrays of occupied voxels, so this is testable without Vulkan; only
 // vdb_io.cpp includes OpenVDB.
 //
 // What a file holds (sparse: only occupied voxels are active, every background value is 0):
 //   albedo    Vec3f  resolved albedo of the frame at t = 0 (static + moving instances), what the renderer's
 //                    RGBA8 volume held
-//   normal    Vec3f  averaged surface normal (not renormalised: shorter where the surfaces in a voxel disagree)
-//   emission  Vec3f  emitted radiance
-//   opacity   float  coverage (1 for every occupied voxel: binary, as in the renderer); a fog volume
-//   radiance  Vec3f  injected outgoing radiance of mip 0 at t = 0 (direct light + emission), premultiplied by
+//   normal    Vec3f  averaged surface normal (not renormalised: shorter where the surfaces in a voxel
+//   disagree) emission  Vec3f  emitted radiance opacity   float  coverage (1 for every occupied voxel:
+//   binary, as in the renderer); a fog volume radiance  Vec3f  injected outgoing radiance of mip 0 at t = 0
+//   (direct light + emission), premultiplied by
 //                    opacity, i.e. equal to the radiance since opacity is 0 or 1
 //   static_count         Int32  samples of static geometry per voxel (active where > 0)
 //   static_albedo_sum    Vec3i  } the static geometry's fixed-point accumulator (shaders/lib/voxel.glsl),
@@ -22,16 +22,16 @@
 // world = origin + (ijk + 0.5)·s — OpenVDB's cell-centred convention, so other tools place the voxels right;
 // origin is the grid's min corner (VoxelGrid::origin()) and active indices lie in [0, N)³.
 // Metadata (file and every grid): vct_format, vct_scene, vct_resolution, vct_grid_origin (Vec3s, min corner),
-// vct_voxel_size, vct_index_to_world, vct_time; each grid also gets vct_description (one of the lines above).
+// vct_voxel_size, vct_index_to_world, vct_time, vct_scene_hash; each grid also gets vct_description (one of
+// the lines above).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "lib/shared.h"
 
@@ -45,8 +45,11 @@ struct VoxelFileInfo {
     uint32_t resolution = 0;
     glm::vec3 origin{0.0f};
     float voxelSize = 0.0f;
-    std::string scene;   // --scene as given when it was written
-    float time = 0.0f;   // animation time of the frame the albedo..radiance grids come from
+    std::string scene;  // --scene as given when it was written
+    float time = 0.0f;  // animation time of the frame the albedo..radiance grids come from
+    // sceneContentHash (scene/scene.h) of the scene voxelized; 0 when unknown (files written before it
+    // existed).
+    uint64_t sceneHash = 0;
     bool operator==(const VoxelFileInfo&) const = default;
 };
 
@@ -98,7 +101,9 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
 
 // Reads a file written by writeVoxelFile. `frame` false skips the albedo..radiance grids (the cache needs
 // only the static_* ones). Throws vct::Error with a one-line message naming the path for a missing file, a
-// file that is not OpenVDB, an OpenVDB file without vct's metadata or grids, or voxels outside the grid.
+// file that is not a regular file or is larger than kMaxInputFileBytes, a file that is not OpenVDB (or is
+// truncated), an OpenVDB file without vct's metadata or grids, or active values (voxels or tiles) outside the
+// grid.
 VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame = true);
 
 // Only the metadata (cheap: no grid is read). Same errors as readVoxelFile.

@@ -15,14 +15,17 @@ glm::mat4 CameraView::projection(float aspect) const {
 }
 
 CameraView sceneCamera(const Scene& scene, float timeSeconds) {
-    const std::vector<glm::mat4> world = scene.evaluate(timeSeconds);
+    std::vector<glm::quat> rotations;
+    const std::vector<glm::mat4> world = scene.evaluate(timeSeconds, &rotations);
     for (size_t n = 0; n < scene.nodes.size(); ++n) {
         if (scene.nodes[n].camera < 0) continue;
         const Camera& camera = scene.cameras[size_t(scene.nodes[n].camera)];
         CameraView view;
-        // Cameras ignore the node's scale (glTF): rebuild the frame from its orthonormalised axes.
+        // Cameras ignore the node's scale (glTF): rebuild the frame from its orthonormalised axes (from the
+        // composed rotations where a zero scale left none).
         glm::mat4 frame = world[n];
-        for (int axis = 0; axis < 3; ++axis) frame[axis] = glm::vec4(glm::normalize(glm::vec3(frame[axis])), 0.0f);
+        const glm::mat3 axes = worldAxes(world[n], rotations[n]);
+        for (int axis = 0; axis < 3; ++axis) frame[axis] = glm::vec4(axes[axis], 0.0f);
         view.view = glm::inverse(frame);
         view.yfov = camera.yfov;
         view.znear = camera.znear;

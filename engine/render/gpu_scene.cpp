@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include <glm/gtc/matrix_transform.hpp>
+#include <cstdio>
 #include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 #include "vk/check.h"
 
@@ -28,6 +29,24 @@ Texture solidTexture(TextureKind kind, uint8_t r, uint8_t g, uint8_t b, uint8_t 
     return texture;
 }
 
+// Normals transform by the inverse transpose. A flattened instance (a zero scale on one axis, an animation
+// to scale 0) has no inverse: its cofactor matrix, the inverse transpose times the determinant, still gives
+// the normals' direction (the shaders normalise), where the inverse would give NaN.
+glm::mat4 normalMatrix(const glm::mat4& world) {
+    const glm::mat3 linear(world);
+    const float det = glm::determinant(linear);
+    if (det != 0.0f && std::isfinite(det)) {
+        const glm::mat4 inverseTranspose = glm::transpose(glm::inverse(world));
+        bool finite = true;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(inverseTranspose[c][r]);
+        if (finite) return inverseTranspose;
+    }
+    const glm::mat3 cofactor(glm::cross(linear[1], linear[2]), glm::cross(linear[2], linear[0]),
+                             glm::cross(linear[0], linear[1]));
+    return glm::mat4(cofactor);
+}
+
 }  // namespace
 
 uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested) {
@@ -45,6 +64,14 @@ uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested) {
 
 GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy)
     : context_(context), scene_(scene), anisotropy_(anisotropy) {
+    // The voxelize pass binds both whole as storage buffers.
+    const VkDeviceSize maxRange = context.properties().limits.maxStorageBufferRange;
+    for (auto [bytes, what] : {std::pair{VkDeviceSize(scene.vertices.size() * sizeof(Vertex)), "vertices"},
+                               {VkDeviceSize(scene.indices.size() * sizeof(uint32_t)), "indices"}})
+        if (bytes > maxRange)
+            throw Error("scene '" + scene.name + "': its " + what + " take " + std::to_string(bytes) +
+                        " bytes, more than the device's maxStorageBufferRange (" + std::to_string(maxRange) +
+                        ")");
     vertices_ = vk::Buffer::withData(context, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     indices_ = vk::Buffer::withData(context, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),
@@ -75,13 +102,11 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
     update(0.0f, true);
 }
 
-GpuScene::~GpuScene() {
-    for (auto& [key, sampler] : samplers_) vkDestroySampler(context_.device(), sampler, nullptr);
-}
+GpuScene::~GpuScene() = default;
 
 VkSampler GpuScene::samplerFor(TextureWrap s, TextureWrap t) {
     auto key = std::make_pair(int(s), int(t));
-    if (auto it = samplers_.find(key); it != samplers_.end()) return it->second;
+    if (auto it = samplers_.find(key); it != samplers_.end()) return it->second.handle();
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = VK_FILTER_LINEAR;
     info.minFilter = VK_FILTER_LINEAR;
@@ -93,36 +118,51 @@ VkSampler GpuScene::samplerFor(TextureWrap s, TextureWrap t) {
     // chooseAnisotropy has checked the feature and the device's limit.
     info.anisotropyEnable = anisotropy_ >= 2 ? VK_TRUE : VK_FALSE;
     info.maxAnisotropy = anisotropy_ >= 2 ? float(anisotropy_) : 1.0f;
-    VkSampler sampler;
-    VK_CHECK(vkCreateSampler(context_.device(), &info, nullptr, &sampler));
-    samplers_[key] = sampler;
-    return sampler;
+    // Owned (RAII): a texture the device refuses, after some samplers exist, must not leak them.
+    return (samplers_[key] = vk::Sampler(context_, info)).handle();
 }
 
 vk::Image GpuScene::uploadTexture(const Texture& texture) {
-    const uint32_t levels = uint32_t(texture.mips.size());
+    // A texture larger than the device allows starts at the first mip that fits (the chain is made at load).
+    const uint32_t maxSize = context_.properties().limits.maxImageDimension2D;
+    uint32_t first = 0;
+    while (first + 1 < texture.mips.size() && (std::max(1u, texture.width >> first) > maxSize ||
+                                               std::max(1u, texture.height >> first) > maxSize))
+        ++first;
+    const uint32_t width = std::max(1u, texture.width >> first),
+                   height = std::max(1u, texture.height >> first);
+    if (width > maxSize || height > maxSize)
+        throw Error("texture '" + texture.name + "' (" + std::to_string(texture.width) + "x" +
+                    std::to_string(texture.height) + ") exceeds the device's maxImageDimension2D " +
+                    std::to_string(maxSize));
+    if (first > 0)
+        std::printf(
+            "note: texture '%s' (%ux%u) exceeds the device's maxImageDimension2D %u: using its mip %u "
+            "(%ux%u)\n",
+            texture.name.c_str(), texture.width, texture.height, maxSize, first, width, height);
+    const uint32_t levels = uint32_t(texture.mips.size()) - first;
     vk::ImageDesc desc;
-    desc.width = texture.width;
-    desc.height = texture.height;
+    desc.width = width;
+    desc.height = height;
     desc.mipLevels = levels;
     desc.format = texture.kind == TextureKind::Color ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     vk::Image image(context_, desc);
 
     size_t total = 0;
-    for (const auto& mip : texture.mips) total += mip.size();
+    for (uint32_t level = 0; level < levels; ++level) total += texture.mips[first + level].size();
     vk::Buffer staging(context_, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::HostVisible);
     std::vector<VkBufferImageCopy> regions;
     size_t offset = 0;
     for (uint32_t level = 0; level < levels; ++level) {
-        std::memcpy(static_cast<uint8_t*>(staging.mapped()) + offset, texture.mips[level].data(),
-                    texture.mips[level].size());
+        const std::vector<uint8_t>& mip = texture.mips[first + level];
+        std::memcpy(static_cast<uint8_t*>(staging.mapped()) + offset, mip.data(), mip.size());
         VkBufferImageCopy region{};
         region.bufferOffset = offset;
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
-        region.imageExtent = {std::max(1u, texture.width >> level), std::max(1u, texture.height >> level), 1};
+        region.imageExtent = {std::max(1u, width >> level), std::max(1u, height >> level), 1};
         regions.push_back(region);
-        offset += texture.mips[level].size();
+        offset += mip.size();
     }
     context_.submitAndWait([&](VkCommandBuffer cmd) {
         image.use(cmd, vk::ImageAccess::TransferDst);
@@ -171,7 +211,8 @@ VkSampler GpuScene::textureSampler(const Material& material, Slot slot) const {
 }
 
 void GpuScene::update(float timeSeconds, bool cut) {
-    const std::vector<glm::mat4> world = scene_.evaluate(timeSeconds);
+    std::vector<glm::quat> rotations;
+    const std::vector<glm::mat4> world = scene_.evaluate(timeSeconds, &rotations);
     std::vector<Instance> next = scene_.instances(timeSeconds);
     if (cut || previousWorld_.size() != next.size()) {
         previousWorld_.clear();
@@ -181,7 +222,7 @@ void GpuScene::update(float timeSeconds, bool cut) {
     for (size_t i = 0; i < next.size(); ++i) {
         gpuInstances[i].world = next[i].world;
         gpuInstances[i].prevWorld = previousWorld_[i];
-        gpuInstances[i].normalMatrix = glm::transpose(glm::inverse(next[i].world));
+        gpuInstances[i].normalMatrix = normalMatrix(next[i].world);
         previousWorld_[i] = next[i].world;
     }
     // Exact comparison: a scene without animation evaluates to the very same matrices every time.
@@ -196,7 +237,8 @@ void GpuScene::update(float timeSeconds, bool cut) {
         const Light& light = scene_.lights[size_t(scene_.nodes[n].light)];
         gpu::GpuLight g{};
         const glm::vec3 position = glm::vec3(world[n][3]);
-        const glm::vec3 direction = glm::normalize(glm::vec3(world[n] * glm::vec4(0, 0, -1, 0)));
+        // Lights shine along local -Z, scale ignored (a zero scale keeps the composed rotation's direction).
+        const glm::vec3 direction = -worldAxes(world[n], rotations[n])[2];
         int type = light.type == LightType::Directional ? VCT_LIGHT_DIRECTIONAL
                    : light.type == LightType::Point     ? VCT_LIGHT_POINT
                                                         : VCT_LIGHT_SPOT;

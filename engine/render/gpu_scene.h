@@ -10,6 +10,7 @@
 #include "scene/scene.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
+#include "vk/sampler.h"
 
 namespace vct {
 
@@ -67,7 +68,7 @@ private:
     std::vector<VkSampler> textureSamplers_;  // parallel to textures_
     vk::Image defaultWhite_, defaultNormal_, defaultBlack_;
     VkSampler defaultSampler_ = VK_NULL_HANDLE;
-    std::map<std::pair<int, int>, VkSampler> samplers_;
+    std::map<std::pair<int, int>, vk::Sampler> samplers_;
     std::vector<Instance> instances_;
     std::vector<glm::mat4> previousWorld_;  // per instance
     std::vector<gpu::GpuLight> lights_;

@@ -90,8 +90,6 @@ Renderer::~Renderer() {
     vkDeviceWaitIdle(context_.device());
     vkDestroyFence(context_.device(), fence_, nullptr);
     vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &cmd_);
-    for (VkSampler s : {samplers_.linearClamp, samplers_.nearestClamp, samplers_.shadowCompare})
-        vkDestroySampler(context_.device(), s, nullptr);
 }
 
 void Renderer::createSamplers() {
@@ -104,13 +102,14 @@ void Renderer::createSamplers() {
         info.compareEnable = compare;
         info.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
         info.maxLod = VK_LOD_CLAMP_NONE;
-        VkSampler sampler;
-        VK_CHECK(vkCreateSampler(context_.device(), &info, nullptr, &sampler));
-        return sampler;
+        return vk::Sampler(context_, info);
     };
-    samplers_.linearClamp = make(VK_FILTER_LINEAR, false);
-    samplers_.nearestClamp = make(VK_FILTER_NEAREST, false);
-    samplers_.shadowCompare = make(VK_FILTER_LINEAR, true);
+    // Owned (RAII): a constructor that throws later (a bad voxel cache) must not leak them.
+    samplerOwners_ = {make(VK_FILTER_LINEAR, false), make(VK_FILTER_NEAREST, false),
+                      make(VK_FILTER_LINEAR, true)};
+    samplers_.linearClamp = samplerOwners_[0].handle();
+    samplers_.nearestClamp = samplerOwners_[1].handle();
+    samplers_.shadowCompare = samplerOwners_[2].handle();
 }
 
 void Renderer::resize(uint32_t width, uint32_t height) {

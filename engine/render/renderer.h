@@ -2,6 +2,7 @@
 // timestamp scope and after the barriers its declared image uses call for.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "render/settings.h"
 #include "render/voxel_grid.h"
 #include "vk/buffer.h"
+#include "vk/sampler.h"
 #include "vk/timer.h"
 
 namespace vct {
@@ -95,6 +97,7 @@ private:
     RenderSettings settings_;
     GpuScene gpuScene_;
     FrameTargets targets_;
+    std::array<vk::Sampler, 3> samplerOwners_;  // linear, nearest, shadow compare: what samplers_ names
     Samplers samplers_;
     vk::Buffer frameUniforms_;
     vk::GpuTimer timer_;

@@ -4,21 +4,28 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/packing.hpp>
 #include <sstream>
 #include <string>
 
-#include <glm/gtc/packing.hpp>
-
 #include "core/error.h"
 #include "lib/shared.h"
+#include "scene/input_limits.h"
 #include "vk/barrier.h"
 #include "vk/check.h"
 
 namespace vct {
 
+namespace {
+
+constexpr VkDeviceSize kAccumVoxelBytes = VCT_VOXEL_ACCUM_STRIDE * sizeof(uint32_t);
+
+}  // namespace
+
 uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings& settings) {
     uint32_t n = settings.voxelResolution;
-    // A voxel cache fixes N: without --voxels, take the file's (its metadata only; loadStaticCache checks it).
+    // A voxel cache fixes N: without --voxels, take the file's (its metadata only; loadStaticCache checks
+    // it).
     if (n == 0 && !settings.voxelCache.empty()) n = readVoxelFileInfo(settings.voxelCache).resolution;
     if (n == 0) {
         // A software rasterizer pays for every voxel on the CPU each frame (resolve, inject, mips), so it
@@ -27,6 +34,21 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
     }
     if (n < 32 || n > 256 || !std::has_single_bit(n))
         throw UsageError("voxel resolution " + std::to_string(n) + " must be a power of two in 32..256");
+    // The voxelize and resolve passes bind each accumulator whole as one storage buffer: N³ × 40 bytes must
+    // fit the device's range (only 2^27 bytes guaranteed: lavapipe's 128 MiB holds 128³, not 256³).
+    const VkDeviceSize maxRange = context.properties().limits.maxStorageBufferRange;
+    auto accumulatorBytes = [](uint64_t size) { return size * size * size * kAccumVoxelBytes; };
+    if (accumulatorBytes(n) > maxRange) {
+        uint32_t largest = n;
+        while (largest > 32 && accumulatorBytes(largest) > maxRange) largest /= 2;
+        throw UsageError("--voxels " + std::to_string(n) + ": the voxel accumulator needs " +
+                         byteSizeText(accumulatorBytes(n)) +
+                         ", more than this device's maxStorageBufferRange (" + byteSizeText(maxRange) +
+                         "); the largest N it holds is " + std::to_string(largest));
+    }
+    if (n > context.properties().limits.maxImageDimension3D)
+        throw UsageError("--voxels " + std::to_string(n) + ": more than this device's maxImageDimension3D (" +
+                         std::to_string(context.properties().limits.maxImageDimension3D) + ")");
     return n;
 }
 
@@ -41,12 +63,13 @@ Aabb voxelSceneBounds(const Scene& scene) {
         for (const Instance& instance : scene.instances(duration * float(s) / float(kSamples)))
             if (instance.moving)
                 for (uint32_t p : scene.meshes[size_t(instance.mesh)].primitives)
-                    if (p < scene.primitives.size()) box.extend(scene.primitives[p].bounds.transformed(instance.world));
+                    if (p < scene.primitives.size())
+                        box.extend(scene.primitives[p].bounds.transformed(instance.world));
     return box;
 }
 
 VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution)
-    : context_(context), resolution_(resolution) {
+    : context_(context), scene_(scene), resolution_(resolution) {
     mipCount_ = uint32_t(std::countr_zero(resolution)) + 1;
     Aabb bounds = voxelSceneBounds(scene);
     if (bounds.empty()) bounds = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
@@ -67,9 +90,11 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     normal_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
     emission_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
 
-    const VkDeviceSize accumBytes = VkDeviceSize(resolution) * resolution * resolution * VCT_VOXEL_ACCUM_STRIDE * 4;
+    const VkDeviceSize accumBytes =
+        VkDeviceSize(resolution) * resolution * resolution * VCT_VOXEL_ACCUM_STRIDE * 4;
     // TRANSFER_DST: cleared, and filled from a voxel cache; TRANSFER_SRC: read back for `vct voxelize`.
-    constexpr VkBufferUsageFlags accumUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+    constexpr VkBufferUsageFlags accumUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     staticAccum_ = vk::Buffer(context, accumBytes, accumUsage, vk::MemoryUsage::DeviceLocal);
     // Only scenes with animated instances pay for the second accumulator.
@@ -85,14 +110,12 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     info.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;  // outside the grid: empty, no light
     info.minLod = 0.0f;
     info.maxLod = float(mipCount_ - 1);
-    VK_CHECK(vkCreateSampler(context.device(), &info, nullptr, &sampler_));
+    sampler_ = vk::Sampler(context, info);
 }
 
-VoxelGrid::~VoxelGrid() { vkDestroySampler(context_.device(), sampler_, nullptr); }
+VoxelGrid::~VoxelGrid() = default;
 
 namespace {
-
-constexpr VkDeviceSize kAccumVoxelBytes = VCT_VOXEL_ACCUM_STRIDE * sizeof(uint32_t);
 
 std::string formatVec3(glm::vec3 v) {
     std::ostringstream s;
@@ -112,15 +135,24 @@ void VoxelGrid::loadStaticCache(const std::filesystem::path& path) {
                     std::to_string(resolution_) + "^3 (--voxels " + std::to_string(info.resolution) +
                     " or leave --voxels out)");
     // The same scene gives the very same floats (voxelGridFit on the same bounds); the tolerance only
-    // forgives last-bit differences between builds. Anything more is another scene (or another version of it).
+    // forgives last-bit differences between builds. Anything more is another scene (or another version of
+    // it).
     const float tolerance = 1e-5f * voxelSize();
-    const bool sameBounds = std::abs(info.voxelSize - voxelSize()) <= tolerance &&
-                            glm::all(glm::lessThanEqual(glm::abs(info.origin - origin()), glm::vec3(tolerance)));
+    const bool sameBounds =
+        std::abs(info.voxelSize - voxelSize()) <= tolerance &&
+        glm::all(glm::lessThanEqual(glm::abs(info.origin - origin()), glm::vec3(tolerance)));
     if (!sameBounds)
         throw Error(name + " was voxelized for other grid bounds (scene '" + info.scene + "': origin " +
                     formatVec3(info.origin) + ", voxel size " + std::to_string(info.voxelSize) +
                     ") than this scene's (origin " + formatVec3(origin()) + ", voxel size " +
                     std::to_string(voxelSize()) + ")");
+
+    // Same bounds do not make the same scene: the file records what it voxelized (older files only the name).
+    if (info.sceneHash != 0 && info.sceneHash != sceneContentHash(scene_))
+        throw Error(name + " was voxelized from another scene ('" + info.scene +
+                    "': other geometry, materials or placement) than '" + scene_.name + "'");
+    if (info.sceneHash == 0 && std::filesystem::path(info.scene).stem().string() != scene_.name)
+        throw Error(name + " was voxelized from scene '" + info.scene + "', not '" + scene_.name + "'");
 
     // Pack the voxels back to back; one copy region per run of consecutive linear indices.
     staticCache_ = vk::Buffer(context_, std::max<VkDeviceSize>(1, file.staticAccum.size()) * kAccumVoxelBytes,
@@ -130,7 +162,8 @@ void VoxelGrid::loadStaticCache(const std::filesystem::path& path) {
     uint64_t previous = 0;
     for (size_t i = 0; i < file.staticAccum.size(); ++i) {
         const StaticAccumVoxel& voxel = file.staticAccum[i];
-        const uint64_t index = voxelFileIndex(voxel.ijk, resolution_);  // sorted and in the grid (readVoxelFile)
+        const uint64_t index =
+            voxelFileIndex(voxel.ijk, resolution_);  // sorted and in the grid (readVoxelFile)
         std::memcpy(dst + i * kAccumVoxelBytes, voxel.accum.data(), kAccumVoxelBytes);
         if (i > 0 && index == previous + 1)
             staticCacheRegions_.back().size += kAccumVoxelBytes;
@@ -142,8 +175,8 @@ void VoxelGrid::loadStaticCache(const std::filesystem::path& path) {
 
 void VoxelGrid::recordStaticCacheUpload(VkCommandBuffer cmd) const {
     if (!staticCacheRegions_.empty())
-        vkCmdCopyBuffer(cmd, staticCache_.handle(), staticAccum_.handle(), uint32_t(staticCacheRegions_.size()),
-                        staticCacheRegions_.data());
+        vkCmdCopyBuffer(cmd, staticCache_.handle(), staticAccum_.handle(),
+                        uint32_t(staticCacheRegions_.size()), staticCacheRegions_.data());
 }
 
 void VoxelGrid::releaseStaticCache() {
@@ -158,7 +191,8 @@ std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
     if (format != VK_FORMAT_R8G8B8A8_UNORM && format != VK_FORMAT_R16G16B16A16_SFLOAT)
         throw Error("readVolume: only RGBA8 and RGBA16F volumes are supported");
     const uint32_t texelBytes = vk::bytesPerPixel(format);
-    vk::Buffer staging(context_, texels * texelBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::HostVisible);
+    vk::Buffer staging(context_, texels * texelBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                       vk::MemoryUsage::HostVisible);
     context_.submitAndWait([&](VkCommandBuffer cmd) {
         // Put the volume back the way the passes left it, so the next frame's barriers stay right (a pure
         // write would discard the contents on the way back: read-write keeps them).
@@ -168,8 +202,8 @@ std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
         region.imageExtent = {size, size, size};
-        vkCmdCopyImageToBuffer(cmd, volume.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
-                               &region);
+        vkCmdCopyImageToBuffer(cmd, volume.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(),
+                               1, &region);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         if (previous != vk::ImageAccess::Undefined) volume.use(cmd, previous);
@@ -201,8 +235,9 @@ std::vector<StaticAccumVoxel> VoxelGrid::readStaticAccumulator() {
     for (uint64_t z0 = 0; z0 < n; z0 += slicesPerSlab) {
         const uint64_t slices = std::min(slicesPerSlab, n - z0);
         context_.submitAndWait([&](VkCommandBuffer cmd) {
-            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                              VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                              VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                              VK_ACCESS_2_TRANSFER_READ_BIT);
             VkBufferCopy region{z0 * sliceBytes, 0, slices * sliceBytes};
             vkCmdCopyBuffer(cmd, staticAccum_.handle(), staging.handle(), 1, &region);
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,

@@ -17,15 +17,15 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "io/vdb_io.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
+#include "vk/sampler.h"
 
 // The voxel math of the shaders (shaders/lib/voxel.glsl) as C++, in namespace vct::glsl like
 // render/shader_math.h (include guards keep the two compatible in one translation unit).
@@ -46,7 +46,7 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
 Aabb voxelSceneBounds(const Scene& scene);
 
 class VoxelGrid {
-public:
+  public:
     VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution);
     ~VoxelGrid();
     VoxelGrid(const VoxelGrid&) = delete;
@@ -60,7 +60,7 @@ public:
 
     // Premultiplied radiance + opacity, 3D RGBA16F with the full mip chain (SAMPLED | STORAGE).
     vk::Image& radiance() { return radiance_; }
-    VkSampler sampler() const { return sampler_; }
+    VkSampler sampler() const { return sampler_.handle(); }
 
     // Resolved material volumes (mip 0 only, STORAGE): albedo rgb + opacity a (RGBA8), averaged normal
     // (RGBA16F xyz, not renormalised: shorter where surfaces in the voxel disagree), emission (RGBA16F rgb).
@@ -81,9 +81,10 @@ public:
 
     // ---- voxel cache (vct voxelize → OpenVDB file → --voxel-cache; io/vdb_io.h) ----
     // Reads the static accumulator from `path` and stages it for upload. Throws vct::Error (one line naming
-    // the file) when it is missing, not a vct voxel file, or made for another resolution or grid bounds.
-    // The upload itself is recorded by the voxelize pass in the first frame, in place of voxelizing the
-    // static instances, so it is timed in the frame where it happens.
+    // the file) when it is missing, not a vct voxel file, or made for another resolution, grid bounds or
+    // scene (VoxelFileInfo::sceneHash against sceneContentHash). The upload itself is recorded by the
+    // voxelize pass in the first frame, in place of voxelizing the static instances, so it is timed in the
+    // frame where it happens.
     void loadStaticCache(const std::filesystem::path& path);
     bool hasStaticCache() const { return staticCache_.handle() != VK_NULL_HANDLE; }
     // Copies the staged voxels into the (already cleared) static accumulator; transfer stage.
@@ -98,14 +99,15 @@ public:
     // The static accumulator's voxels with at least one sample, in linear-index order.
     std::vector<StaticAccumVoxel> readStaticAccumulator();
 
-private:
+  private:
     const vk::Context& context_;
+    const Scene& scene_;  // outlives the grid (the Renderer's GpuScene holds it too)
     uint32_t resolution_ = 0;
     uint32_t mipCount_ = 1;
     glm::vec4 originSize_{0.0f};
     vk::Image radiance_, albedo_, normal_, emission_;
     vk::Buffer staticAccum_, dynamicAccum_;
-    VkSampler sampler_ = VK_NULL_HANDLE;
+    vk::Sampler sampler_;
     bool staticVoxelized_ = false;
     // Voxel cache staged for upload: the cached voxels packed back to back, and one copy region per run of
     // consecutive voxels (the accumulator is cleared first, empty voxels need no bytes).

@@ -1,16 +1,20 @@
 #include "scene/gltf_loader.h"
 
+#include <stb/stb_image.h>  // implementation in Debian's libstb
+#include <sys/stat.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
+#include <memory>
 
 #include "core/error.h"
+#include "scene/input_limits.h"
 #include "scene/tangents.h"
 
 namespace vct {
@@ -68,65 +72,88 @@ double readComponent(const unsigned char* p, int type, bool normalized) {
     // clang-format on
 }
 
-// Pointer to `count` elements of `elementSize` bytes, `stride` apart, in a buffer view, range-checked so a
-// truncated .bin or a bad offset is an error instead of a read past the end.
-const unsigned char* viewData(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count,
-                              size_t elementSize, size_t& stride, const std::string& what) {
+// Pointer to `count` elements of `elementSize` bytes, `stride` apart, in a buffer view. Every range is
+// checked with overflow-safe arithmetic (offsets near 2^64 must not wrap into the buffer), so a truncated
+// .bin or a bad offset is an error instead of a read outside the buffer.
+const unsigned char* viewData(const tinygltf::Model& model, int viewIndex, uint64_t offset, uint64_t count,
+                              uint64_t elementSize, size_t& stride, const std::string& what) {
     if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size())
         fail(what + " has no valid bufferView");
     const tinygltf::BufferView& view = model.bufferViews[size_t(viewIndex)];
     if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
         fail(what + ": bufferView has no valid buffer");
     const tinygltf::Buffer& buffer = model.buffers[size_t(view.buffer)];
-    if (stride == 0) stride = view.byteStride ? view.byteStride : elementSize;
-    size_t needed = count == 0 ? 0 : offset + stride * (count - 1) + elementSize;
-    if (view.byteOffset + view.byteLength > buffer.data.size() || needed > view.byteLength)
-        fail(what + " reads past the end of buffer " + std::to_string(view.buffer) + " (" +
-             std::to_string(buffer.data.size()) + " bytes; truncated or missing .bin file?)");
+    if (!rangeWithin(view.byteOffset, view.byteLength, buffer.data.size()))
+        fail(what + ": bufferView " + std::to_string(viewIndex) + " (" + std::to_string(view.byteLength) +
+             " bytes at " + std::to_string(view.byteOffset) + ") lies outside buffer " +
+             std::to_string(view.buffer) + " (" + std::to_string(buffer.data.size()) +
+             " bytes; truncated or missing .bin file?)");
+    if (stride == 0) stride = view.byteStride ? view.byteStride : size_t(elementSize);
+    uint64_t span = 0;  // offset + stride * (count - 1) + elementSize
+    bool fits = count == 0 || (checkedMul(stride, count - 1, span) && checkedAdd(span, elementSize, span) &&
+                               checkedAdd(span, offset, span));
+    if (!fits || span > view.byteLength)
+        fail(what + " reads past the end of bufferView " + std::to_string(viewIndex) + " (" +
+             std::to_string(count) + " elements at offset " + std::to_string(offset) + ", " +
+             std::to_string(view.byteLength) + " bytes)");
     return buffer.data.data() + view.byteOffset + offset;
 }
 
-AccessorData readAccessor(const tinygltf::Model& model, int index, const std::string& what) {
+// `zeroFillLimit`: most elements an accessor without a bufferView may have (its values are zeros plus sparse
+// ones, so nothing in the file pays for them).
+AccessorData readAccessor(const tinygltf::Model& model, int index, const std::string& what,
+                          uint64_t zeroFillLimit) {
     if (index < 0 || size_t(index) >= model.accessors.size()) fail(what + ": accessor index out of range");
     const tinygltf::Accessor& acc = model.accessors[size_t(index)];
     std::string name = what + " (accessor " + std::to_string(index) + ")";
     int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
     int components = tinygltf::GetNumComponentsInType(uint32_t(acc.type));
     if (componentSize <= 0 || components <= 0) fail(name + " has an unknown component type or type");
+    const uint64_t limit =
+        acc.bufferView >= 0 ? kMaxAccessorElements : std::min(kMaxAccessorElements, zeroFillLimit);
+    if (acc.count > limit)
+        fail(name + " has " + std::to_string(acc.count) + " elements, more than the " +
+             std::to_string(limit) +
+             (acc.bufferView >= 0 ? " allowed" : " an accessor without a bufferView may have in this file"));
+    size_t elementSize = size_t(componentSize) * size_t(components);
+    // Ranges first: nothing is allocated for data the file does not hold.
+    size_t stride = 0;
+    const unsigned char* p = acc.bufferView >= 0 ? viewData(model, acc.bufferView, acc.byteOffset, acc.count,
+                                                            elementSize, stride, name)
+                                                 : nullptr;
+    const auto& sparse = acc.sparse;
+    size_t n = 0, indexStride = 0, valueStride = elementSize;
+    int indexSize = 0;
+    const unsigned char *ip = nullptr, *vp = nullptr;
+    if (sparse.isSparse) {
+        if (sparse.count < 0 || uint64_t(sparse.count) > acc.count)
+            fail(name + ": sparse count " + std::to_string(sparse.count) + " is not in 0.." +
+                 std::to_string(acc.count));
+        n = size_t(sparse.count);
+        indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(sparse.indices.componentType));
+        if (indexSize <= 0) fail(name + ": sparse indices have an unknown component type");
+        indexStride = size_t(indexSize);
+        // int offsets in tinygltf: a negative one becomes huge and fails the range check.
+        ip = viewData(model, sparse.indices.bufferView, uint64_t(int64_t(sparse.indices.byteOffset)), n,
+                      size_t(indexSize), indexStride, name + " sparse indices");
+        vp = viewData(model, sparse.values.bufferView, uint64_t(int64_t(sparse.values.byteOffset)), n,
+                      elementSize, valueStride, name + " sparse values");
+    }
     AccessorData data;
     data.count = acc.count;
     data.components = components;
     data.values.assign(acc.count * size_t(components), 0.0);  // no bufferView: zeros (then sparse values)
-    size_t elementSize = size_t(componentSize) * size_t(components);
-    if (acc.bufferView >= 0) {
-        size_t stride = 0;
-        const unsigned char* p =
-            viewData(model, acc.bufferView, acc.byteOffset, acc.count, elementSize, stride, name);
+    if (p)
         for (size_t i = 0; i < acc.count; ++i)
             for (int c = 0; c < components; ++c)
                 data.values[i * size_t(components) + size_t(c)] = readComponent(
                     p + i * stride + size_t(c * componentSize), acc.componentType, acc.normalized);
-    }
-    if (acc.sparse.isSparse) {
-        size_t n = size_t(std::max(acc.sparse.count, 0));
-        int indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.sparse.indices.componentType));
-        if (indexSize <= 0) fail(name + ": sparse indices have an unknown component type");
-        size_t indexStride = size_t(indexSize), valueStride = elementSize;
-        const unsigned char* ip =
-            viewData(model, acc.sparse.indices.bufferView, size_t(acc.sparse.indices.byteOffset), n,
-                     size_t(indexSize), indexStride, name + " sparse indices");
-        const unsigned char* vp =
-            viewData(model, acc.sparse.values.bufferView, size_t(acc.sparse.values.byteOffset), n,
-                     elementSize, valueStride, name + " sparse values");
-        for (size_t s = 0; s < n; ++s) {
-            auto target =
-                size_t(readComponent(ip + s * indexStride, acc.sparse.indices.componentType, false));
-            if (target >= acc.count)
-                fail(name + ": sparse index " + std::to_string(target) + " is out of range");
-            for (int c = 0; c < components; ++c)
-                data.values[target * size_t(components) + size_t(c)] = readComponent(
-                    vp + s * valueStride + size_t(c * componentSize), acc.componentType, acc.normalized);
-        }
+    for (size_t s = 0; s < n; ++s) {
+        auto target = size_t(readComponent(ip + s * indexStride, sparse.indices.componentType, false));
+        if (target >= acc.count) fail(name + ": sparse index " + std::to_string(target) + " is out of range");
+        for (int c = 0; c < components; ++c)
+            data.values[target * size_t(components) + size_t(c)] = readComponent(
+                vp + s * valueStride + size_t(c * componentSize), acc.componentType, acc.normalized);
     }
     return data;
 }
@@ -148,7 +175,11 @@ std::optional<double> extensionNumber(const tinygltf::ExtensionMap& extensions, 
 
 class GltfImporter {
   public:
-    explicit GltfImporter(const tinygltf::Model& model) : model_(model) {}
+    // `inputBytes`: the JSON and every buffer together, what bounds accessors without a bufferView.
+    // `refused`: files the loader would not read, and why (named in the error of a texture that needs one).
+    GltfImporter(const tinygltf::Model& model, uint64_t inputBytes,
+                 const std::map<std::string, std::string>& refused)
+        : model_(model), zeroFillLimit_(std::max<uint64_t>(4096, inputBytes)), refused_(refused) {}
 
     Scene run() {
         // KHR_mesh_quantization needs nothing more than readAccessor's normalized/integer support.
@@ -172,6 +203,10 @@ class GltfImporter {
     }
 
   private:
+    AccessorData accessor(int index, const std::string& what) const {
+        return readAccessor(model_, index, what, zeroFillLimit_);
+    }
+
     void note(const std::string& text) {
         if (std::find(scene_.notes.begin(), scene_.notes.end(), text) == scene_.notes.end())
             scene_.notes.push_back(text);
@@ -194,8 +229,13 @@ class GltfImporter {
         std::string imageName = !image.uri.empty()    ? image.uri
                                 : !image.name.empty() ? image.name
                                                       : "image " + std::to_string(src.source);
-        if (image.image.empty() || image.width <= 0 || image.height <= 0)
+        if (image.image.empty() || image.width <= 0 || image.height <= 0) {
+            for (const auto& [file, why] : refused_)
+                if (!image.uri.empty() &&
+                    std::filesystem::path(file).filename() == std::filesystem::path(image.uri).filename())
+                    fail("texture image '" + imageName + "': " + why);
             fail("texture image '" + imageName + "' is missing or could not be decoded");
+        }
         Texture tex;
         tex.name = imageName;
         tex.kind = kind;
@@ -319,14 +359,14 @@ class GltfImporter {
                 return it == prim.attributes.end() ? -1 : it->second;
             };
             if (attribute("POSITION") < 0) fail(where + " has no POSITION attribute");
-            AccessorData pos = readAccessor(model_, attribute("POSITION"), where + " POSITION");
+            AccessorData pos = accessor(attribute("POSITION"), where + " POSITION");
             if (pos.components < 3) fail(where + " POSITION is not a vec3");
             std::vector<Vertex> verts(pos.count);
             for (size_t i = 0; i < pos.count; ++i)
                 verts[i].position = glm::vec3(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2));
             auto readInto = [&](const char* name, int minComponents, auto store) {
                 if (attribute(name) < 0) return false;
-                AccessorData a = readAccessor(model_, attribute(name), where + " " + name);
+                AccessorData a = accessor(attribute(name), where + " " + name);
                 if (a.count != pos.count || a.components < minComponents)
                     fail(where + " " + name + " has " + std::to_string(a.count) + " elements of " +
                          std::to_string(a.components) + " components, expected " + std::to_string(pos.count));
@@ -346,7 +386,7 @@ class GltfImporter {
 
             std::vector<uint32_t> idx;
             if (prim.indices >= 0) {
-                AccessorData a = readAccessor(model_, prim.indices, where + " indices");
+                AccessorData a = accessor(prim.indices, where + " indices");
                 for (double v : a.values) idx.push_back(uint32_t(v));
             } else {
                 for (size_t i = 0; i < pos.count; ++i) idx.push_back(uint32_t(i));
@@ -395,6 +435,10 @@ class GltfImporter {
             cam.zfar = float(src.perspective.zfar);  // 0 (infinite) is made finite once the bounds are known
             cam.aspectRatio = float(src.perspective.aspectRatio);
         }
+        // Past float's range a far plane is as good as none: made finite from the bounds like an infinite
+        // one.
+        if (!std::isfinite(cam.zfar)) cam.zfar = 0.0f;
+        if (!(cam.aspectRatio > 0.0f) || !std::isfinite(cam.aspectRatio)) cam.aspectRatio = 0.0f;
         scene_.cameras.push_back(cam);
     }
 
@@ -482,8 +526,8 @@ class GltfImporter {
                                 : sampler.interpolation == "CUBICSPLINE" ? Interpolation::CubicSpline
                                                                          : Interpolation::Linear;
             std::string where = "animation '" + src.name + "' channel " + ch.target_path;
-            AccessorData in = readAccessor(model_, sampler.input, where + " input");
-            AccessorData values = readAccessor(model_, sampler.output, where + " output");
+            AccessorData in = accessor(sampler.input, where + " input");
+            AccessorData values = accessor(sampler.output, where + " output");
             int wanted = out.path == AnimationPath::Rotation ? 4 : 3;
             size_t perKey = out.interpolation == Interpolation::CubicSpline ? 3 : 1;
             if (in.count == 0 || values.components != wanted || values.count != in.count * perKey)
@@ -509,42 +553,206 @@ class GltfImporter {
     }
 
     const tinygltf::Model& model_;
+    uint64_t zeroFillLimit_;
+    const std::map<std::string, std::string>& refused_;
     Scene scene_;
     std::map<std::pair<int, TextureKind>, int> textureCache_;
     int defaultMaterial_ = -1;
 };
 
-}  // namespace
+// ---- reading the file and what it names: only regular files, within the input limits ----
 
-Scene loadGltf(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error(path + ": no such file");
-    if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": not a regular file");
+// What the callbacks below share during one load.
+struct LoadContext {
+    const tinygltf::Model* model = nullptr;      // being filled: buffers and views come before images
+    std::map<std::string, std::string> refused;  // file → why it could not be read (image uris are optional)
+    // The last file read and its size: tinygltf reads an image's uri right before decoding it, without saying
+    // which uri the bytes came from.
+    std::string lastRead;
+    size_t lastReadBytes = 0;
+};
+
+bool fileExists(const std::string& path, void*) {
+    struct stat info {};
+    return stat(path.c_str(), &info) == 0;  // stat, not open: a FIFO must never be opened blocking
+}
+
+std::string expandFilePath(const std::string& path, void*) {
+    return path;
+}
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    FileRead read = readRegularFile(path);
+    if (!read.error.empty()) {
+        if (err) *err = read.error;
+        static_cast<LoadContext*>(user)->refused[path] = read.error;
+        return false;
+    }
+    auto& context = *static_cast<LoadContext*>(user);
+    context.lastRead = std::filesystem::path(path).filename().string();
+    context.lastReadBytes = read.bytes.size();
+    *out = std::move(read.bytes);
+    return true;
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err = "vct does not write glTF files";
+    return false;
+}
+
+// tinygltf's image callback: checks that an image stored in a buffer view lies inside its buffer (tinygltf
+// passes a pointer without checking), and that the declared size is one we are willing to decode, then
+// decodes with stb as tinygltf would (8- or 16-bit, the file's channel count).
+bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+               const unsigned char* bytes, int size, void* user) {
+    const LoadContext& context = *static_cast<const LoadContext*>(user);
+    std::string name = "image " + std::to_string(index);
+    if (!image->name.empty()) name += " '" + image->name + "'";
+    if (image->bufferView < 0 && !context.lastRead.empty() &&
+        context.lastReadBytes == size_t(std::max(size, 0)))
+        name += " (" + context.lastRead + ")";
+    auto refuse = [&](const std::string& why) {
+        if (err) *err += name + ": " + why + "\n";
+        return false;
+    };
+    if (image->bufferView >= 0) {
+        const tinygltf::Model& model = *context.model;
+        if (size_t(image->bufferView) >= model.bufferViews.size())
+            return refuse("bufferView is out of range");
+        const tinygltf::BufferView& view = model.bufferViews[size_t(image->bufferView)];
+        if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+            return refuse("bufferView has no valid buffer");
+        const size_t bufferSize = model.buffers[size_t(view.buffer)].data.size();
+        if (!rangeWithin(view.byteOffset, view.byteLength, bufferSize) || view.byteLength > size_t(INT_MAX))
+            return refuse("bufferView " + std::to_string(image->bufferView) + " (" +
+                          std::to_string(view.byteLength) + " bytes at " + std::to_string(view.byteOffset) +
+                          ") lies outside buffer " + std::to_string(view.buffer) + " (" +
+                          std::to_string(bufferSize) + " bytes)");
+    }
+    if (!bytes || size <= 0) return refuse("no image data");
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info_from_memory(bytes, size, &width, &height, &channels))
+        return refuse(std::string("cannot be decoded (") +
+                      (stbi_failure_reason() ? stbi_failure_reason() : "?") + ")");
+    if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxTexturePixels)
+        return refuse("is " + std::to_string(width) + "x" + std::to_string(height) + ", more than the " +
+                      std::to_string(kMaxTexturePixels) + " pixels a texture may have");
+    const bool sixteen = stbi_is_16_bit_from_memory(bytes, size);
+    std::unique_ptr<void, void (*)(void*)> pixels(
+        sixteen ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &width, &height, &channels, 0))
+                : static_cast<void*>(stbi_load_from_memory(bytes, size, &width, &height, &channels, 0)),
+        stbi_image_free);
+    if (!pixels)
+        return refuse(std::string("cannot be decoded (") +
+                      (stbi_failure_reason() ? stbi_failure_reason() : "?") + ")");
+    const size_t byteCount = size_t(width) * size_t(height) * size_t(channels) * (sixteen ? 2 : 1);
+    const auto* first = static_cast<const unsigned char*>(pixels.get());
+    image->image.assign(first, first + byteCount);
+    image->width = width;
+    image->height = height;
+    image->component = channels;
+    image->bits = sixteen ? 16 : 8;
+    image->pixel_type =
+        sixteen ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    return true;
+}
+
+// The JSON of a .glb (its first chunk), bounds-checked; empty when the header does not describe one.
+std::string_view glbJson(const std::vector<unsigned char>& bytes) {
+    if (bytes.size() < 20) return {};
+    uint32_t length = 0, type = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    std::memcpy(&type, bytes.data() + 16, 4);
+    if (type != 0x4E4F534Au || !rangeWithin(20, length, bytes.size())) return {};  // "JSON"
+    return {reinterpret_cast<const char*>(bytes.data()) + 20, length};
+}
+
+// A camera's depth range from the scene's size: an infinite far plane made finite, and a ratio far / near
+// that float depth can resolve (nearly everything lands on depth 1 past ~1e7, and positions reconstructed
+// from it are no longer finite).
+void fitCameraDepthRanges(Scene& scene) {
+    constexpr float kMaxDepthRatio = 1e6f;
+    constexpr float kMinYfov = 1e-3f;  // radians; narrower lenses lose the projection's precision
+    const Aabb box = scene.bounds();
+    const float extent = box.empty() ? 10.0f : glm::length(box.max - box.min);
+    const std::vector<glm::mat4> world = scene.evaluate(0.0f);
+    for (size_t n = 0; n < scene.nodes.size(); ++n) {
+        if (scene.nodes[n].camera < 0) continue;
+        Camera& cam = scene.cameras[size_t(scene.nodes[n].camera)];
+        const std::string name =
+            "camera '" + (cam.name.empty() ? "#" + std::to_string(scene.nodes[n].camera) : cam.name) + "'";
+        if (cam.yfov > 0.0f && cam.yfov < kMinYfov) {
+            scene.notes.push_back(name + ": yfov " + numberText(cam.yfov) + " widened to " +
+                                  numberText(kMinYfov));
+            cam.yfov = kMinYfov;
+        }
+        if (!(cam.znear > 0.0f) || !std::isfinite(cam.znear)) continue;  // validate() names it
+        if (!(cam.zfar > cam.znear)) cam.zfar = std::max(100.0f * cam.znear, 10.0f * extent);
+        if (cam.zfar / cam.znear <= kMaxDepthRatio) continue;
+        // What the camera can see of the scene from where it stands at t = 0, with a wide margin for motion.
+        const glm::vec3 eye(world[n][3]);
+        const float reach = box.empty() ? extent : glm::length(eye - 0.5f * (box.min + box.max)) + extent;
+        const float zfar = std::min(cam.zfar, std::max(100.0f * reach, cam.znear * kMaxDepthRatio));
+        const float znear = std::max(cam.znear, zfar / kMaxDepthRatio);
+        if (std::isfinite(zfar) && std::isfinite(znear)) {
+            scene.notes.push_back(name + ": depth range " + numberText(cam.znear) + " .. " +
+                                  numberText(cam.zfar) + " narrowed to " + numberText(znear) + " .. " +
+                                  numberText(zfar) + " (float depth resolves a ratio of at most 1e6)");
+            cam.znear = znear;
+            cam.zfar = zfar;
+        }
+    }
+}
+
+// loadGltf without the file name in its errors (loadGltf adds it to every one, whatever threw).
+Scene importGltf(const std::string& path) {
+    FileRead file = readRegularFile(path);
+    if (!file.error.empty()) throw Error(file.error);
 
     // .glb starts with the magic "glTF"; decide by content so a misnamed file still loads.
-    char magic[4] = {};
-    std::ifstream(path, std::ios::binary).read(magic, 4);
-    bool binary = std::memcmp(magic, "glTF", 4) == 0;
+    const bool binary = file.bytes.size() >= 4 && std::memcmp(file.bytes.data(), "glTF", 4) == 0;
+    const std::string_view json =
+        binary ? glbJson(file.bytes)
+               : std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size());
+    // tinygltf converts JSON recursively: deep nesting would overflow the stack before it could say so.
+    if (jsonNestingDepth(json, kMaxJsonDepth) > kMaxJsonDepth)
+        throw Error("JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
 
     tinygltf::TinyGLTF gltf;
     tinygltf::Model model;
+    LoadContext context;
+    context.model = &model;
+    gltf.SetFsCallbacks({&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &context});
+    gltf.SetImageLoader(&loadImage, &context);
     std::string err, warn;
-    bool ok = binary ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
-                     : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
-    if (!ok) throw Error(path + ": " + (err.empty() ? std::string("not a valid glTF file") : oneLine(err)));
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    const bool ok =
+        binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, file.bytes.data(),
+                                           unsigned(file.bytes.size()), baseDir)
+               : gltf.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()), baseDir);
+    if (!ok) throw Error(err.empty() ? std::string("not a valid glTF file") : err);
 
+    uint64_t inputBytes = file.bytes.size();
+    for (const tinygltf::Buffer& buffer : model.buffers) inputBytes += buffer.data.size();
+    file.bytes = {};
+    Scene scene = GltfImporter(model, inputBytes, context.refused).run();
+    scene.name = std::filesystem::path(path).stem().string();
+    fitCameraDepthRanges(scene);
+    // Check the data before anything derives a camera or light from it (NaN bounds would spread).
+    scene.validate();
+    scene.normalizeScale();
+    scene.addDefaultsIfMissing();
+    return scene;
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path) {
     try {
-        Scene scene = GltfImporter(model).run();
-        scene.name = std::filesystem::path(path).stem().string();
-        // Check the data before anything derives a camera or light from it (NaN bounds would spread).
-        scene.validate();
-        Aabb box = scene.bounds();
-        float extent = box.empty() ? 10.0f : glm::length(box.max - box.min);
-        for (Camera& cam : scene.cameras)
-            if (!(cam.zfar > cam.znear)) cam.zfar = std::max(100.0f * cam.znear, 10.0f * extent);
-        scene.addDefaultsIfMissing();
-        return scene;
-    } catch (const Error& e) {
+        return importGltf(path);
+    } catch (const std::bad_alloc&) {
+        throw Error(path + ": out of memory (the file declares more data than this machine can hold)");
+    } catch (const std::exception& e) {  // ours, tinygltf's, the standard library's (length_error, ...)
         throw Error(path + ": " + oneLine(e.what()));
     }
 }

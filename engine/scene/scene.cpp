@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "scene/input_limits.h"
 
 namespace vct {
 
@@ -27,6 +28,16 @@ glm::mat4 Node::localMatrix() const {
 }
 
 namespace {
+
+bool finite(const glm::vec2& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y);
+}
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite(const glm::vec4& v) {
+    return finite(glm::vec3(v)) && std::isfinite(v.w);
+}
 
 glm::quat toQuat(const glm::vec4& xyzw) {
     return glm::quat(xyzw.w, xyzw.x, xyzw.y, xyzw.z);
@@ -99,6 +110,18 @@ std::vector<int> parentlessNodes(const std::vector<Node>& nodes) {
     return out;
 }
 
+// The rotation of a node matrix (its columns orthonormalised), identity where the matrix has none left
+// (a zero scale).
+glm::quat matrixRotation(const glm::mat4& m) {
+    glm::mat3 axes(m);
+    for (int c = 0; c < 3; ++c) {
+        const float length = glm::length(axes[c]);
+        if (!(length > 1e-30f) || !std::isfinite(length)) return glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+        axes[c] /= length;
+    }
+    return normalizedQuat(glm::quat_cast(axes));
+}
+
 // Rotation whose local -Z points along `dir` (cameras and lights look down -Z).
 glm::quat lookRotation(const glm::vec3& dir) {
     glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
@@ -107,7 +130,67 @@ glm::quat lookRotation(const glm::vec3& dir) {
 
 }  // namespace
 
-std::vector<glm::mat4> Scene::evaluate(float timeSeconds) const {
+namespace {
+
+struct Fnv1a {
+    uint64_t hash = 14695981039346656037ull;
+    void bytes(const void* data, size_t size) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < size; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
+    }
+    template <typename T>
+    void value(const T& v) {
+        bytes(&v, sizeof(v));
+    }
+};
+
+}  // namespace
+
+uint64_t sceneContentHash(const Scene& scene) {
+    Fnv1a h;
+    h.bytes(scene.vertices.data(), scene.vertices.size() * sizeof(Vertex));
+    h.bytes(scene.indices.data(), scene.indices.size() * sizeof(uint32_t));
+    for (const Primitive& p : scene.primitives) {
+        h.value(p.firstIndex);
+        h.value(p.indexCount);
+        h.value(p.vertexOffset);
+        h.value(p.material);
+    }
+    for (const Material& m : scene.materials) {
+        h.value(m.baseColorFactor);
+        h.value(m.emissiveFactor);
+        h.value(m.alphaCutoff);
+        h.value(m.alphaMode);
+        for (int t : {m.baseColorTexture, m.emissiveTexture}) h.value(t);
+    }
+    for (const Texture& t : scene.textures) {
+        h.value(t.width);
+        h.value(t.height);
+        h.value(t.kind);
+        if (!t.mips.empty()) h.bytes(t.mips[0].data(), t.mips[0].size());
+    }
+    for (const Instance& instance : scene.instances(0.0f)) {
+        h.value(instance.mesh);
+        h.value(instance.world);
+        h.value(instance.moving);
+    }
+    return h.hash;
+}
+
+glm::mat3 worldAxes(const glm::mat4& world, const glm::quat& worldRotation) {
+    glm::mat3 axes(world);
+    for (int c = 0; c < 3; ++c) {
+        // The squared length must stay a normal float for normalize(): ~1e-19 is the smallest usable length.
+        const float squared = glm::dot(axes[c], axes[c]);
+        if (!(squared > 1e-36f) || !std::isfinite(squared)) return glm::mat3_cast(worldRotation);
+        axes[c] = glm::normalize(axes[c]);
+    }
+    // Two axes scaled into one (a singular matrix) leave no frame either.
+    if (!(std::abs(glm::determinant(axes)) > 1e-6f)) return glm::mat3_cast(worldRotation);
+    return axes;
+}
+
+std::vector<glm::mat4> Scene::evaluate(float timeSeconds, std::vector<glm::quat>* worldRotations) const {
     // Only the TRS of each node changes; keep just those (this runs every frame) instead of copying nodes.
     struct Pose {
         glm::vec3 t;
@@ -141,6 +224,7 @@ std::vector<glm::mat4> Scene::evaluate(float timeSeconds) const {
         }
     }
     std::vector<glm::mat4> world(nodes.size(), glm::mat4(1.0f));
+    if (worldRotations) worldRotations->assign(nodes.size(), glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
     for (int n : topologicalOrder(nodes, parentlessNodes(nodes))) {
         const Node& node = nodes[static_cast<size_t>(n)];
         const Pose& p = pose[static_cast<size_t>(n)];
@@ -150,6 +234,11 @@ std::vector<glm::mat4> Scene::evaluate(float timeSeconds) const {
                                             glm::scale(glm::mat4(1.0f), p.s);
         world[static_cast<size_t>(n)] =
             node.parent >= 0 ? world[static_cast<size_t>(node.parent)] * local : local;
+        if (worldRotations) {
+            const glm::quat r = node.matrix ? matrixRotation(*node.matrix) : p.r;
+            (*worldRotations)[static_cast<size_t>(n)] = normalizedQuat(
+                node.parent >= 0 ? (*worldRotations)[static_cast<size_t>(node.parent)] * r : r);
+        }
     }
     return world;
 }
@@ -186,6 +275,50 @@ Aabb Scene::bounds() const {
         for (uint32_t p : meshes[static_cast<size_t>(inst.mesh)].primitives)
             if (p < primitives.size()) box.extend(primitives[p].bounds.transformed(inst.world));
     return box;
+}
+
+void Scene::normalizeScale() {
+    const Aabb box = bounds();
+    if (box.empty()) return;
+    // The largest side, not the diagonal: squaring a side of 1e-30 would underflow to 0.
+    const glm::vec3 size = box.max - box.min;
+    const float extent = std::max(size.x, std::max(size.y, size.z));
+    constexpr float kMinExtent = 1e-2f, kMaxExtent = 1e6f;
+    if (!(extent > 0.0f) || (extent >= kMinExtent && extent <= kMaxExtent)) return;
+    // A power of two: every scaled value keeps its bits, so the image is the one the scene would give if
+    // float could hold it.
+    const int exponent = -std::ilogb(extent);
+    const float s = std::ldexp(1.0f, exponent);
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        Node& node = nodes[n];
+        if (node.parent >= 0) continue;  // children inherit the scale from their root
+        if (node.matrix) {
+            *node.matrix = glm::scale(glm::mat4(1.0f), glm::vec3(s)) * *node.matrix;
+        } else {
+            node.translation *= s;
+            node.scale *= s;
+        }
+        for (Animation& anim : animations)
+            for (AnimationChannel& ch : anim.channels)
+                if (ch.node == int(n) && ch.path != AnimationPath::Rotation)
+                    for (glm::vec4& v : ch.values) v *= s;
+    }
+    for (Camera& cam : cameras) {
+        cam.znear *= s;
+        cam.zfar *= s;
+    }
+    for (size_t l = 0; l < lights.size(); ++l) {
+        Light& light = lights[l];
+        light.range *= s;
+        // A point or spot light's irradiance falls with the squared distance, which scaled by s².
+        if (light.type != LightType::Directional) light.intensity *= s * s;
+        if (!std::isfinite(light.intensity) || !finite(light.color * light.intensity))
+            throw Error("light '" + light.name + "': its intensity at this scene's scale (" +
+                        numberText(extent) + " across) overflows float");
+    }
+    notes.push_back(
+        "scene is " + numberText(extent) + " units across: scaled by 2^" + std::to_string(exponent) +
+        " to keep float math in range (lights and cameras scaled with it; the image is the same)");
 }
 
 void Scene::addDefaultsIfMissing() {
@@ -236,20 +369,6 @@ void Scene::addDefaultsIfMissing() {
         notes.push_back("scene has no light: added a default directional light");
     }
 }
-
-namespace {
-
-bool finite(const glm::vec2& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y);
-}
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-bool finite(const glm::vec4& v) {
-    return finite(glm::vec3(v)) && std::isfinite(v.w);
-}
-
-}  // namespace
 
 void Scene::validate() const {
     auto fail = [](const std::string& what) { throw Error(what); };
@@ -321,7 +440,68 @@ void Scene::validate() const {
             for (int c = 0; c < 4; ++c) finiteTransform = finiteTransform && finite((*node.matrix)[c]);
         if (!finiteTransform) fail(where + "transform is not finite");
     }
+    // Lights and cameras like material factors: finite, and in the range their formulas are defined for.
+    constexpr float kHalfPi = 1.5707964f, kPi = 3.1415927f;
+    for (size_t l = 0; l < lights.size(); ++l) {
+        const Light& light = lights[l];
+        const std::string where = "light " + quoted(light.name, l) + ": ";
+        if (!finite(light.color) || light.color.x < 0.0f || light.color.y < 0.0f || light.color.z < 0.0f)
+            fail(where + "color is not finite and non-negative");
+        if (!std::isfinite(light.intensity) || light.intensity < 0.0f)
+            fail(where + "intensity " + numberText(light.intensity) + " is not finite and non-negative");
+        if (!finite(light.color * light.intensity)) fail(where + "color x intensity overflows float");
+        if (!std::isfinite(light.range) || light.range < 0.0f)
+            fail(where + "range " + numberText(light.range) + " is not finite and non-negative");
+        if (light.type == LightType::Spot &&
+            !(light.innerConeAngle >= 0.0f && light.innerConeAngle < light.outerConeAngle &&
+              light.outerConeAngle <= kHalfPi))
+            fail(where + "spot cone angles " + numberText(light.innerConeAngle) + ", " +
+                 numberText(light.outerConeAngle) + " are not 0 <= inner < outer <= pi/2");
+    }
+    for (size_t c = 0; c < cameras.size(); ++c) {
+        const Camera& cam = cameras[c];
+        const std::string where = "camera " + quoted(cam.name, c) + ": ";
+        if (!(cam.yfov > 0.0f && cam.yfov < kPi))
+            fail(where + "yfov " + numberText(cam.yfov) + " is not in (0, pi)");
+        if (!(cam.znear > 0.0f) || !std::isfinite(cam.znear))
+            fail(where + "znear " + numberText(cam.znear) + " is not finite and positive");
+        if (!std::isfinite(cam.zfar)) fail(where + "zfar is not finite");
+    }
+    // Each node may be finite while their product is not (a scale of 1e20 over a translation of 1e20): the
+    // world transforms at t = 0 and at every key time (up to a few thousand) must be finite too.
+    std::vector<float> times{0.0f};
+    for (const Animation& anim : animations)
+        for (const AnimationChannel& ch : anim.channels)
+            times.insert(times.end(), ch.times.begin(), ch.times.end());
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    const size_t step = std::max<size_t>(1, times.size() / 4096);
+    for (size_t t = 0; t < times.size(); t += step) {
+        const std::vector<glm::mat4> world = evaluate(times[t]);
+        for (size_t n = 0; n < world.size(); ++n)
+            for (int col = 0; col < 4; ++col)
+                if (!finite(world[n][col]))
+                    fail("node " + quoted(nodes[n].name, n) +
+                         ": world transform at t = " + std::to_string(times[t]) +
+                         " is not finite (the product of its ancestors' transforms overflows float)");
+    }
     if (instances(0.0f).empty()) fail("scene " + quoted(name, 0) + " has no mesh instances: nothing to draw");
+    const Aabb box = bounds();
+    if (!finite(box.min) || !finite(box.max))
+        fail("scene " + quoted(name, 0) +
+             ": the transformed vertices are not finite (bounds overflow float)");
+    // A camera a million scene sizes away sees at most a pixel of it, and its view products overflow float
+    // long before a float position does.
+    const glm::vec3 size = box.max - box.min, centre = 0.5f * box.min + 0.5f * box.max;
+    const double reach = 1e6 * std::max(double(std::max(size.x, std::max(size.y, size.z))), 1e-30);
+    const std::vector<glm::mat4> world = evaluate(0.0f);
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        if (nodes[n].camera < 0) continue;
+        const glm::dvec3 offset = glm::dvec3(glm::vec3(world[n][3])) - glm::dvec3(centre);
+        if (glm::length(offset) > reach)
+            fail("node " + quoted(nodes[n].name, n) + ": its camera is " + numberText(glm::length(offset)) +
+                 " units from the scene, more than 1e6 times the scene's size: nothing would be in view");
+    }
 }
 
 namespace {

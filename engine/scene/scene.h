@@ -2,10 +2,9 @@
 // renderer uploads once. Per frame only the node transforms change (rigid TRS animation).
 #pragma once
 
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
-
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -173,10 +172,14 @@ struct Scene {
     std::vector<Node> nodes;
     std::vector<int> roots;
     std::vector<Animation> animations;
-    std::vector<std::string> notes;  // things the loader changed or added, printed once ("no light: added ...")
+    std::vector<std::string>
+        notes;  // things the loader changed or added, printed once ("no light: added ...")
 
-    // Node poses at time t (seconds; animations loop). Returns world matrices, one per node.
-    std::vector<glm::mat4> evaluate(float timeSeconds) const;
+    // Node poses at time t (seconds; animations loop). Returns world matrices, one per node; with
+    // `worldRotations`, also each node's rotation composed from its ancestors' (scale left out), which still
+    // orients a node whose matrix a zero scale has flattened.
+    std::vector<glm::mat4> evaluate(float timeSeconds,
+                                    std::vector<glm::quat>* worldRotations = nullptr) const;
     // Mesh instances with their world matrices at time t; `moving` marks animated ones.
     std::vector<Instance> instances(float timeSeconds) const;
     // World-space bounds of all instances at t = 0 (static pose).
@@ -184,11 +187,24 @@ struct Scene {
     // Nodes whose world transform is driven by an animation (the node or any ancestor).
     std::vector<bool> animatedNodes() const;
 
+    // Rescales a scene whose extent is far from 1 (below 1e-2 or above 1e6 units) by a power of two, at its
+    // root nodes, with cameras' depth ranges and lights' ranges and (point, spot) intensities, so that the
+    // image is the same but every product the renderer forms stays within float's range. Records a note.
+    void normalizeScale();
     // Adds a camera looking at the scene bounds and/or a directional light when the scene has none,
     // and records a note for each.
     void addDefaultsIfMissing();
     // Throws vct::Error naming the first problem: non-finite vertex data, out-of-range indices, ...
     void validate() const;
 };
+
+// A 64-bit fingerprint (FNV-1a) of what the static voxelization depends on: vertices, indices, materials,
+// textures and the mesh instances at t = 0. Equal scenes give equal hashes in every run; a voxel cache
+// records it so that the cache of another scene with the same bounds is refused.
+uint64_t sceneContentHash(const Scene& scene);
+
+// Orthonormal axes of a world matrix (columns: local X, Y, Z), as cameras and lights are oriented (they
+// ignore scale). Where a zero or collapsed scale leaves no axes, those of `worldRotation` (Scene::evaluate).
+glm::mat3 worldAxes(const glm::mat4& world, const glm::quat& worldRotation);
 
 }  // namespace vct

@@ -9,6 +9,17 @@ namespace vct::vk {
 
 Buffer::Buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory)
     : device_(context.device()), size_(size) {
+    // A constructor that throws runs no destructor: free what was made so far here.
+    try {
+        create(context, usage, memory);
+    } catch (...) {
+        reset();
+        throw;
+    }
+}
+
+void Buffer::create(const Context& context, VkBufferUsageFlags usage, MemoryUsage memory) {
+    const VkDeviceSize size = size_;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size;
     info.usage = usage;
@@ -17,15 +28,17 @@ Buffer::Buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usa
 
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(device_, buffer_, &requirements);
-    VkMemoryPropertyFlags flags = memory == MemoryUsage::HostVisible
-                                      ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                      : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    VkMemoryPropertyFlags flags =
+        memory == MemoryUsage::HostVisible
+            ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+            : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = requirements.size;
     alloc.memoryTypeIndex = context.memoryType(requirements.memoryTypeBits, flags);
     VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
     VK_CHECK(vkBindBufferMemory(device_, buffer_, memory_, 0));
-    if (memory == MemoryUsage::HostVisible) VK_CHECK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    if (memory == MemoryUsage::HostVisible)
+        VK_CHECK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
@@ -50,7 +63,8 @@ void Buffer::reset() {
     device_ = VK_NULL_HANDLE;
 }
 
-Buffer Buffer::withData(const Context& context, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
+Buffer Buffer::withData(const Context& context, const void* data, VkDeviceSize size,
+                        VkBufferUsageFlags usage) {
     size = size ? size : 4;  // zero-sized buffers are invalid; keep a placeholder
     Buffer staging(context, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::HostVisible);
     if (data) std::memcpy(staging.mapped(), data, size);

@@ -13,7 +13,7 @@ namespace vct::vk {
 enum class MemoryUsage { DeviceLocal, HostVisible };
 
 class Buffer {
-public:
+  public:
     Buffer() = default;
     Buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory);
     ~Buffer() { reset(); }
@@ -23,14 +23,17 @@ public:
     Buffer& operator=(const Buffer&) = delete;
 
     // A device-local buffer holding `data` (uploaded through a temporary staging buffer).
-    static Buffer withData(const Context& context, const void* data, VkDeviceSize size, VkBufferUsageFlags usage);
+    static Buffer withData(const Context& context, const void* data, VkDeviceSize size,
+                           VkBufferUsageFlags usage);
 
     VkBuffer handle() const { return buffer_; }
     VkDeviceSize size() const { return size_; }
     void* mapped() const { return mapped_; }  // null for device-local buffers
     void reset();
 
-private:
+  private:
+    void create(const Context& context, VkBufferUsageFlags usage, MemoryUsage memory);
+
     VkDevice device_ = VK_NULL_HANDLE;
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;

@@ -20,14 +20,20 @@ uint32_t bytesPerPixel(VkFormat format) {
         case VK_FORMAT_R32_SFLOAT:
         case VK_FORMAT_D32_SFLOAT:
         case VK_FORMAT_R16G16_SFLOAT:
-        case VK_FORMAT_R32_UINT: return 4;
+        case VK_FORMAT_R32_UINT:
+            return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
-        case VK_FORMAT_R32G32_SFLOAT: return 8;
+        case VK_FORMAT_R32G32_SFLOAT:
+            return 8;
         case VK_FORMAT_R32G32B32A32_SFLOAT:
-        case VK_FORMAT_R32G32B32A32_UINT: return 16;
-        case VK_FORMAT_R16_SFLOAT: return 2;
-        case VK_FORMAT_R8_UNORM: return 1;
-        default: throw Error("bytesPerPixel: format not handled");
+        case VK_FORMAT_R32G32B32A32_UINT:
+            return 16;
+        case VK_FORMAT_R16_SFLOAT:
+            return 2;
+        case VK_FORMAT_R8_UNORM:
+            return 1;
+        default:
+            throw Error("bytesPerPixel: format not handled");
     }
 }
 
@@ -35,12 +41,15 @@ AccessInfo accessInfo(ImageAccess access, bool depth) {
     constexpr VkPipelineStageFlags2 shaders =
         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     switch (access) {
-        case ImageAccess::Undefined: return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+        case ImageAccess::Undefined:
+            return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
         case ImageAccess::Sampled:
-            return {depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+            return {depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                          : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                     shaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
         case ImageAccess::StorageRead:
-            return {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
+            return {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
         case ImageAccess::StorageWrite:
             return {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
@@ -51,9 +60,11 @@ AccessInfo accessInfo(ImageAccess access, bool depth) {
             return {VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                     VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
         case ImageAccess::DepthAttachment:
-            return {VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+            return {
+                VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
         case ImageAccess::TransferSrc:
             return {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                     VK_ACCESS_2_TRANSFER_READ_BIT};
@@ -67,6 +78,17 @@ AccessInfo accessInfo(ImageAccess access, bool depth) {
 }
 
 Image::Image(const Context& context, const ImageDesc& desc) : device_(context.device()), desc_(desc) {
+    // A constructor that throws runs no destructor: free what was made so far here.
+    try {
+        create(context);
+    } catch (...) {
+        reset();
+        throw;
+    }
+}
+
+void Image::create(const Context& context) {
+    const ImageDesc& desc = desc_;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     info.format = desc.format;
@@ -83,7 +105,8 @@ Image::Image(const Context& context, const ImageDesc& desc) : device_(context.de
     vkGetImageMemoryRequirements(device_, image_, &requirements);
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = requirements.size;
-    alloc.memoryTypeIndex = context.memoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    alloc.memoryTypeIndex =
+        context.memoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
     VK_CHECK(vkBindImageMemory(device_, image_, memory_, 0));
 
@@ -139,7 +162,8 @@ void Image::use(VkCommandBuffer cmd, ImageAccess next) {
     const bool depth = isDepthFormat(desc_.format);
     AccessInfo from = accessInfo(access_, depth);
     AccessInfo to = accessInfo(next, depth);
-    const bool bothReads = (access_ == ImageAccess::Sampled || access_ == ImageAccess::StorageRead) && next == access_;
+    const bool bothReads =
+        (access_ == ImageAccess::Sampled || access_ == ImageAccess::StorageRead) && next == access_;
     access_ = next;
     if (bothReads) return;
 

@@ -14,9 +14,9 @@ namespace vct::vk {
 // How a pass touches an image; each maps to one layout, stage set and access mask.
 enum class ImageAccess {
     Undefined,
-    Sampled,            // texture reads from fragment or compute shaders
-    StorageRead,        // imageLoad in compute
-    StorageWrite,       // imageStore in compute (contents before are discarded where allowed)
+    Sampled,       // texture reads from fragment or compute shaders
+    StorageRead,   // imageLoad in compute
+    StorageWrite,  // imageStore in compute (contents before are discarded where allowed)
     StorageReadWrite,
     ColorAttachment,
     DepthAttachment,
@@ -28,14 +28,14 @@ enum class ImageAccess {
 struct ImageDesc {
     uint32_t width = 1;
     uint32_t height = 1;
-    uint32_t depth = 1;      // > 1 makes a 3D image
+    uint32_t depth = 1;  // > 1 makes a 3D image
     uint32_t mipLevels = 1;
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
     VkImageUsageFlags usage = 0;
 };
 
 class Image {
-public:
+  public:
     Image() = default;
     Image(const Context& context, const ImageDesc& desc);
     ~Image() { reset(); }
@@ -63,7 +63,9 @@ public:
 
     void reset();
 
-private:
+  private:
+    void create(const Context& context);
+
     VkDevice device_ = VK_NULL_HANDLE;
     VkImage image_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;

@@ -1,0 +1,405 @@
+// Hostile glTF files (issue 11, classes 1-6, 9, 11): generators that mutate the valid one-triangle scene of
+// hostile_util.h along one parameter each (an offset that wraps, a nesting depth, a uri that names a FIFO, a
+// count that would allocate gigabytes, a light or camera value that overflows float, ...). Every case must
+// end in one stderr line naming the file (exit 1) or in a finite image (hostile_util.h, expectGraceful).
+#include <sys/stat.h>
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <limits>
+
+#include "hostile_util.h"
+
+namespace vct::hostile {
+namespace {
+
+constexpr uint64_t kMax64 = std::numeric_limits<uint64_t>::max();
+
+struct GltfCase {
+    std::string name;
+    std::function<void(GltfScene&)> mutate;
+    Expectation expect;
+    bool glb = false;
+};
+
+// The error names the scene file.
+Expectation fails(std::vector<std::string> mentions = {}) {
+    mentions.insert(mentions.begin(), "scene.");
+    return {Outcome::MustFail, mentions, 1};
+}
+Expectation rendersOrFails(std::vector<std::string> mentions = {}) {
+    mentions.insert(mentions.begin(), "scene.");
+    return {Outcome::Either, mentions, 1, true};
+}
+
+// Class 1: buffer view / accessor ranges whose end wraps past 2^64 (directly, through the accessor offset,
+// through a sparse view) or whose size product overflows.
+std::vector<GltfCase> boundsCases() {
+    std::vector<GltfCase> cases;
+    for (uint64_t offset : {kMax64 - 7, kMax64 - 35, uint64_t(1) << 63})
+        cases.push_back({"ViewOffsetWraps" + std::to_string(cases.size()),
+                         [offset](GltfScene& s) { s.doc["bufferViews"][0]["byteOffset"] = offset; },
+                         fails()});
+    cases.push_back({"ViewLengthWraps",
+                     [](GltfScene& s) {
+                         s.doc["bufferViews"][0]["byteOffset"] = 16;
+                         s.doc["bufferViews"][0]["byteLength"] = kMax64 - 7;
+                     },
+                     fails()});
+    for (uint64_t offset : {kMax64 - 7, kMax64 - 11, uint64_t(1) << 62})
+        cases.push_back({"AccessorOffsetWraps" + std::to_string(cases.size()),
+                         [offset](GltfScene& s) { s.doc["accessors"][0]["byteOffset"] = offset; }, fails()});
+    cases.push_back({"AccessorCountOverflowsStride",
+                     [](GltfScene& s) { s.doc["accessors"][0]["count"] = (uint64_t(1) << 62) + 1; },
+                     fails()});
+    for (int which : {0, 1})  // through the sparse indices' view or the sparse values' view
+        cases.push_back(
+            {std::string("SparseViewWraps") + (which ? "Values" : "Indices"),
+             [which](GltfScene& s) {
+                 s.doc["bufferViews"].push_back(
+                     {{"buffer", 0}, {"byteOffset", kMax64 - 3}, {"byteLength", 8}});
+                 s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 12}});
+                 const int wrapping = int(s.doc["bufferViews"].size()) - 2;
+                 s.doc["accessors"][0]["sparse"] = {
+                     {"count", 1},
+                     {"indices", {{"bufferView", which ? wrapping + 1 : wrapping}, {"componentType", 5125}}},
+                     {"values", {{"bufferView", which ? wrapping : wrapping + 1}}}};
+             },
+             fails()});
+    cases.push_back(
+        {"SparseOffsetWraps",
+         [](GltfScene& s) {
+             s.doc["accessors"][0]["sparse"] = {
+                 {"count", 1},
+                 {"indices", {{"bufferView", 0}, {"byteOffset", kMax64 - 1}, {"componentType", 5125}}},
+                 {"values", {{"bufferView", 0}}}};
+         },
+         fails()});
+    return cases;
+}
+
+// Class 2: an image stored in a buffer view that lies (partly) outside its buffer.
+std::vector<GltfCase> imageViewCases() {
+    std::vector<GltfCase> cases;
+    const std::pair<uint64_t, uint64_t> ranges[] = {
+        {1000, 16}, {0, 100000}, {kMax64 - 7, 16}, {8, (uint64_t(1) << 32) + 8}, {56, 8}};
+    for (bool glb : {false, true})
+        for (size_t i = 0; i < std::size(ranges); ++i) {
+            const auto [offset, length] = ranges[i];
+            cases.push_back({std::string("ImageViewOutside") + (glb ? "Glb" : "Gltf") + std::to_string(i),
+                             [offset, length](GltfScene& s) {
+                                 s.doc["bufferViews"].push_back(
+                                     {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}});
+                                 s.doc["images"][0] = {{"bufferView", s.doc["bufferViews"].size() - 1},
+                                                       {"mimeType", "image/png"}};
+                                 s.texture = false;
+                             },
+                             fails(), glb});
+        }
+    return cases;
+}
+
+// Class 3: JSON nested very deep (arrays, objects, mixed; in extras of the root, a node, the asset). Built as
+// text: a json value this deep would cost the test itself quadratic time and deep recursion.
+std::string nestedText(int depth, int kind) {
+    std::string open, close;
+    for (int i = 0; i < depth; ++i) {
+        const bool array = kind == 0 || (kind == 2 && i % 2);
+        open += array ? "[" : "{\"a\":";
+        close += array ? "]" : "}";
+    }
+    return open + "1" + close;
+}
+std::vector<GltfCase> nestingCases() {
+    std::vector<GltfCase> cases;
+    for (int depth : {20000, 100000})
+        for (int kind : {0, 1, 2})
+            for (bool glb : {false, true})
+                cases.push_back(
+                    {"Nested" + std::to_string(depth) + "Kind" + std::to_string(kind) + (glb ? "Glb" : ""),
+                     [depth, kind](GltfScene& s) {
+                         json& where = kind == 1 ? s.doc["nodes"][0] : kind == 2 ? s.doc["asset"] : s.doc;
+                         where["extras"] = "@NESTED@";
+                         s.replaceInText = {"\"@NESTED@\"", nestedText(depth, kind)};
+                     },
+                     fails({"nest"}), glb});
+    // Moderately deep extras are harmless either way.
+    cases.push_back({"Nested5000",
+                     [](GltfScene& s) {
+                         s.doc["extras"] = "@NESTED@";
+                         s.replaceInText = {"\"@NESTED@\"", nestedText(5000, 0)};
+                     },
+                     rendersOrFails()});
+    return cases;
+}
+
+// Class 5 (glTF side): counts that would make us allocate gigabytes from a kilobyte file.
+std::vector<GltfCase> allocationCases() {
+    std::vector<GltfCase> cases;
+    for (uint64_t count : {uint64_t(1) << 27, uint64_t(1) << 31, uint64_t(1) << 40})
+        cases.push_back({"HugeCount" + std::to_string(cases.size()),
+                         [count](GltfScene& s) { s.doc["accessors"][0]["count"] = count; }, fails()});
+    for (uint64_t count : {uint64_t(1) << 27, uint64_t(1) << 33})  // no bufferView: zeros, then sparse values
+        cases.push_back({"HugeCountWithoutView" + std::to_string(cases.size()),
+                         [count](GltfScene& s) {
+                             s.doc["accessors"][0].erase("bufferView");
+                             s.doc["accessors"][0]["count"] = count;
+                             s.doc["accessors"][1]["count"] = count;
+                             s.doc["accessors"][1].erase("bufferView");
+                         },
+                         fails()});
+    cases.push_back({"HugeSparseCount",
+                     [](GltfScene& s) {
+                         s.doc["accessors"][0]["sparse"] = {
+                             {"count", uint64_t(1) << 30},
+                             {"indices", {{"bufferView", 0}, {"componentType", 5125}}},
+                             {"values", {{"bufferView", 0}}}};
+                     },
+                     fails()});
+    cases.push_back(
+        {"HugeIndexCount",
+         [](GltfScene& s) {
+             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 12}});
+             s.doc["accessors"].push_back({{"bufferView", s.doc["bufferViews"].size() - 1},
+                                           {"componentType", 5125},
+                                           {"count", uint64_t(1) << 29},
+                                           {"type", "SCALAR"}});
+             s.doc["meshes"][0]["primitives"][0]["indices"] = s.doc["accessors"].size() - 1;
+         },
+         fails()});
+    cases.push_back({"HugeBufferByteLength",
+                     [](GltfScene& s) { s.doc["buffers"][0]["byteLength"] = uint64_t(1) << 40; }, fails()});
+    return cases;
+}
+
+// Class 6: light parameters that overflow float or break the spot cone; degenerate light transforms.
+void addLight(GltfScene& s, json light, json node = json::object()) {
+    s.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    s.doc["extensions"]["KHR_lights_punctual"]["lights"] = {light};
+    node["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+    if (!node.contains("rotation") && !node.contains("matrix"))
+        node["rotation"] = {-0.3826834, 0, 0, 0.9238795};
+    s.doc["nodes"].push_back(node);
+    s.doc["scenes"][0]["nodes"].push_back(s.doc["nodes"].size() - 1);
+}
+std::vector<GltfCase> lightCases() {
+    std::vector<GltfCase> cases;
+    const json bad[] = {
+        {{"type", "directional"}, {"intensity", 1e300}},
+        {{"type", "point"}, {"intensity", 1e39}},
+        {{"type", "directional"}, {"color", {1e300, 1, 1}}},
+        {{"type", "spot"}, {"color", {1, -1e39, 1}}, {"spot", json::object()}},
+        {{"type", "directional"}, {"intensity", -5}},
+        {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.5}}}},
+        {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.9}, {"outerConeAngle", 0.2}}}},
+        {{"type", "spot"}, {"spot", {{"outerConeAngle", 1e300}}}},
+        {{"type", "point"}, {"range", 1e300}},
+        {{"type", "point"}, {"range", -1}},
+    };
+    for (size_t i = 0; i < std::size(bad); ++i)
+        cases.push_back({"LightValue" + std::to_string(i),
+                         [light = bad[i]](GltfScene& s) { addLight(s, light); }, rendersOrFails({"light"})});
+    const json degenerateNodes[] = {
+        {{"scale", {0, 0, 0}}},
+        {{"scale", {1, 1, 0}}},
+        {{"matrix", json::array({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0})}},
+        {{"matrix", json::array({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 1})}},
+        {{"scale", {1e30, 1e30, 1e30}}, {"translation", {1e30, 0, 0}}},
+    };
+    for (const char* type : {"directional", "spot", "point"})
+        for (size_t i = 0; i < std::size(degenerateNodes); ++i)
+            cases.push_back({std::string("LightNode") + type + std::to_string(i),
+                             [type, node = degenerateNodes[i]](GltfScene& s) {
+                                 json light = {{"type", type}, {"intensity", 2}};
+                                 if (type == std::string("spot")) light["spot"] = {{"outerConeAngle", 0.6}};
+                                 addLight(s, light, node);
+                             },
+                             rendersOrFails()});
+    // An animation that scales the light's node to 0 (rendered at t = 0 and t = 1/60 .. : frames 1-3).
+    cases.push_back(
+        {"LightAnimatedToScaleZero",
+         [](GltfScene& s) {
+             addLight(s, {{"type", "directional"}, {"intensity", 2}});
+             const size_t offset = s.bin.size();
+             appendFloats(s.bin, {0.0f, 0.01f, 1, 1, 1, 0, 0, 0});
+             s.doc["buffers"][0]["byteLength"] = s.bin.size();
+             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 32}});
+             const size_t view = s.doc["bufferViews"].size() - 1;
+             s.doc["accessors"].push_back({{"bufferView", view},
+                                           {"componentType", 5126},
+                                           {"count", 2},
+                                           {"type", "SCALAR"},
+                                           {"min", {0}},
+                                           {"max", {0.01}}});
+             s.doc["accessors"].push_back({{"bufferView", view},
+                                           {"byteOffset", 8},
+                                           {"componentType", 5126},
+                                           {"count", 2},
+                                           {"type", "VEC3"}});
+             const size_t keys = s.doc["accessors"].size() - 2;
+             s.doc["animations"] = {
+                 {{"channels",
+                   {{{"sampler", 0}, {"target", {{"node", s.doc["nodes"].size() - 1}, {"path", "scale"}}}}}},
+                  {"samplers", {{{"input", keys}, {"output", keys + 1}}}}}};
+         },
+         rendersOrFails()});
+    return cases;
+}
+
+// Class 6/11: camera parameters and camera transforms out of float's range or degenerate.
+void addCamera(GltfScene& s, json perspective, json node = json::object()) {
+    s.doc["cameras"] = {{{"type", "perspective"}, {"perspective", perspective}}};
+    node["camera"] = 0;
+    if (!node.contains("translation") && !node.contains("matrix")) node["translation"] = {0.3, 0.3, 2};
+    s.doc["nodes"].push_back(node);
+    s.doc["scenes"][0]["nodes"].push_back(s.doc["nodes"].size() - 1);
+}
+std::vector<GltfCase> cameraCases() {
+    std::vector<GltfCase> cases;
+    const json lenses[] = {
+        {{"yfov", 1e-20}, {"znear", 0.01}},
+        {{"yfov", 0.8}, {"znear", 1e-30}},
+        {{"yfov", 0.8}, {"znear", 1e-30}, {"zfar", 1e30}},
+        {{"yfov", 0.8}, {"znear", 0.01}, {"zfar", 1e300}},
+        {{"yfov", 1e300}, {"znear", 0.01}},
+        {{"yfov", 3.2}, {"znear", 0.01}},
+        {{"yfov", 0.8}, {"znear", 1e300}},
+        {{"yfov", 0.8}, {"znear", 0.01}, {"aspectRatio", 1e300}},
+        {{"yfov", 0.8}, {"znear", 0.01}, {"aspectRatio", 1e-30}},
+    };
+    for (size_t i = 0; i < std::size(lenses); ++i)
+        cases.push_back({"CameraLens" + std::to_string(i),
+                         [lens = lenses[i]](GltfScene& s) { addCamera(s, lens); },
+                         rendersOrFails({"camera"})});
+    const json nodes[] = {
+        {{"scale", {0, 0, 0}}, {"translation", {0.3, 0.3, 2}}},
+        {{"scale", {1, 0, 1}}, {"translation", {0.3, 0.3, 2}}},
+        {{"matrix", json::array({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.3, 0.3, 2, 1})}},
+        {{"translation", {3e38, 0, 2}}, {"scale", {1e30, 1, 1}}},
+        {{"translation", {1e300, 0, 2}}},
+    };
+    for (size_t i = 0; i < std::size(nodes); ++i)
+        cases.push_back({"CameraNode" + std::to_string(i),
+                         [node = nodes[i]](GltfScene& s) {
+                             addCamera(s, {{"yfov", 0.8}, {"znear", 0.01}}, node);
+                         },
+                         rendersOrFails()});
+    // The mesh itself flattened (no inverse for its normals) or scaled to nothing.
+    for (auto [name, scale] : {std::pair{"MeshFlattened", json{1, 1, 0}},
+                               {"MeshFlattenedAcross", json{1, 0, 1}},
+                               {"MeshScaleZero", json{0, 0, 0}}})
+        cases.push_back({name,
+                         [scale = scale](GltfScene& s) { s.doc["nodes"][0]["scale"] = scale; },
+                         {Outcome::Either, {"scene."}, 1, false}});
+    // Composed transforms that overflow: each node is finite, the product is not.
+    cases.push_back({"ComposedTransformOverflows",
+                     [](GltfScene& s) {
+                         s.doc["nodes"][0]["scale"] = {1e20, 1e20, 1e20};
+                         s.doc["nodes"].push_back({{"translation", {1e20, 0, 0}}, {"mesh", 0}});
+                         s.doc["nodes"][0]["children"] = {s.doc["nodes"].size() - 1};
+                     },
+                     rendersOrFails()});
+    return cases;
+}
+
+// Class 9: textures larger than the device allows in one dimension (16384 on lavapipe).
+std::vector<GltfCase> textureCases() {
+    std::vector<GltfCase> cases;
+    for (auto [w, h] : {std::pair{16385u, 1u}, {1u, 16385u}, {40000u, 2u}})
+        cases.push_back({"TextureWide" + std::to_string(w) + "x" + std::to_string(h),
+                         [w = w, h = h](GltfScene& s) {
+                             s.doc["images"][0]["uri"] = "wide.png";
+                             s.extraFiles = [w, h](const fs::path& dir) {
+                                 writeTexture(dir / "wide.png", w, h);
+                             };
+                         },
+                         rendersOrFails({"wide.png"})});
+    return cases;
+}
+
+// Class 5 (images): a few hundred bytes of PNG whose header declares a size that would take gigabytes.
+uint32_t crc32(const unsigned char* data, size_t size) {
+    uint32_t crc = 0xFFFFFFFFu;
+    for (size_t i = 0; i < size; ++i) {
+        crc ^= data[i];
+        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+void writePngDeclaring(const fs::path& path, uint32_t width, uint32_t height) {
+    writeTexture(path, 1, 1);
+    std::ifstream in(path, std::ios::binary);
+    std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), {});
+    auto put32 = [&](size_t at, uint32_t v) {
+        for (int i = 0; i < 4; ++i) png[at + size_t(i)] = (unsigned char)(v >> (24 - 8 * i));
+    };
+    put32(16, width);  // IHDR data starts at 16: signature (8), length (4), "IHDR" (4)
+    put32(20, height);
+    put32(29, crc32(png.data() + 12, 17));  // over "IHDR" and its 13 data bytes
+    test::writeBinaryFile(path, png);
+}
+std::vector<GltfCase> imageBombCases() {
+    std::vector<GltfCase> cases;
+    for (auto [w, h] : {std::pair{100000u, 100000u}, {16777216u, 8u}, {65536u, 65536u}})
+        cases.push_back({"PngDeclares" + std::to_string(w) + "x" + std::to_string(h),
+                         [w = w, h = h](GltfScene& s) {
+                             s.doc["images"][0]["uri"] = "bomb.png";
+                             s.extraFiles = [w, h](const fs::path& dir) {
+                                 writePngDeclaring(dir / "bomb.png", w, h);
+                             };
+                         },
+                         fails({"bomb.png"})});
+    return cases;
+}
+
+class HostileGltf : public ::testing::TestWithParam<GltfCase> {};
+
+TEST_P(HostileGltf, EndsInOneLineOrAFiniteImage) {
+    const GltfCase& c = GetParam();
+    const fs::path dir = caseDir();
+    GltfScene scene = triangleScene();
+    c.mutate(scene);
+    const fs::path path = c.glb ? writeGlb(dir, scene) : writeGltf(dir, scene);
+    const test::RunResult r = expectGraceful(renderArgs(path, dir / "out"), dir / "out", c.expect);
+    EXPECT_LT(r.seconds, 30.0) << "too slow for bad input: " << r.describe();
+}
+
+std::string caseName(const ::testing::TestParamInfo<GltfCase>& info) {
+    return info.param.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Bounds, HostileGltf, ::testing::ValuesIn(boundsCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(ImageViews, HostileGltf, ::testing::ValuesIn(imageViewCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Nesting, HostileGltf, ::testing::ValuesIn(nestingCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Allocation, HostileGltf, ::testing::ValuesIn(allocationCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Lights, HostileGltf, ::testing::ValuesIn(lightCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Cameras, HostileGltf, ::testing::ValuesIn(cameraCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Textures, HostileGltf, ::testing::ValuesIn(textureCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(ImageBombs, HostileGltf, ::testing::ValuesIn(imageBombCases()), caseName);
+
+// Class 11: a scene of any finite size without a camera is framed by the default camera: it renders, finite,
+// and the triangle covers pixels (albedo.exr is black where nothing was drawn).
+class HostileSceneScale : public ::testing::TestWithParam<float> {};
+
+TEST_P(HostileSceneScale, DefaultCameraFramesTheScene) {
+    const fs::path dir = caseDir();
+    GltfScene scene = triangleScene(GetParam());
+    scene.texture = false;
+    scene.doc["materials"][0]["pbrMetallicRoughness"] = {{"baseColorFactor", {0.8, 0.6, 0.4, 1.0}},
+                                                         {"metallicFactor", 0.0}};
+    scene.doc.erase("textures");
+    scene.doc.erase("images");
+    const fs::path path = writeGltf(dir, scene);
+    expectGraceful(renderArgs(path, dir / "out"), dir / "out", {Outcome::MustRender, {}, 0});
+    EXPECT_GT(coveredPixels(dir / "out"), 32u * 18u / 20u) << "the triangle is hardly in view";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scales, HostileSceneScale,
+                         ::testing::Values(1e-5f, 1e-10f, 1e-20f, 1e-30f, 1e20f, 1e30f),
+                         [](const auto& param) { return "Scale" + std::to_string(param.index); });
+
+}  // namespace
+}  // namespace vct::hostile
