@@ -60,8 +60,8 @@ IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D no
     const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
-    return traceSurface(voxels, p, gbufferNormal(normalRoughness), normalize(frame.cameraPosition.xyz - p),
-                        normalRoughness.w);
+    const vec3 n = gbufferNormal(normalRoughness);
+    return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition.xyz - p, n), normalRoughness.w);
 }
 
 #endif  // VCT_CONE_TRACE_GLSL
