@@ -35,7 +35,7 @@ vec3 indirect(ivec2 pixel) {
     const float occlusion = texelFetch(emissiveOcclusionTexture, pixel, 0).a;
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
     const vec3 n = gbufferNormal(normalRoughness);
-    const vec3 v = normalize(frame.cameraPosition.xyz - p);
+    const vec3 v = viewDirection(frame.cameraPosition.xyz - p, n);
     const float NoV = max(dot(n, v), MIN_N_DOT_V);
     // Table texel centres are at (i + 0.5)/size for both axes, so (n·v, roughness) is the uv directly.
     const vec2 dfg = textureLod(dfgTable, vec2(NoV, saturate(normalRoughness.w)), 0.0).rg;

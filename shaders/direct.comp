@@ -49,8 +49,8 @@ void main() {
     const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
     const vec4 emissiveOcclusion = texelFetch(emissiveOcclusionTexture, pixel, 0);
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
-    const vec3 n = normalize(normalRoughness.xyz);
-    const vec3 v = normalize(frame.cameraPosition.xyz - p);
+    const vec3 n = gbufferNormal(normalRoughness);  // never NaN: a zero-length normal reads as +y
+    const vec3 v = viewDirection(frame.cameraPosition.xyz - p, n);
 
     vec3 radiance = emissiveOcclusion.rgb;
     const int lightCount = int(frame.shadowParams.z);

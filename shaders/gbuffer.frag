@@ -26,6 +26,7 @@ layout(location = 1) in vec4 inTangent;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inClip;
 layout(location = 4) in vec4 inPrevClip;
+layout(location = 5) in vec3 inWorld;
 
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outBaseColorMetallic;
@@ -46,12 +47,20 @@ vec4 materialTexture(sampler2D map, vec2 uv) {
 }
 
 void main() {
+    // The triangle's geometric normal, towards the camera (the front face's normal on a front face, the back
+    // face's on a back face): the fallback where the mesh's normals are zero or not finite (a glTF NORMAL of
+    // zeros, or opposite normals averaging to nothing), so such a mesh shades as flat, not as a fixed axis.
+    // Taken before the discard below, while the whole quad still runs.
+    const vec3 faceCross = cross(dFdx(inWorld), dFdy(inWorld));
+    const vec3 towardsCamera = frame.cameraPosition.xyz - inWorld;
+    const vec3 faceNormal = safeNormalize(dot(faceCross, towardsCamera) < 0.0 ? -faceCross : faceCross,
+                                          safeNormalize(towardsCamera, vec3(0.0, 0.0, 1.0)));
     const GpuMaterial material = materials[draw.indices.y];
     const vec4 baseColor = material.baseColorFactor * materialTexture(baseColorTexture, inUv);
     if (material.flags.x == VCT_ALPHA_MASK && baseColor.a < material.metallicRoughnessCutoffAo.z) discard;
 
     // Geometric frame; back faces of double-sided surfaces see the flipped normal.
-    vec3 normal = safeNormalize(inNormal, vec3(0.0, 0.0, 1.0));
+    vec3 normal = safeNormalize(inNormal, gl_FrontFacing ? faceNormal : -faceNormal);
     vec3 tangent = inTangent.xyz - normal * dot(normal, inTangent.xyz);
     tangent = safeNormalize(tangent, abs(normal.x) < 0.9 ? normalize(cross(normal, vec3(1, 0, 0)))
                                                          : normalize(cross(normal, vec3(0, 1, 0))));

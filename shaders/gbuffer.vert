@@ -17,6 +17,7 @@ layout(location = 1) out vec4 outTangent;
 layout(location = 2) out vec2 outUv;
 layout(location = 3) out vec4 outClip;
 layout(location = 4) out vec4 outPrevClip;
+layout(location = 5) out vec3 outWorld;
 
 void main() {
     const GpuInstance instance = instances[draw.indices.x];
@@ -24,6 +25,7 @@ void main() {
     outNormal = mat3(instance.normalMatrix) * inNormal;
     outTangent = vec4(mat3(instance.world) * inTangent.xyz, inTangent.w);
     outUv = inUv;
+    outWorld = world.xyz;
     outClip = frame.viewProj * world;
     outPrevClip = frame.prevViewProj * (instance.prevWorld * vec4(inPosition, 1.0));
     gl_Position = outClip;

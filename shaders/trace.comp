@@ -51,7 +51,8 @@ void main() {
     // No grid yet: no indirect light.
     IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
     if (frame.voxelOrigin.w > 0.0)
-        s = traceSurface(voxels, g.p, g.n, normalize(frame.cameraPosition.xyz - g.p), normalRoughness.w);
+        s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition.xyz - g.p, g.n),
+                         normalRoughness.w);
     // Weight 1: one fresh sample (what the history accumulates at trace scale 1).
     imageStore(indirectImage, lowPixel, packIndirect(vec4(s.diffuse, 1.0), vec4(s.specular, 1.0)));
     if (FULL_RESOLUTION) return;

@@ -355,6 +355,101 @@ TEST(UpsampleWeights, LobeWeightHardCasesAreFinite) {
     }
 }
 
+// κ large enough to overflow the guide's fp16 storage (issue 9): the trace stores λ̄ ≤ κ in a half float,
+// whose largest finite value is 65504. κ is clamped there (SG_MAX_KAPPA) and the command line rejects more,
+// so the stored λ̄ is finite for any κ and any lobe, and the weights against it are weights.
+TEST(UpsampleWeights, HugeKappaKeepsTheStoredSharpnessFinite) {
+    EXPECT_EQ(vct::kMaxKappa, SG_MAX_KAPPA);
+    EXPECT_EQ(roundHalf(vec3(SG_MAX_KAPPA)).x, SG_MAX_KAPPA);  // the largest half float
+    // Before the clamp: cornell's floor stripe of roughness 0.05 (α = 0.0025, n·v ≈ 0.5) at κ = 1e6 gave
+    // λ̄ ≈ 1.4e5, stored as +inf.
+    const float floorInv = 2.0f * 0.0025f * 0.0025f * 0.5f;
+    EXPECT_TRUE(std::isinf(roundHalf(vec3(1e6f / (1.0f + 1e6f * floorInv))).x));
+    const vec3 n(0, 0, 1);
+    Rng rng;
+    for (float kappa : {100.0f, 65504.0f, 65600.0f, 1e5f, 1e6f, 1e30f, kInf}) {
+        std::vector<vec4>
+            lobes;  // axis, λ̄ as the trace stores it (fp16) and as the upsample computes it (fp32)
+        for (float inv : {0.0f, 1e-30f, 1e-8f, floorInv, 1e-3f, 0.5f, 2.0f}) {
+            const vec3 axis = rng.unitVector();
+            const float smoothed = smoothedSharpness(inv, kappa);
+            ASSERT_TRUE(std::isfinite(smoothed)) << "κ " << kappa << " 1/λ " << inv;
+            EXPECT_LE(smoothed, SG_MAX_KAPPA);
+            EXPECT_LE(smoothed, kappa);
+            const float stored = roundHalf(vec3(smoothed)).x;
+            ASSERT_TRUE(std::isfinite(stored)) << "κ " << kappa << " 1/λ " << inv;
+            lobes.push_back(vec4(axis, stored));
+            lobes.push_back(vec4(axis, smoothed));
+            lobes.push_back(vec4(n, stored));
+        }
+        for (const vec4& a : lobes)
+            for (const vec4& b : lobes) {
+                const float w = exp(lobeLogWeightSmoothed(vec3(a), a.w, vec3(b), b.w, kBeta));
+                ASSERT_TRUE(isWeight(w)) << "κ " << kappa << ": λ̄ " << a.w << " vs " << b.w;
+            }
+        // A mirror's stored λ̄ against the same lobe computed in fp32 (a sample against its own pixel): 1 to
+        // within the fp16 rounding of λ̄ (relative 2⁻¹¹, a ratio term of −β·δ²/8).
+        const float mirror = smoothedSharpness(0.0f, kappa);
+        EXPECT_GT(exp(lobeLogWeightSmoothed(n, roundHalf(vec3(mirror)).x, n, mirror, kBeta)), 0.9999f)
+            << kappa;
+    }
+}
+
+// A NaN lobe (issue 9): a NaN axis or sharpness, and an infinite sharpness (what fp16 storage made of λ̄ >
+// 65504: ln ratio = inf − inf), weighs exactly 0 against anything, in both orders, never 1 or NaN. The old
+// form took min(NaN, 0), which a GPU may evaluate to 0: ln ratio = 0, the weight of equal sharpness (1 for
+// equal axes).
+TEST(UpsampleWeights, NanOrInfiniteLobeWeighsZero) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const vec3 n(0, 0, 1), other = normalize(vec3(1, 2, 3));
+    const vec3 nanAxis(nan, 0.0f, 1.0f);
+    for (float good : {1e-30f, 0.5f, 3.0f, 100.0f, SG_MAX_KAPPA}) {
+        for (const vec3& axis : {n, other}) {
+            for (float bad : {nan, kInf}) {
+                EXPECT_EQ(exp(lobeLogWeightSmoothed(n, bad, axis, good, kBeta)), 0.0f)
+                    << bad << " vs " << good;
+                EXPECT_EQ(exp(lobeLogWeightSmoothed(axis, good, n, bad, kBeta)), 0.0f)
+                    << good << " vs " << bad;
+                EXPECT_EQ(lobeWeightSmoothed(n, bad, axis, good, kBeta), 0.0f);
+            }
+            EXPECT_EQ(exp(lobeLogWeightSmoothed(nanAxis, good, axis, good, kBeta)), 0.0f);
+            EXPECT_EQ(exp(lobeLogWeightSmoothed(axis, good, nanAxis, good, kBeta)), 0.0f);
+        }
+        // Through the inverse-sharpness form: a NaN 1/λ, or a NaN in the stored lobe.
+        EXPECT_EQ(weight(vec4(n, nan), vec4(n, 0.5f)), 0.0f);
+        EXPECT_EQ(weight(vec4(nanAxis, 0.5f), vec4(n, 0.5f)), 0.0f);
+    }
+    // Two NaN or two infinite lobes: 0 as well (nothing to compare), never NaN.
+    EXPECT_EQ(exp(lobeLogWeightSmoothed(n, nan, n, nan, kBeta)), 0.0f);
+    EXPECT_EQ(exp(lobeLogWeightSmoothed(n, kInf, n, kInf, kBeta)), 0.0f);
+    EXPECT_EQ(exp(lobeLogWeightSmoothed(n, kInf, other, kInf, kBeta)), 0.0f);
+}
+
+// A zero view vector (issue 9): a surface point at the camera. viewDirection gives the normal there (a
+// head-on view), so the guide's specular lobe and the specular cone stay finite; elsewhere it is normalize().
+TEST(UpsampleWeights, ZeroViewVectorGivesAFiniteLobe) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const vec3 n = normalize(vec3(0.2f, 1.0f, -0.3f));
+    for (const vec3& toCamera :
+         {vec3(0.0f), vec3(-0.0f), vec3(1e-20f, 0.0f, 0.0f), vec3(1e-38f, 1e-40f, 0.0f), vec3(nan),
+          vec3(kInf, 0.0f, 0.0f), vec3(3e38f, 3e38f, 0.0f)}) {
+        const vec3 v = viewDirection(toCamera, n);
+        EXPECT_EQ(v, n) << toCamera.x;
+        for (float alpha : {0.0f, 0.3f, 1.0f}) {
+            const vec4 lobe = specularLobe(n, v, alpha);
+            ASSERT_TRUE(isFiniteVec(lobe));
+            EXPECT_FLOAT_EQ(weight(lobe, lobe), 1.0f);
+            ASSERT_TRUE(isFiniteVec(vec4(specularConeDirection(n, v), specularConeTanHalf(alpha))));
+        }
+    }
+    // The general case is normalize(), down to tiny but representable distances.
+    for (const vec3& toCamera :
+         {vec3(1, 2, 3), vec3(0, 0, -1e-12f), vec3(1e18f, -1e18f, 1e18f), vec3(1e-7f, 0, 0)}) {
+        const vec3 v = viewDirection(toCamera, n);
+        EXPECT_NEAR(length(v - normalize(toCamera)), 0.0f, 1e-6f);
+    }
+}
+
 // Known defect (reported to the header's owner, not fixed here): for two identical lobes with a huge 1/λ the
 // product λ̄a·λ̄b underflows, so the mismatch factor 2√(λ̄a λ̄b)/(λ̄a+λ̄b) drops from 1 to 0: with denormals
 // flushed (GPU, -ffast-math) w(a, a) = 0 from 1/λ ≈ 1e19; on the CPU it degrades from ≈ 1e20 (0.82 at 1e22)

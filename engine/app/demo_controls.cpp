@@ -59,7 +59,7 @@ bool applySetting(RenderSettings& s, const std::string& name, const std::string&
     } else if (name == "beta") {
         s.beta = number(name, value, 0.01f, 1000.0f);
     } else if (name == "kappa") {
-        s.kappa = number(name, value, 0.01f, 1e6f);
+        s.kappa = number(name, value, 0.01f, kMaxKappa);
     } else if (name == "sigma-n") {
         s.sigmaN = number(name, value, 1e-3f, 10.0f);
     } else if (name == "gamma") {

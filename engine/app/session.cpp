@@ -75,7 +75,7 @@ void applyUpsampleOptions(const ParsedArgs& args, RenderSettings& settings) {
         else throw UsageError("--weights '" + value + "': expected bilinear, normal or sg");
     }
     if (args.has("beta")) settings.beta = args.getFloat("beta", 0.01f, 1000.0f);
-    if (args.has("kappa")) settings.kappa = args.getFloat("kappa", 0.01f, 1e6f);
+    if (args.has("kappa")) settings.kappa = args.getFloat("kappa", 0.01f, kMaxKappa);
     if (args.has("sigma-n")) settings.sigmaN = args.getFloat("sigma-n", 1e-3f, 10.0f);
     if (args.has("diffuse-sharpness")) settings.diffuseSharpness = args.getFloat("diffuse-sharpness", 1e-3f, 1e4f);
     if (args.has("gamma")) settings.gamma = args.getFloat("gamma", 0.0f, 1.0f);

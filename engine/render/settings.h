@@ -79,6 +79,10 @@ constexpr float kExactSampleWeight = 64.0f;
 // outweighs that many frames of new samples and follows changing light. With γ = 0.8 and one own sample every
 // s² frames the sum stays below ~1.25 of them, so the cap binds only at scale 1.
 constexpr float kHistoryWeightCap = 8.0f * kExactSampleWeight;
+// Largest κ (--kappa): glsl::SG_MAX_KAPPA, the largest fp16 value, since the trace stores each sample's
+// smoothed sharpness λ̄ ≤ κ in a 16-bit float (lib/upsample_weights.glsl; tests/upsample_weights_test.cpp
+// checks that the two agree). The shaders clamp a larger κ to it; the command line and the demo reject one.
+constexpr float kMaxKappa = 65504.0f;
 // Default τ: re-trace where the weights kept less than this share of one full neighbourhood, the history counted
 // in pixel-own samples (a neighbourhood's worth each).
 constexpr float kDefaultResampleThreshold = 0.25f;

@@ -18,6 +18,15 @@ const float MIN_N_DOT_V = 1e-4f;
 // α = 0 as it is.
 const float MIN_ALPHA_PUNCTUAL = 0.002f;
 
+// Unit view vector v from a surface point p towards the camera, given toCamera = camera − p: normalize(), but the
+// shading normal n where p lies at the camera (|camera − p| below 1e-15, e.g. a surface through the camera
+// reconstructed from a depth at the near plane, where normalize(0) is NaN), and where toCamera is not finite.
+// v = n reads as a head-on view: finite lobes, n·v = 1.
+VCT_INLINE vec3 viewDirection(vec3 toCamera, vec3 n) {
+    const float len2 = dot(toCamera, toCamera);
+    return len2 > 1e-30f && len2 < 3e38f ? toCamera * inversesqrt(len2) : n;  // NaN compares false
+}
+
 // ---- material parameters (glTF 2.0 metallic-roughness) ----
 
 // α = perceptualRoughness² (Burley 2012, Karis 2013; glTF spec appendix B). Exact, may be 0 (a mirror).

@@ -13,8 +13,8 @@ vec4 traceCone(sampler3D voxels, vec3 origin, vec3 dir, float tanHalfAngle) {
     const float gridSize = frame.voxelParams.x * v0;
     const float maxMip = max(frame.voxelParams.y - 1.0, 0.0);
     vec4 acc = vec4(0.0);
-    // Start one voxel out: the cone's first footprint then lies beside the surface, not on it.
-    float t = v0;
+    // Start one voxel out along the cone, from an origin one voxel out along the normal (CONE_START_*: why twice).
+    float t = v0 * CONE_START_DISTANCE;
     // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
     const int maxSteps = int(4.0 * frame.voxelParams.x) + 8;
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
@@ -60,8 +60,8 @@ IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D no
     const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
-    return traceSurface(voxels, p, gbufferNormal(normalRoughness), normalize(frame.cameraPosition.xyz - p),
-                        normalRoughness.w);
+    const vec3 n = gbufferNormal(normalRoughness);
+    return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition.xyz - p, n), normalRoughness.w);
 }
 
 #endif  // VCT_CONE_TRACE_GLSL

@@ -11,10 +11,12 @@ vec3 worldFromDepth(mat4 invViewProj, vec2 uv, float depth) {
 
 bool isBackground(float depth) { return depth >= 1.0; }
 
-// The unit shading normal stored in a normalRoughness texel; straight up where it is degenerate (zero length).
+// The unit shading normal stored in a normalRoughness texel; straight up where it is degenerate (zero length,
+// not finite). gbuffer.frag writes unit normals (the geometric normal where the mesh's are zero), so this only
+// guards data that did not come from it.
 vec3 gbufferNormal(vec4 normalRoughness) {
     const float len = length(normalRoughness.xyz);
-    return len > 1e-6 ? normalRoughness.xyz / len : vec3(0.0, 1.0, 0.0);
+    return len > 1e-6 && len < 1e30 ? normalRoughness.xyz / len : vec3(0.0, 1.0, 0.0);  // NaN compares false
 }
 
 #endif

@@ -20,7 +20,7 @@ Guide guideFromGBuffer(vec4 normalRoughness, vec3 p, vec3 cameraPosition, float 
     const vec3 toCamera = cameraPosition - p;
     g.cameraDistance = length(toCamera);
     g.n = gbufferNormal(normalRoughness);
-    const vec3 v = g.cameraDistance > 0.0 ? toCamera / g.cameraDistance : g.n;
+    const vec3 v = viewDirection(toCamera, g.n);
     const vec4 lobe = specularLobe(g.n, v, alphaFromPerceptual(normalRoughness.w));
     g.specularAxis = lobe.xyz;
     g.specularSharpness = smoothedSharpness(lobe.w, kappa);

@@ -16,6 +16,11 @@
 // every lobe's sharpness (λ̄ ≤ κ), so no two lobes are "infinitely" different.
 const float SG_DEFAULT_BETA = 20.0f;
 const float SG_DEFAULT_KAPPA = 100.0f;
+// The largest κ: the trace stores each sample's λ̄ (≤ κ) in a 16-bit float (trace.comp's guide normal image),
+// whose largest finite value is 65504. A larger κ stored +inf for the mirror-like lobes (cornell's floor stripe
+// of roughness 0.05 reaches λ̄ ≈ 1.4e5 at κ = 1e6), and inf − inf in the weight below. The command line rejects
+// a larger --kappa (engine/app/session.cpp); smoothedSharpness clamps whatever κ arrives to it.
+const float SG_MAX_KAPPA = 65504.0f;
 // The normal-aware baseline: σ_n² = 0.01.
 const float NORMAL_WEIGHT_DEFAULT_SIGMA2 = 0.01f;
 // Diffuse lobe sharpness λ_d: the cosine lobe max(n·ω, 0) is best fitted by an SG of sharpness ≈ 2.
@@ -37,9 +42,10 @@ VCT_INLINE vec4 specularLobe(vec3 n, vec3 v, float alpha) {
 VCT_INLINE vec4 diffuseLobe(vec3 n) { return vec4(n, 1.0f / SG_DIFFUSE_SHARPNESS); }
 
 // Sharpness after convolution with the smoothing kernel of sharpness κ: λ̄ = λκ/(λ+κ) = κ / (1 + κ/λ).
-// In [0, κ]: κ for a mirror (1/λ = 0), → 0 as 1/λ → ∞.
+// In [0, κ]: κ for a mirror (1/λ = 0), → 0 as 1/λ → ∞. κ is clamped to SG_MAX_KAPPA, so λ̄ fits fp16.
 VCT_INLINE float smoothedSharpness(float invLambda, float kappa) {
-    return kappa / (1.0f + kappa * max(invLambda, 0.0f));
+    const float k = min(kappa, SG_MAX_KAPPA);
+    return k / (1.0f + k * max(invLambda, 0.0f));
 }
 
 // Lobe-aware weight of seed 004 §4.2 between lobes a and b, in [0, 1], symmetric, 1 for identical lobes:
@@ -64,14 +70,18 @@ VCT_INLINE vec3 preparedSharpness(float smoothed) {
 
 // ln w of the lobe-aware weight from prepared sharpnesses: with ln of the ratio term
 //   ln(2√(λ̄a λ̄b)/(λ̄a + λ̄b)) = ln 2 + ½(ln λ̄a + ln λ̄b) − ln(λ̄a + λ̄b)   (≤ 0; exactly 0 for equal λ̄)
-// and λ̄a λ̄b/(λ̄a + λ̄b) = 1/(1/λ̄a + 1/λ̄b), which cannot underflow to 0/0 for tiny λ̄. Exactly symmetric. A NaN
-// lobe (or axis) gives a weight of 0, never 1 or NaN: the result is floored at −1e30 (exp gives 0).
+// and λ̄a λ̄b/(λ̄a + λ̄b) = 1/(1/λ̄a + 1/λ̄b), which cannot underflow to 0/0 for tiny λ̄. Exactly symmetric.
+// A NaN lobe (a NaN axis or sharpness, or an infinite sharpness: inf − inf) weighs 0, never 1 or NaN, on every
+// device: the NaN is carried to the end (no min(): GPUs may return the other operand of min(NaN, 0), which gave
+// ln ratio = 0, the weight of EQUAL sharpness, for an fp16-overflowed λ̄ = inf against a finite one, while the
+// CPU kept the NaN) and then replaced by −1e30 with an explicit isnan (exp gives 0).
 VCT_INLINE float lobeLogWeightPrepared(vec3 axisA, vec3 a, vec3 axisB, vec3 b, float beta) {
-    const float logRatio = a.x == b.x ? 0.0f : min(0.6931472f + 0.5f * (a.y + b.y) - log(a.x + b.x), 0.0f);
+    const float ratioTerm = 0.6931472f + 0.5f * (a.y + b.y) - log(a.x + b.x);  // ≤ 0 but for rounding
+    const float logRatio = a.x == b.x ? 0.0f : (ratioTerm > 0.0f ? 0.0f : ratioTerm);  // NaN > 0 is false
     const vec3 d = axisA - axisB;
     const float cosMinusOne = -0.5f * dot(d, d);
     const float result = beta * (logRatio + cosMinusOne / (a.z + b.z));
-    return result > -1e30f ? result : -1e30f;
+    return isnan(result) || result < -1e30f ? -1e30f : result;
 }
 
 VCT_INLINE float lobeLogWeightSmoothed(vec3 axisA, float la, vec3 axisB, float lb, float beta) {
