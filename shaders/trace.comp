@@ -37,13 +37,13 @@ void main() {
     // Clamped at the right and bottom edges (the low-res image rounds up); upsample clamps the same way.
     const ivec2 pixel = min(lowPixel * scale + frame.traceJitter.xy, ivec2(frame.imageSize.xy) - 1);
     const float depth = texelFetch(depthTexture, pixel, 0).r;
-    if (isBackground(depth)) {
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    if (isBackground(depth) || isDegeneratePosition(worldFromDepth(frame.invViewProj, uv, depth))) {
         // Nothing to light; the guide marks the sample as background for the upsample.
         imageStore(indirectImage, lowPixel, packIndirect(vec4(0.0, 0.0, 0.0, 1.0), vec4(0.0, 0.0, 0.0, 1.0)));
         if (!FULL_RESOLUTION) imageStore(guidePositionImage, lowPixel, vec4(0.0));
         return;
     }
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     // The sample's guide for the upsample weights, computed once here rather than by every pixel it serves.
     const Guide g = guideFromGBuffer(normalRoughness, worldFromDepth(frame.invViewProj, uv, depth),

@@ -115,14 +115,15 @@ float planeLogWeightFrom(vec4 plane, vec3 q) {
 void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     const ivec2 size = ivec2(frame.imageSize.xy);
     const float depth = texelFetch(depthTexture, pixel, 0).r;
-    const bool background = isBackground(depth);
     const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const vec3 position = worldFromDepth(frame.invViewProj, uv, depth);
+    // A position that cannot be shaded (lib/gbuffer_read.glsl) is treated as the background, as the trace does.
+    const bool background = isBackground(depth) || isDegeneratePosition(position);
     const float kappa = frame.upsampleParams.y;
     // A background pixel's "position" is at the far plane (or infinite): its weights may be garbage, even NaN;
     // its outputs are replaced by zeros at the end, without a branch around the work.
-    const Guide here = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0),
-                                        worldFromDepth(frame.invViewProj, uv, depth), frame.cameraPosition.xyz,
-                                        kappa);
+    const Guide here = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0), position,
+                                        frame.cameraPosition.xyz, kappa);
     const vec4 herePlane = scaledTangentPlane(here.n, here.p, here.cameraDistance);
     const vec3 hereSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.specularSharpness) : vec3(0.0);
 
@@ -203,7 +204,9 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
                                                                   thenSharpness));
         // Outside last frame's image or on its background: no history (the select also keeps the garbage
         // guide of a far-plane position out of the sums).
-        historyWeight = inside && !isBackground(prevDepth) ? guide * vec2(diffuseTexel.a, specularTexel.a) : vec2(0.0);
+        historyWeight = inside && !isBackground(prevDepth) && !isDegeneratePosition(then.p)
+                            ? guide * vec2(diffuseTexel.a, specularTexel.a)
+                            : vec2(0.0);
         historyDiffuse = historyWeight.x * diffuseTexel.rgb;
         historySpecular = historyWeight.y * specularTexel.rgb;
     }

@@ -4,6 +4,7 @@
 // reproducible), recording, scene loading errors, shader hot reload, and every live setting under validation.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 
@@ -222,8 +223,10 @@ TEST(DemoWindow, ScriptedAcceptanceRun) {
     EXPECT_GT(weightsChange, 0.015) << "weights sg -> normal changed nothing";
     EXPECT_GT(difference(normal, scale2).mean, 2.0 * noise + 0.05) << "trace scale 4 -> 2 changed nothing";
     EXPECT_EQ(redPixels(scale2), 0u);
-    EXPECT_GT(redPixels(resample), 0u)
-        << "the resample view shows no re-traced pixels around the moving cube";
+    // A measured minimum, so the view cannot pass on an empty mask: 3 red pixels at this frame (lavapipe).
+    std::printf("resample view: %zu re-traced (red) pixels\n", size_t(redPixels(resample)));
+    EXPECT_GE(redPixels(resample), 2u)
+        << "the resample view shows (almost) no re-traced pixels around the moving cube";
     EXPECT_EQ(redPixels(adaptiveOff), 0u) << "adaptive off still re-traces";
     EXPECT_GT(difference(adaptiveOff, cut).changed, 0.5) << "the camera cut did not change the view";
     EXPECT_GT(difference(cut, ui).changed, 0.05) << "the panel is not drawn in a screenshot with ui";

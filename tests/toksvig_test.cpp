@@ -173,10 +173,12 @@ TEST(ToksvigGpu, CloserToTheSupersampledReference) {
     const ImageRgba32f big = renderReference(kWidth * kFactor, kHeight * kFactor);
     if (big.width != kWidth * kFactor || big.height != kHeight * kFactor) return;  // reported above
 
+    // Issue 9's margin: Toksvig at most 0.2× the error without it. Measured 23.7 / 676 = 0.035× at 640x360
+    // and 6.17 / 782 = 0.0079× at 160x90.
     const Errors at4 = compare(boxDown(big, kFactor), kWidth, kHeight, kFactor);
-    EXPECT_LT(at4.on, at4.off);
+    EXPECT_LE(at4.on, 0.2 * at4.off);
     const Errors at16 = compare(boxDown(big, 16), kWidth / 4, kHeight / 4, 16);
-    EXPECT_LT(at16.on, at16.off);
+    EXPECT_LE(at16.on, 0.2 * at16.off);
 
     // For the record: 160x90 against its own 4× reference, which aliases (see above).
     const ImageRgba32f small = renderReference(kWidth, kHeight);

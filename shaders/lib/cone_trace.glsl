@@ -60,6 +60,7 @@ IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D no
     const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
+    if (isDegeneratePosition(p)) return IndirectSample(vec3(0.0), vec3(0.0));
     const vec3 n = gbufferNormal(normalRoughness);
     return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition.xyz - p, n), normalRoughness.w);
 }

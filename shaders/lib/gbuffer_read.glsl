@@ -11,6 +11,11 @@ vec3 worldFromDepth(mat4 invViewProj, vec2 uv, float depth) {
 
 bool isBackground(float depth) { return depth >= 1.0; }
 
+// A reconstructed position that cannot be shaded: not finite (NaN compares false), or so far out that it is
+// (w ≈ 0: a depth at the last steps below 1 when the near plane is tiny against the far one, e.g. 1e-5 to
+// 100 m, where the projection's depth resolution runs out). Such pixels get no indirect light, as the background.
+bool isDegeneratePosition(vec3 p) { return !all(lessThan(abs(p), vec3(1e18))); }
+
 // The unit shading normal stored in a normalRoughness texel; straight up where it is degenerate (zero length,
 // not finite). gbuffer.frag writes unit normals (the geometric normal where the mesh's are zero), so this only
 // guards data that did not come from it.
