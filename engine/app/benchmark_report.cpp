@@ -30,17 +30,21 @@ namespace {
 
 using nlohmann::json;
 
-// One frame's images of a renderer: what the errors are measured on.
+// One frame's images of a renderer: what the errors are measured on (display: the tone-mapped sRGB final,
+// made once per frame, not once per comparison).
 struct FrameImages {
-    ImageRgba32f diffuse, specular, hdr;
+    ImageRgba32f diffuse, specular, hdr, display;
 };
 
 FrameImages readFrame(Renderer& renderer) {
     const uint32_t w = renderer.settings().width, h = renderer.settings().height;
     Renderer::IndirectLight light = renderer.readIndirect();
+    ImageRgba32f hdr{w, h, renderer.readFloatImage(renderer.targets().hdr)};
+    ImageRgba32f display = toneMappedSrgb(hdr, renderer.settings().exposure);
     return {{w, h, std::move(light.diffuse)},
             {w, h, std::move(light.specular)},
-            {w, h, renderer.readFloatImage(renderer.targets().hdr)}};
+            std::move(hdr),
+            std::move(display)};
 }
 
 json errorJson(const ImageError& e) {
@@ -155,7 +159,7 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
         std::vector<double> diffuse, specular, finalSrgb, retraced;
     };
     std::vector<Curves> curves(configs.size());
-    std::vector<FrameImages> lastFrames(configs.size());
+    std::vector<json> lastErrors(configs.size());  // every metric of the last frame
     FrameHooks hooks;
     hooks.frameInput = [&](const BenchmarkRun& run, uint32_t frame, uint32_t warmup) {
         FrameInput input = fixedStepFrame(*run.scene, frame, warmup, camera.path);
@@ -168,20 +172,26 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
         FrameImages images = readFrame(renderer);
         if (index == 0) {
             // Blocks run the reference first: drop the frames of the previous block.
-            referenceFrames.erase(referenceFrames.begin(),
-                                  referenceFrames.lower_bound(frame > 8 ? frame - 8 : 0));
+            referenceFrames.erase(
+                referenceFrames.begin(),
+                referenceFrames.lower_bound(frame >= timing.block ? frame - timing.block : 0));
             referenceFrames[frame] = std::move(images);
-            if (frame + 1 == timing.frames) lastFrames[0] = referenceFrames[frame];
             return;
         }
         const FrameImages& reference = referenceFrames.at(frame);
+        const ImageError diffuse = compareImages(reference.diffuse, images.diffuse);
+        const ImageError specular = compareImages(reference.specular, images.specular);
+        const ImageError finalSrgb = compareImages(reference.display, images.display, 1.0);
         Curves& c = curves[index];
-        c.diffuse.push_back(finitePsnr(compareImages(reference.diffuse, images.diffuse).psnr));
-        c.specular.push_back(finitePsnr(compareImages(reference.specular, images.specular).psnr));
-        c.finalSrgb.push_back(
-            finitePsnr(compareToneMapped(reference.hdr, images.hdr, renderer.settings().exposure).psnr));
+        c.diffuse.push_back(finitePsnr(diffuse.psnr));
+        c.specular.push_back(finitePsnr(specular.psnr));
+        c.finalSrgb.push_back(finitePsnr(finalSrgb.psnr));
         c.retraced.push_back(renderer.resampledFraction());
-        if (frame + 1 == timing.frames) lastFrames[index] = std::move(images);
+        if (frame + 1 == timing.frames)
+            lastErrors[index] = {{"diffuse", errorJson(diffuse)},
+                                 {"specular", errorJson(specular)},
+                                 {"final_hdr", errorJson(compareImages(reference.hdr, images.hdr))},
+                                 {"final_srgb", errorJson(finalSrgb)}};
     };
     std::fprintf(stderr, "report: %s, %s camera, %zu configurations\n", entry.name.c_str(),
                  camera.name.c_str(), configs.size());
@@ -207,16 +217,9 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
         entryJson["frame_over_reference"] =
             referenceFrame > 0.0 ? r.timer().frameStats().medianMs / referenceFrame : 0.0;
         if (index > 0) {
-            const FrameImages& ref = lastFrames[0];
-            const FrameImages& img = lastFrames[index];
-            const ImageError diffuse = compareImages(ref.diffuse, img.diffuse);
-            const ImageError specular = compareImages(ref.specular, img.specular);
-            const ImageError finalHdr = compareImages(ref.hdr, img.hdr);
-            const ImageError finalSrgb = compareToneMapped(ref.hdr, img.hdr, r.settings().exposure);
-            entryJson["error"] = {{"diffuse", errorJson(diffuse)},
-                                  {"specular", errorJson(specular)},
-                                  {"final_hdr", errorJson(finalHdr)},
-                                  {"final_srgb", errorJson(finalSrgb)}};
+            const json& error = lastErrors[index];
+            entryJson["error"] = error;
+            auto psnrOf = [&](const char* buffer) { return finitePsnr(error[buffer]["psnr"].get<double>()); };
             const Curves& c = curves[index];
             double meanRetraced = 0.0;
             for (double f : c.retraced) meanRetraced += f / double(std::max<size_t>(c.retraced.size(), 1));
@@ -231,8 +234,9 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
                 "| %s | %s | %s | %.2f | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f | %.3g | %.3g | %.2f%% |\n",
                 entry.name.c_str(), camera.name.c_str(), config.name.c_str(), r.timer().frameStats().medianMs,
                 passMedian(r, "upsample"), indirectMs(r), entryJson["indirect_over_reference"].get<double>(),
-                finitePsnr(diffuse.psnr), finitePsnr(specular.psnr), finitePsnr(finalSrgb.psnr), finalHdr.mse,
-                finalHdr.relMse, 100.0 * meanRetraced);
+                psnrOf("diffuse"), psnrOf("specular"), psnrOf("final_srgb"),
+                error["final_hdr"]["mse"].get<double>(), error["final_hdr"]["rel_mse"].get<double>(),
+                100.0 * meanRetraced);
         } else {
             std::snprintf(line, sizeof(line),
                           "| %s | %s | %s | %.2f | – | %.2f | 1 | – | – | – | – | – | – |\n",

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "scene/input_limits.h"
 
 namespace vct {
 
@@ -83,14 +84,13 @@ CameraView CameraPath::evaluate(float timeSeconds, const CameraView& lens) const
 
 CameraPath loadCameraPath(const std::filesystem::path& file) {
     const std::string name = "camera path '" + file.string() + "': ";
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(file, error)) throw Error(name + "not found or not a regular file");
-    if (std::filesystem::file_size(file, error) > (1u << 24)) throw Error(name + "larger than 16 MiB");
-    std::ifstream in(file);
-    if (!in) throw Error(name + "cannot be opened");
+    // The checked read every input file goes through (no blocking on a FIFO, the size bounded on the open
+    // file).
+    const FileRead read = readRegularFile(file, uint64_t(1) << 24);
+    if (!read.error.empty()) throw Error(name + read.error);
     json root;
     try {
-        root = json::parse(in);
+        root = json::parse(read.bytes.begin(), read.bytes.end());
     } catch (const json::exception& e) {
         throw Error(name + "not valid JSON (" + std::string(e.what()) + ")");
     }
