@@ -7,6 +7,7 @@ packages=(
   libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev
   libopenvdb-dev libopenvdb-tools libboost-iostreams-dev                     # voxel export (vdb_print in tests)
   libimgui-dev                                                               # the demo's panel (+ backend sources)
+  libembree-dev libtbb-dev                                                   # the path-traced reference
   libgtest-dev xvfb xauth                                                    # tests, headless window
 )
 missing=()

@@ -56,10 +56,9 @@ void main() {
     const int lightCount = int(frame.shadowParams.z);
     const int shadowLight = int(frame.shadowParams.w);
     for (int i = 0; i < lightCount; ++i) {
-        vec3 l;
-        const vec3 incident = incidentLight(lights[i], p, l);
-        vec3 reflected = incident * evalBrdfCosine(n, v, l, baseColorMetallic.rgb, baseColorMetallic.a,
-                                                   normalRoughness.w);
+        const IncidentLight light = incidentLight(lights[i], p);
+        vec3 reflected = light.radiance * evalBrdfCosine(n, v, light.towardsLight, baseColorMetallic.rgb,
+                                                         baseColorMetallic.a, normalRoughness.w);
         if (i == shadowLight && any(greaterThan(reflected, vec3(0.0)))) reflected *= shadowVisibility(p, n);
         radiance += reflected;
     }

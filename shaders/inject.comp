@@ -47,8 +47,9 @@ void main() {
     const int lightCount = int(frame.shadowParams.z);
     const int shadowLight = int(frame.shadowParams.w);
     for (int i = 0; i < lightCount; ++i) {
-        vec3 l;
-        const vec3 incident = incidentLight(lights[i], center, l);
+        const IncidentLight light = incidentLight(lights[i], center);
+        const vec3 incident = light.radiance;
+        const vec3 l = light.towardsLight;
         const float cosine = voxelCosine(nbar, l);
         if (cosine <= 0.0 || all(equal(incident, vec3(0.0)))) continue;
         float visibility = 1.0;

@@ -11,5 +11,6 @@ int runVoxelizeCommand(int argc, char** argv, int first);
 int runCompareCommand(int argc, char** argv, int first);
 int runBenchmarkCommand(int argc, char** argv, int first);
 int runExportSceneCommand(int argc, char** argv, int first);
+int runReferenceCommand(int argc, char** argv, int first);
 
 }  // namespace vct

@@ -18,6 +18,7 @@ const char* kUsage =
     "  scenes   list the built-in scenes\n"
     "  voxelize voxelize the scene at t = 0 into OpenVDB grids (a cache for --voxel-cache)\n"
     "  benchmark  per-pass timings and error of the upsampling configurations, in one run\n"
+    "  reference  path-trace the ground truth of a frame on the CPU (Embree), in the units of render --aux\n"
     "  compare  error metrics of an EXR image against a reference\n"
     "  export-scene  write a scene (built-in or loaded) as glTF 2.0 binary (.glb)\n\n"
     "Run 'vct COMMAND --help' for a command's options.\n";
@@ -46,6 +47,7 @@ int dispatch(int argc, char** argv) {
     if (command == "voxelize") return vct::runVoxelizeCommand(argc, argv, 2);
     if (command == "compare") return vct::runCompareCommand(argc, argv, 2);
     if (command == "benchmark") return vct::runBenchmarkCommand(argc, argv, 2);
+    if (command == "reference") return vct::runReferenceCommand(argc, argv, 2);
     if (command == "export-scene") return vct::runExportSceneCommand(argc, argv, 2);
     throw vct::UsageError("unknown command '" + command + "' (see vct --help)");
 }

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <string>
 
+#include "render/scene_lights.h"
 #include "vk/check.h"
 
 namespace vct {
@@ -231,27 +232,7 @@ void GpuScene::update(float timeSeconds, bool cut) {
     instances_ = std::move(next);
 
     const std::vector<gpu::GpuLight> previousLights = std::move(lights_);
-    lights_.clear();
-    for (size_t n = 0; n < scene_.nodes.size(); ++n) {
-        if (scene_.nodes[n].light < 0) continue;
-        const Light& light = scene_.lights[size_t(scene_.nodes[n].light)];
-        gpu::GpuLight g{};
-        const glm::vec3 position = glm::vec3(world[n][3]);
-        // Lights shine along local -Z, scale ignored (a zero scale keeps the composed rotation's direction).
-        const glm::vec3 direction = -worldAxes(world[n], rotations[n])[2];
-        int type = light.type == LightType::Directional ? VCT_LIGHT_DIRECTIONAL
-                   : light.type == LightType::Point     ? VCT_LIGHT_POINT
-                                                        : VCT_LIGHT_SPOT;
-        g.positionRange = glm::vec4(position, light.range);
-        g.directionType = glm::vec4(direction, float(type));
-        g.colorIntensity = glm::vec4(light.color * light.intensity, 0.0f);
-        // KHR_lights_punctual angular attenuation, precomputed as scale and offset on cos(angle).
-        const float cosOuter = std::cos(light.outerConeAngle);
-        const float cosInner = std::cos(light.innerConeAngle);
-        const float scale = 1.0f / std::max(0.001f, cosInner - cosOuter);
-        g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
-        lights_.push_back(g);
-    }
+    lights_ = sceneLights(scene_, world, rotations);
     changed = changed || previousLights.size() != lights_.size() ||
               (!lights_.empty() &&
                std::memcmp(previousLights.data(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight)) != 0);

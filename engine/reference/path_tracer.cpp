@@ -1,0 +1,418 @@
+#include "reference/path_tracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+
+#include "reference/ray_scene.h"
+#include "reference/rng.h"
+#include "render/dfg_table.h"
+#include "render/scene_lights.h"
+#include "render/shader_math.h"
+
+namespace vct::reference {
+
+namespace {
+
+using glm::vec2;
+using glm::vec3;
+
+enum Buffer { kFinal, kDirect, kDiffuse, kSpecular, kBufferCount };
+
+// The DFG table the reference demodulates with and composes `final` with: the function vct's table holds
+// (makeDfgTable), at twice its resolution, read with the same bilinear clamp-to-edge lookup as the GPU
+// sampler.
+constexpr uint32_t kDfgSize = 64;
+
+// After this many bounces of unlimited GI, paths continue with probability max(throughput) (Russian
+// roulette).
+constexpr int kRouletteDepth = 3;
+// A hard stop for unlimited paths that roulette keeps alive (a furnace of albedo 1): never reached in
+// practice.
+constexpr int kMaxDepth = 1024;
+
+// Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
+void basis(vec3 n, vec3& tangent, vec3& bitangent) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    tangent = vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    bitangent = vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+vec3 toWorld(vec3 local, vec3 n) {
+    vec3 t, b;
+    basis(n, t, b);
+    return t * local.x + b * local.y + n * local.z;
+}
+
+// Cosine-distributed direction around n: pdf = (n·l)/π (Malley's method).
+vec3 sampleCosine(vec2 u, vec3 n) {
+    const float r = std::sqrt(u.x);
+    const float phi = 2.0f * glsl::PI * u.y;
+    return toWorld(vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x))), n);
+}
+
+float maxComponent(vec3 c) {
+    return std::max(c.x, std::max(c.y, c.z));
+}
+
+// A surface seen from direction v (unit, towards the viewer), with its material.
+struct Shading {
+    SurfacePoint s;
+    vec3 v;
+};
+
+}  // namespace
+
+struct PathTracer::Impl {
+    const Scene& scene;
+    ReferenceSettings settings;
+    float timeSeconds;
+    MaterialEvaluator materials;
+    RayScene rays;
+    std::vector<gpu::GpuLight> lights;
+    std::vector<vec2> dfgTable;
+    std::vector<Surface> surfaces;
+    std::unique_ptr<tbb::task_arena> arena;
+
+    CameraView camera;
+    glm::mat4 invViewProj{1.0f};
+    uint32_t spp = 0;
+    std::vector<glm::dvec3> sums[kBufferCount][2];  // per buffer, per half (even, odd sample indices)
+    std::vector<int32_t> surfaceId;
+    ReferenceStats stats;
+    float offset = 1e-4f;
+
+    Impl(const Scene& s, float t, const CameraView& c, const ReferenceSettings& r)
+        : scene(s), settings(r), timeSeconds(t), materials(s), rays(s, t, materials) {
+        std::vector<glm::quat> rotations;
+        const std::vector<glm::mat4> world = scene.evaluate(t, &rotations);
+        lights = sceneLights(scene, world, rotations);
+        dfgTable = makeDfgTable(kDfgSize);
+        for (const RayGeometry& g : rays.geometries())
+            surfaces.push_back({g.name, g.node, g.primitive, g.material});
+        // Rays leave a surface this far along its face normal: well above float rounding at the scene's
+        // scale, well below any feature vct's voxels resolve.
+        offset = 2e-5f * rays.extent();
+        arena = std::make_unique<tbb::task_arena>(settings.threads == 0 ? tbb::task_arena::automatic
+                                                                        : int(settings.threads));
+        restart(c);
+    }
+
+    vec2 dfgLookup(float NoV, float perceptualRoughness) const {
+        const float x = std::clamp(NoV * float(kDfgSize) - 0.5f, 0.0f, float(kDfgSize - 1));
+        const float y = std::clamp(perceptualRoughness * float(kDfgSize) - 0.5f, 0.0f, float(kDfgSize - 1));
+        const int x0 = int(x), y0 = int(y);
+        const int x1 = std::min(x0 + 1, int(kDfgSize) - 1), y1 = std::min(y0 + 1, int(kDfgSize) - 1);
+        const float tx = x - float(x0), ty = y - float(y0);
+        auto at = [&](int i, int j) { return dfgTable[size_t(j) * kDfgSize + size_t(i)]; };
+        return glm::mix(glm::mix(at(x0, y0), at(x1, y0), tx), glm::mix(at(x0, y1), at(x1, y1), tx), ty);
+    }
+
+    // The camera ray through image position (px, py) in pixels (0..width, 0..height, y down), as the
+    // G-buffer's rasterisation sees it: from the near plane to the far plane through the inverse
+    // view-projection.
+    bool cameraRay(float px, float py, vec3& origin, vec3& direction, float& length) const {
+        const vec2 ndc(px / float(settings.width) * 2.0f - 1.0f, py / float(settings.height) * 2.0f - 1.0f);
+        const glm::vec4 nearPoint = invViewProj * glm::vec4(ndc, 0.0f, 1.0f);
+        const glm::vec4 farPoint = invViewProj * glm::vec4(ndc, 1.0f, 1.0f);
+        origin = vec3(nearPoint) / nearPoint.w;
+        const vec3 delta = vec3(farPoint) / farPoint.w - origin;
+        length = glm::length(delta);
+        if (!(length > 0.0f) || !std::isfinite(length)) return false;
+        direction = delta / length;
+        return true;
+    }
+
+    void restart(const CameraView& c) {
+        camera = c;
+        const float aspect = float(settings.width) / float(settings.height);
+        invViewProj = glm::inverse(camera.projection(aspect) * camera.view);
+        spp = 0;
+        const size_t pixels = size_t(settings.width) * settings.height;
+        for (auto& buffer : sums)
+            for (auto& half : buffer) half.assign(pixels, glm::dvec3(0.0));
+        // The surface at each pixel centre: what the per-surface sums of the comparison group by.
+        surfaceId.assign(pixels, -1);
+        arena->execute([&] {
+            tbb::parallel_for(
+                tbb::blocked_range<uint32_t>(0, settings.height),
+                [&](const tbb::blocked_range<uint32_t>& rows) {
+                    for (uint32_t y = rows.begin(); y < rows.end(); ++y)
+                        for (uint32_t x = 0; x < settings.width; ++x) {
+                            vec3 origin, direction;
+                            float length;
+                            if (!cameraRay(float(x) + 0.5f, float(y) + 0.5f, origin, direction, length))
+                                continue;
+                            const RayHit hit = rays.intersect(origin, direction, 0.0f, length, true);
+                            if (hit.hit) surfaceId[size_t(y) * settings.width + x] = int32_t(hit.geometry);
+                        }
+                });
+        });
+    }
+
+    // A ray leaving surface s along unit l starts on the side of the surface that l points to.
+    vec3 spawnOrigin(const SurfacePoint& s, vec3 l) const {
+        return s.position + (glm::dot(s.faceNormal, l) >= 0.0f ? s.faceNormal : -s.faceNormal) * offset;
+    }
+
+    // The BRDF of a surface hit by an indirect ray (SecondaryBrdf), times n·l.
+    vec3 secondaryBrdfCosine(const Shading& x, vec3 l) const {
+        if (settings.secondary == SecondaryBrdf::Diffuse)
+            return glsl::diffuseAlbedo(x.s.baseColor, x.s.metallic) * glsl::INV_PI *
+                   glsl::saturate(glm::dot(x.s.normal, l));
+        return glsl::evalBrdfCosine(x.s.normal, x.v, l, x.s.baseColor, x.s.metallic, x.s.perceptualRoughness);
+    }
+
+    // Next-event estimation: every punctual light, shadowed by a ray; `primary` picks the full BRDF.
+    vec3 directLight(const Shading& x, bool primary, uint64_t& rayCount) const {
+        vec3 sum(0.0f);
+        for (const gpu::GpuLight& light : lights) {
+            const glsl::IncidentLight incident = glsl::incidentLight(light, x.s.position);
+            if (maxComponent(incident.radiance) <= 0.0f) continue;
+            const vec3 l = incident.towardsLight;
+            const vec3 f = primary ? glsl::evalBrdfCosine(x.s.normal, x.v, l, x.s.baseColor, x.s.metallic,
+                                                          x.s.perceptualRoughness)
+                                   : secondaryBrdfCosine(x, l);
+            if (maxComponent(f) <= 0.0f) continue;
+            ++rayCount;
+            if (rays.occluded(spawnOrigin(x.s, l), l, 0.0f, incident.distance - 2.0f * offset)) continue;
+            sum += incident.radiance * f;
+        }
+        return sum;
+    }
+
+    // Samples the next direction of an indirect path at x: returns false where the path ends; `weight` is
+    // f·cos/pdf. Full: a one-sample mixture of cosine and GGX half-vector sampling, weighted by the mixture's
+    // pdf (the balance heuristic of the two strategies). Diffuse: cosine sampling of the Lambert lobe.
+    bool sampleSecondary(const Shading& x, Pcg32& rng, vec3& l, vec3& weight) const {
+        const vec3 n = x.s.normal;
+        const vec3 albedo = glsl::diffuseAlbedo(x.s.baseColor, x.s.metallic);
+        if (settings.secondary == SecondaryBrdf::Diffuse) {
+            l = sampleCosine(rng.uniform2(), n);
+            weight = albedo;
+            return glm::dot(l, x.s.faceNormal) > 0.0f && maxComponent(albedo) > 0.0f;
+        }
+        const vec3 f0 = glsl::f0FromMetallic(x.s.baseColor, x.s.metallic);
+        const float specularWeight = glsl::luminance(f0);
+        const float diffuseWeight = glsl::luminance(albedo) * (1.0f - specularWeight);
+        const float total = specularWeight + diffuseWeight;
+        const float pSpecular = total > 0.0f ? std::clamp(specularWeight / total, 0.05f, 0.95f) : 0.5f;
+        // The α evalBrdf uses: sampling the very lobe it evaluates keeps f/pdf bounded.
+        const float alpha =
+            std::max(glsl::alphaFromPerceptual(x.s.perceptualRoughness), glsl::MIN_ALPHA_PUNCTUAL);
+        const float choice = rng.uniform();
+        const vec2 u = rng.uniform2();
+        if (choice < pSpecular) {
+            const vec3 h = toWorld(glsl::importanceSampleGGX(u, alpha), n);
+            l = 2.0f * glm::dot(x.v, h) * h - x.v;
+        } else {
+            l = sampleCosine(u, n);
+        }
+        const float NoL = glm::dot(n, l);
+        if (NoL <= 0.0f || glm::dot(l, x.s.faceNormal) <= 0.0f) return false;
+        const vec3 h = glm::normalize(x.v + l);
+        const float NoH = glsl::saturate(glm::dot(n, h));
+        const float VoH = glm::dot(x.v, h);
+        const float pdfSpecular = VoH > 0.0f ? glsl::D_GGX(NoH, alpha) * NoH / (4.0f * VoH) : 0.0f;
+        const float pdf = (1.0f - pSpecular) * NoL * glsl::INV_PI + pSpecular * pdfSpecular;
+        if (!(pdf > 0.0f)) return false;
+        weight = glsl::evalBrdfCosine(n, x.v, l, x.s.baseColor, x.s.metallic, x.s.perceptualRoughness) / pdf;
+        return maxComponent(weight) > 0.0f && std::isfinite(maxComponent(weight));
+    }
+
+    // Radiance arriving at `origin` along unit `direction` from the first surface hit (its emission, its
+    // reflection of the lights and, with bounces left, of further indirect light) or from the environment.
+    vec3 indirectRadiance(vec3 origin, vec3 direction, Pcg32& rng, uint64_t& rayCount) const {
+        vec3 radiance(0.0f), throughput(1.0f);
+        for (int depth = 1; depth <= kMaxDepth; ++depth) {
+            ++rayCount;
+            const RayHit hit =
+                rays.intersect(origin, direction, 0.0f, std::numeric_limits<float>::infinity(), false);
+            if (!hit.hit) {
+                radiance += throughput * settings.environment;
+                break;
+            }
+            const Shading x{rays.surfaceAt(hit, direction), -direction};
+            radiance += throughput * (x.s.emission + directLight(x, false, rayCount));
+            if (settings.bounces != kUnlimitedBounces && depth >= settings.bounces) break;
+            vec3 l, weight;
+            if (!sampleSecondary(x, rng, l, weight)) break;
+            throughput *= weight;
+            if (settings.bounces == kUnlimitedBounces && depth >= kRouletteDepth) {
+                const float survive = std::min(maxComponent(throughput), 0.95f);
+                if (rng.uniform() >= survive) break;
+                throughput /= survive;
+            }
+            origin = spawnOrigin(x.s, l);
+            direction = l;
+        }
+        return radiance;
+    }
+
+    // One sample of one pixel: adds final, direct, D and S into the half `sample & 1`.
+    void samplePixel(uint32_t x, uint32_t y, uint32_t sample, uint64_t& rayCount) {
+        const size_t pixel = size_t(y) * settings.width + x;
+        Pcg32 rng = sampleRng(settings.seed, pixel, sample);
+        const vec2 jitter = rng.uniform2();
+        vec3 final(0.0f), direct(0.0f), diffuse(0.0f), specular(0.0f);
+        vec3 origin, direction;
+        float length;
+        RayHit hit;
+        if (cameraRay(float(x) + jitter.x, float(y) + jitter.y, origin, direction, length)) {
+            ++rayCount;
+            hit = rays.intersect(origin, direction, 0.0f, length, true);
+        }
+        if (!hit.hit) {
+            direct = final = settings.environment;  // the background, as vct's direct pass writes it
+        } else {
+            const Shading x0{rays.surfaceAt(hit, direction), -direction};
+            const SurfacePoint& s = x0.s;
+            direct = s.emission + directLight(x0, true, rayCount);
+            const vec3 n = s.normal;
+            // n·v as composite reads the DFG table, and a view vector that has it (a normal-mapped n can face
+            // away).
+            const float NoV = std::max(glm::dot(n, x0.v), glsl::MIN_N_DOT_V);
+            vec3 v = x0.v;
+            if (glm::dot(n, v) < glsl::MIN_N_DOT_V) {
+                vec3 side = v - n * glm::dot(n, v);
+                const float sideLength = glm::length(side);
+                vec3 t, b;
+                basis(n, t, b);
+                side = sideLength > 1e-6f ? side / sideLength : t;
+                v = side * std::sqrt(1.0f - NoV * NoV) + n * NoV;
+            }
+            const vec2 dfg = dfgLookup(NoV, s.perceptualRoughness);
+            const vec3 f0 = glsl::f0FromMetallic(s.baseColor, s.metallic);
+            if (settings.bounces != 0) {
+                // D: one cosine-distributed ray; its radiance is an unbiased estimate of (1/π)∫L cos.
+                const vec3 ld = sampleCosine(rng.uniform2(), n);
+                if (glm::dot(ld, s.faceNormal) > 0.0f)
+                    diffuse = indirectRadiance(spawnOrigin(s, ld), ld, rng, rayCount);
+                // S: one GGX half vector (pdf D·(n·h)); f_s·cos/pdf = F·V·4(n·l)(v·h)/(n·h) (D cancels,
+                // finite at α = 0), divided by the lobe's albedo F0·scale + bias.
+                const float alpha = glsl::alphaFromPerceptual(s.perceptualRoughness);
+                const vec3 h = toWorld(glsl::importanceSampleGGX(rng.uniform2(), alpha), n);
+                const float VoH = glm::dot(v, h);
+                const vec3 ls = 2.0f * VoH * h - v;
+                const float NoL = glm::dot(n, ls);
+                const vec3 lobeAlbedo = f0 * dfg.x + dfg.y;
+                if (NoL > 0.0f && VoH > 0.0f && glm::dot(ls, s.faceNormal) > 0.0f &&
+                    maxComponent(lobeAlbedo) > 0.0f) {
+                    const float NoH = std::max(glm::dot(n, h), 1e-8f);
+                    const vec3 lobe = glsl::F_Schlick(f0, VoH) * glsl::V_SmithGGXCorrelated(NoV, NoL, alpha) *
+                                      4.0f * NoL * VoH / NoH;
+                    specular = lobe / glm::max(lobeAlbedo, vec3(1e-6f)) *
+                               indirectRadiance(spawnOrigin(s, ls), ls, rng, rayCount);
+                }
+            }
+            final = direct + s.occlusion * glsl::diffuseAlbedo(s.baseColor, s.metallic) * diffuse +
+                    glsl::specularDfg(f0, dfg) * specular;
+        }
+        const int half = int(sample & 1u);
+        sums[kFinal][half][pixel] += glm::dvec3(final);
+        sums[kDirect][half][pixel] += glm::dvec3(direct);
+        sums[kDiffuse][half][pixel] += glm::dvec3(diffuse);
+        sums[kSpecular][half][pixel] += glm::dvec3(specular);
+    }
+};
+
+PathTracer::PathTracer(const Scene& scene, float timeSeconds, const CameraView& camera,
+                       const ReferenceSettings& settings)
+    : impl_(std::make_unique<Impl>(scene, timeSeconds, camera, settings)) {}
+
+PathTracer::~PathTracer() = default;
+
+void PathTracer::restart(const CameraView& camera) {
+    impl_->restart(camera);
+}
+
+bool PathTracer::addSamples(uint32_t samples, const std::function<void(float)>& progress,
+                            const std::atomic<bool>* cancel) {
+    Impl& impl = *impl_;
+    const auto start = std::chrono::steady_clock::now();
+    const uint32_t first = impl.spp;
+    const uint32_t height = impl.settings.height;
+    std::atomic<uint32_t> rowsDone{0};
+    std::atomic<uint64_t> rayCount{0};
+    std::atomic<bool> cancelled{false};
+    std::mutex progressMutex;
+    impl.arena->execute([&] {
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, height, 1),
+                          [&](const tbb::blocked_range<uint32_t>& rows) {
+                              for (uint32_t y = rows.begin(); y < rows.end(); ++y) {
+                                  if (cancel && cancel->load(std::memory_order_relaxed)) {
+                                      cancelled = true;
+                                      return;
+                                  }
+                                  uint64_t localRays = 0;
+                                  for (uint32_t x = 0; x < impl.settings.width; ++x)
+                                      for (uint32_t s = 0; s < samples; ++s)
+                                          impl.samplePixel(x, y, first + s, localRays);
+                                  rayCount += localRays;
+                                  const uint32_t done = ++rowsDone;
+                                  if (progress) {
+                                      std::lock_guard<std::mutex> lock(progressMutex);
+                                      progress(float(done) / float(height));
+                                  }
+                              }
+                          });
+    });
+    impl.stats.rays += rayCount.load();
+    impl.stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (cancelled) return false;
+    impl.spp += samples;
+    return true;
+}
+
+uint32_t PathTracer::samplesPerPixel() const {
+    return impl_->spp;
+}
+
+ReferenceImages PathTracer::images() const {
+    const Impl& impl = *impl_;
+    ReferenceImages out;
+    out.width = impl.settings.width;
+    out.height = impl.settings.height;
+    out.samplesPerPixel = impl.spp;
+    out.surfaceId = impl.surfaceId;
+    const double n = double(impl.spp);
+    const double nEven = double((impl.spp + 1) / 2), nOdd = double(impl.spp / 2);
+    EstimateImage* images[kBufferCount] = {&out.final, &out.direct, &out.diffuseIndirect,
+                                           &out.specularIndirect};
+    const size_t pixels = size_t(out.width) * out.height;
+    for (int b = 0; b < kBufferCount; ++b) {
+        EstimateImage& image = *images[b];
+        image.mean.assign(pixels, vec3(0.0f));
+        image.variance.assign(pixels, vec3(0.0f));
+        if (impl.spp == 0) continue;
+        for (size_t p = 0; p < pixels; ++p) {
+            const glm::dvec3 even = impl.sums[b][0][p], odd = impl.sums[b][1][p];
+            image.mean[p] = vec3((even + odd) / n);
+            if (nOdd > 0.0) {
+                // var(mean_even − mean_odd) = σ²(1/n_even + 1/n_odd) and var(mean) = σ²/n.
+                const glm::dvec3 difference = even / nEven - odd / nOdd;
+                image.variance[p] = vec3(difference * difference / (n * (1.0 / nEven + 1.0 / nOdd)));
+            }
+        }
+    }
+    return out;
+}
+
+const std::vector<Surface>& PathTracer::surfaces() const {
+    return impl_->surfaces;
+}
+const ReferenceStats& PathTracer::stats() const {
+    return impl_->stats;
+}
+const ReferenceSettings& PathTracer::settings() const {
+    return impl_->settings;
+}
+
+}  // namespace vct::reference
