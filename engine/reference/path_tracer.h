@@ -12,9 +12,10 @@
 //                     the trace pass's 6 diffuse cones return. One cosine-distributed ray per sample (the
 //                     estimator is L_ind of that ray).
 //   specular_indirect S = ∫ f_s(v, l) L_ind(l) (n·l) dl / (F0·scale + bias): the incoming indirect radiance
-//                     weighted by the specular lobe, normalised by the lobe's own albedo (the split-sum DFG
-//                     table's value at (n·v, roughness)), what the specular cone returns before composite
-//                     multiplies it by specularDfg. One GGX-distributed ray per sample.
+//                     weighted by the specular lobe, normalised by the lobe's own albedo (integrateDFG at
+//                     (n·v, roughness), the function vct's DFG table holds, interpolated on a fine grid):
+//                     what the specular cone returns before composite multiplies it by specularDfg. One
+//                     GGX-distributed ray per sample.
 //   final             direct + occlusion·albedo·D + specularDfg(F0, DFG)·S: vct's composite formula applied
 //   to
 //                     the reference's own buffers, per sample, so a difference in `final` is a difference in
