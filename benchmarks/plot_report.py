@@ -6,8 +6,9 @@
   PREFIX-convergence-SCENE.png  PSNR of diffuse, specular and final against frame number: static camera
                                 (convergence), moving camera, and the cut halfway (recovery)
   PREFIX-tau.png                re-traced fraction and final sRGB PSNR against τ (moving camera, scale 4, sg)
-  PREFIX-study-SCENE.png        seed 004 Fig. 6: sg specular MSE over β × κ per material class (heat maps), and
-                                MSE against β (κ 100) and against σ_n (normal), each normalised by its optimum
+  PREFIX-study-SCENE.png        Tokuyoshi 2015 Fig. 6: sg specular MSE over β × κ per material class (heat
+                                maps), and MSE against β (κ 100) and against σ_n (normal), each normalised by
+                                its optimum
 
 Benchmark scripts only: matplotlib (Debian's python3-matplotlib) is never needed to build or test.
 Usage: plot_report.py REPORT.json STUDY.json OUT_PREFIX
@@ -156,7 +157,8 @@ def plot_study(study, scene_json, out_path):
         ax.legend(fontsize=7)
     for col in range(2, axes.shape[1]):
         axes[1][col].axis("off")
-    fig.suptitle(f"{scene_json['scene']}: seed 004 Fig. 6, upsampling alone (scale 4), per material class")
+    fig.suptitle(f"{scene_json['scene']}: Tokuyoshi 2015 Fig. 6, upsampling alone (scale 4), "
+                 "per material class")
     fig.tight_layout()
     fig.savefig(out_path, dpi=110)
     plt.close(fig)

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Speed against error as one report (issue 9): `vct benchmark --mode report` on the report scenes
 # (scenes/report_scenes.json: cornell, plane, and DamagedHelmet when ../shared/scenes has it) with a static, a
-# moving (the scene's camera path) and a cut camera, then `--mode study` (the seed's Fig. 6 parameter study),
-# then the plots made from the JSON (benchmarks/plot_report.py).
+# moving (the scene's camera path) and a cut camera, then `--mode study` (the parameter study of Tokuyoshi
+# 2015, Fig. 6), then the plots made from the JSON (benchmarks/plot_report.py).
 # Writes benchmarks/results/<device>-<size>-report.{json,md}, ...-study.{json,md} and ...-report-*.png.
 # Usage: benchmarks/report.sh [SIZE] [extra vct benchmark flags...]   (build first; ~15 min on lavapipe, 2 cores)
 set -euo pipefail

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Speed against error of the upsampling (DESIGN §5), one run: `vct benchmark` renders the reference (trace scale
-# 1) and the bilinear / normal / sg configurations (with and without adaptive re-tracing) interleaved in blocks
-# of frames on one device, and compares their last frames with the reference's.
+# Speed against error of the upsampling (docs/design.md §8), one run: `vct benchmark` renders the reference
+# (trace scale 1) and the bilinear / normal / sg configurations (with and without adaptive re-tracing)
+# interleaved in blocks of frames on one device, and compares their last frames with the reference's.
 # Writes benchmarks/results/<device>-<size>-s<scale>-upsampling.{json,md} and prints the table.
 # Usage: benchmarks/upsampling.sh [SIZE] [TRACE_SCALE] [extra vct benchmark flags...]   (build first)
 set -euo pipefail

@@ -5,7 +5,7 @@
 #include "lib/brdf.glsl"
 #include "lib/toksvig.glsl"
 
-// Toksvig variant (DESIGN §3.2): 0 the small-angle α² + 2σ², 1 the exact-in-power form. Chosen by the
+// Toksvig variant (docs/design.md §4.1): 0 the small-angle α² + 2σ², 1 the exact-in-power form. Chosen by the
 // supersampling measurement in tests/toksvig_test.cpp (exact: MSE 6.16 vs 6.34 against a 16× reference).
 #define TOKSVIG_EXACT 1
 // 8-bit normal maps quantise each component to 1/127.5: level-0 texels of a unit normal measure |n| from

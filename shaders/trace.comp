@@ -1,9 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// trace: one thread per LOW-res pixel (x, y), traced at the jittered full-res pixel s·(x, y) + o_k (DESIGN
-// §3.5: o_k cycles through the s×s offsets, so s² frames visit every full-res pixel) from the full-res
-// G-buffer there: 6 diffuse cones around n and 1 specular cone along reflect(−v, n) through the voxel grid.
-// Outputs are demodulated (lib/cone.glsl); the upsample pass knows o_k and reads the same G-buffer texels.
+// trace: one thread per LOW-res pixel (x, y), traced at the jittered full-res pixel s·(x, y) + o_k
+// (docs/design.md §6.1: o_k cycles through the s×s offsets, so s² frames visit every full-res pixel) from the
+// full-res G-buffer there: 6 diffuse cones around n and 1 specular cone along reflect(−v, n) through the voxel
+// grid. Outputs are demodulated (lib/cone.glsl); the upsample pass knows o_k and reads the same G-buffer texels.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"

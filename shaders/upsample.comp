@@ -1,16 +1,18 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // upsample: the low-res demodulated indirect light (diffuse, specular) back to full resolution over space and
-// time (DESIGN §3.5, seed 004 §5.3). For full-res pixel i:
-//   spatial   S = Σ_j f·w_z·w_lobe·I_j over the low-res samples j of a (2r)² window, W_s = Σ_j f·w_z·w_lobe;
-//             sample j was traced at full-res pixel s·j + o_k, and the trace stored the geometry and lobe it
-//             saw there (the guide images), exact per sample;
-//   temporal  the history H (last frame's output, accumulated weight A in alpha) reprojected with the motion
-//             vector, bilinear over 4 texels, each validated with the same weights against last frame's
-//             G-buffer: T = Σ_t b_t·w_t·A_t·H_t, T_w = Σ_t b_t·w_t·A_t;
-//   output    O = (S + γT) / (W_s + γT_w), new A = min(W_s + γT_w, A_max);
-//   sum of weights W = W_s + γT_w, kept per pixel; W < τ puts the pixel on the resample list (compacted,
-//             with the indirect dispatch of the resample pass counted up as entries are appended).
+// time (docs/design.md §6; Herzog et al. 2010, Tokuyoshi 2015 §5.3). For full-res pixel i:
+//   spatial   S = Σ_j c_j·f·w_z·w_lobe·I_j over the low-res samples j around the pixel, W_s = Σ_j f·w_z·w_lobe,
+//             W_acc = Σ_j c_j·f·w_z·w_lobe; sample j was traced at full-res pixel s·j + o_k, and the trace
+//             stored the geometry and lobe it saw there (the guide images), exact per sample; c_j makes the
+//             sample traced at pixel i itself count EXACT_SAMPLE_WEIGHT neighbourhoods (1 for the others);
+//   temporal  the history H (last frame's output, accumulated weight A in alpha) at the texel nearest to the
+//             position reprojected with the motion vector, validated with the same weights against last
+//             frame's G-buffer: T = w_t·A·H, T_w = w_t·A (without a guide: bilinear over 4 texels, unvalidated);
+//   output    O = (S + γT) / (W_acc + γT_w), new A = min(W_acc + γT_w, A_max);
+//   sum of weights W = W_s + γT_w / EXACT_SAMPLE_WEIGHT, kept per pixel; W < τ puts the pixel on the resample
+//             list (compacted, with the indirect dispatch of the resample pass counted up as entries are
+//             appended).
 // Diffuse and specular are weighted separately, each with its own lobe (lib/upsample_weights.glsl). Never a
 // division by a zero sum: every valid sample keeps a floor weight of FALLBACK_SHARE × its kernel weight, so
 // where the guide rejects them all the pixel takes their kernel-weighted mean (and is re-traced).
@@ -128,9 +130,10 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     const vec3 hereSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.specularSharpness) : vec3(0.0);
 
     // ---- spatial: the cell's low-res samples, each at its own jittered full-res position ----
-    // Two sums of the same weights: spatialWeight (the sum of weights W_s of DESIGN §3.5, for τ and the weights
-    // view) and the accumulation weights, in which a sample traced at this very pixel counts EXACT_SAMPLE_WEIGHT
-    // (lib/upsample_weights.glsl), as many interpolated neighbourhoods as make it dominate the history.
+    // Two sums of the same weights: spatialWeight (the sum of weights W_s of docs/design.md §6.5, for τ and the
+    // weights view) and the accumulation weights, in which a sample traced at this very pixel counts
+    // EXACT_SAMPLE_WEIGHT (lib/upsample_weights.glsl), as many interpolated neighbourhoods as make it dominate
+    // the history.
     vec3 spatialDiffuse = vec3(0.0), spatialSpecular = vec3(0.0);
     vec2 spatialWeight = vec2(0.0), accumulationWeight = vec2(0.0);
     [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {

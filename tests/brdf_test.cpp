@@ -114,7 +114,7 @@ TEST(Brdf, Reciprocity) {
     }
 }
 
-// Hard cases (DESIGN §4): α = 0, roughness 0 and 1, grazing and back-facing v, light at and below the
+// Hard cases (docs/design.md §7): α = 0, roughness 0 and 1, grazing and back-facing v, light at and below the
 // horizon.
 TEST(Brdf, HardCasesStayFinite) {
     const vec3 n(0.0f, 0.0f, 1.0f);

@@ -171,11 +171,12 @@ TEST(Cone, NoNaNAtRoughnessExtremesAndGrazingOrBackFacingViews) {
 }
 
 // The cone's start (issue 9): origin p + n·v0·CONE_START_OFFSET and first sample at t0 =
-// v0·CONE_START_DISTANCE, i.e. the offset taken twice where DESIGN §3.6 reads as once, against analytic cases
-// under a uniform sky of radiance L (what leaves the grid sees the environment, as trace.comp): a black floor
-// (irradiance π·L; the surface at y = 0 voxelized as the one voxel containing it, at 5 alignments) and the
-// same floor beside a one-voxel-thin infinite black wall (π·L/2 at any distance). Measures the self-occlusion
-// and leaking of the shader's start against the single offsets; lib/cone.glsl quotes the numbers.
+// v0·CONE_START_DISTANCE, i.e. the offset taken twice where the usual reading is once (docs/design.md §5.4),
+// against analytic cases under a uniform sky of radiance L (what leaves the grid sees the environment, as
+// trace.comp): a black floor (irradiance π·L; the surface at y = 0 voxelized as the one voxel containing it,
+// at 5 alignments) and the same floor beside a one-voxel-thin infinite black wall (π·L/2 at any distance).
+// Measures the self-occlusion and leaking of the shader's start against the single offsets; lib/cone.glsl
+// quotes the numbers.
 TEST(Cone, StartOffsetAgainstAnalyticFloorAndWall) {
     const float v0 = 1.0f, L = 1.0f;
     // Overlap of the footprint [c − d/2, c + d/2] with [lo, hi], as a share of d (the box-filtered
@@ -201,7 +202,7 @@ TEST(Cone, StartOffsetAgainstAnalyticFloorAndWall) {
         double ceiling = 0.0;  // light under a thin black ceiling 1-3 voxels up (expected 0), in units of L
     };
     Start starts[] = {{"shader (double)", CONE_START_OFFSET, CONE_START_DISTANCE},
-                      {"DESIGN: p + n*v0, t0 = 0", 1.0f, 0.0f},
+                      {"single: p + n*v0, t0 = 0", 1.0f, 0.0f},
                       {"p, t0 = v0", 0.0f, 1.0f},
                       {"p + n*2v0, t0 = 0", 2.0f, 0.0f}};
     const float alignments[] = {0.0f, 0.25f, 0.5f, 0.75f, 1.0f};
@@ -247,7 +248,7 @@ TEST(Cone, StartOffsetAgainstAnalyticFloorAndWall) {
     }
     const Start &shader = starts[0], &design = starts[1], &atSurface = starts[2];
     // Measured (64-voxel march): self-occlusion of the open floor, mean / worst: shader −10.6 % / 22.0 %,
-    // DESIGN's single offset −18.6 % / 49.8 %, from p −50.7 % / 78.9 % (2 voxels along n: −3.5 % / 5.1 %).
+    // the single offset −18.6 % / 49.8 %, from p −50.7 % / 78.9 % (2 voxels along n: −3.5 % / 5.1 %).
     EXPECT_LE(shader.floorWorst, 0.23);
     EXPECT_LE(shader.floorWorst, 0.5 * design.floorWorst);
     EXPECT_GE(shader.floorMean, 0.6 * design.floorMean);  // both negative

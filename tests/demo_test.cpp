@@ -191,7 +191,7 @@ TEST(DemoWindow, ScriptedAcceptanceRun) {
     auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
     // Steps 1-2 with the animation paused: the only change between two screenshots is the setting, measured
     // against the change between two screenshots of the same setting 16 frames apart (one jitter cycle).
-    // Steps 3-5 with the cube moving, as in seed 004 Fig. 8.
+    // Steps 3-5 with the cube moving, as in Tokuyoshi 2015 Fig. 8.
     const nlohmann::json steps = {
         {{"frame", 0}, {"set", {{"pause", "on"}, {"weights", "sg"}, {"trace-scale", 4}}}},
         {{"frame", 16}, {"screenshot", shot("0-sg")}},

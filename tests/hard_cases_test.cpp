@@ -1,4 +1,4 @@
-// Numerical hard cases on the GPU path (issue 9, DESIGN §4): κ at the fp16 limit of the guide, a surface
+// Numerical hard cases on the GPU path (issue 9, docs/design.md §7): κ at the fp16 limit of the guide, a surface
 // point at the camera (zero view vector), zero-length mesh normals, a camera in the plane of a surface
 // (grazing n·v) and the cone's start offset on cornell. Each renders the case at trace scale 4 (upsampled,
 // re-traced) and at trace scale 1 (the reference: every pixel traced) with --aux --validate, and checks every

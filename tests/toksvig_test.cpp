@@ -1,8 +1,8 @@
-// Normal-map filtering (shaders/lib/toksvig.glsl, DESIGN §3.2): the CPU properties of Toksvig's roughness and
-// of geometric specular AA, and the measurement that decides whether Toksvig helps: the `plane` scene rendered
-// at 4× the resolution with the normal map read at level 0 (--texture-lod0: unfiltered, so each sample is a
-// point sample of the true surface) and box-filtered down is the reference; the 1× render with Toksvig must be
-// closer to it (MSE on linear HDR) than the 1× render without.
+// Normal-map filtering (shaders/lib/toksvig.glsl, docs/design.md §4): the CPU properties of Toksvig's roughness
+// and of geometric specular AA, and the measurement that decides whether Toksvig helps: the `plane` scene
+// rendered at 4× the resolution with the normal map read at level 0 (--texture-lod0: unfiltered, so each sample
+// is a point sample of the true surface) and box-filtered down is the reference; the 1× render with Toksvig must
+// be closer to it (MSE on linear HDR) than the 1× render without.
 //
 // Before --texture-lod0 the reference sampled the normal map's mips too (at 4× only 2 levels finer, and the
 // bumps are averaged flat from level 2 on), so it was no ground truth; see CloserToTheSupersampledReference

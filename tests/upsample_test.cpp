@@ -1,4 +1,4 @@
-// The spatio-temporal upsampling and adaptive re-tracing on the GPU (DESIGN §3.5, §4, §5): cornell at trace
+// The spatio-temporal upsampling and adaptive re-tracing on the GPU (docs/design.md §6–8): cornell at trace
 // scale 4 against the same frame traced at every pixel (trace scale 1), computed by the same program.
 #include <gtest/gtest.h>
 

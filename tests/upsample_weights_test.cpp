@@ -1,8 +1,8 @@
-// The upsampling weights (shaders/lib/upsample_weights.glsl, DESIGN §3.3–3.5, seed 004 §4) on the CPU, through
-// the same header upsample.comp compiles: the spherical-Gaussian lobes, the lobe-aware weight and its
+// The upsampling weights (shaders/lib/upsample_weights.glsl, docs/design.md §6, Tokuyoshi 2015 §4) on the CPU,
+// through the same header upsample.comp compiles: the spherical-Gaussian lobes, the lobe-aware weight and its
 // properties (range, symmetry, identity, monotonic in angle and in sharpness mismatch, reduction to the normal
-// weight for equal sharpness), the hard cases of DESIGN §4, the plane weight, the tent kernel and the jitter
-// sequence. Random sweeps use a fixed seed.
+// weight for equal sharpness), the hard cases of docs/design.md §7, the plane weight, the tent kernel and the
+// jitter sequence. Random sweeps use a fixed seed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -69,7 +69,7 @@ vec3 rotated(vec3 a, vec3 t, double theta) {
     return vec3(glm::normalize(std::cos(theta) * glm::dvec3(a) + std::sin(theta) * glm::dvec3(t)));
 }
 
-// Seed 004 §4.2 evaluated independently, in double: λ̄ = λκ/(λ+κ),
+// Tokuyoshi 2015 §4.2 (docs/design.md §6.3) evaluated independently, in double: λ̄ = λκ/(λ+κ),
 // w = (2√(λ̄a λ̄b)/(λ̄a+λ̄b))^β · exp(β λ̄a λ̄b/(λ̄a+λ̄b) (ξa·ξb − 1)).
 double seedWeight(vec4 a, vec4 b) {
     const double lambdaA = 1.0 / double(a.w), lambdaB = 1.0 / double(b.w);
@@ -295,7 +295,7 @@ TEST(UpsampleWeights, EqualSharpnessReducesToNormalWeight) {
 }
 
 TEST(UpsampleWeights, LobeWeightSeesWhatNormalWeightMisses) {
-    // Seed 004 Fig. 1: same normal, different roughness or view — the normal weight is 1, the lobe weight not.
+    // Tokuyoshi 2015 Fig. 1: same normal, other roughness or view — the normal weight is 1, the lobe weight not.
     const vec3 n(0, 0, 1), v = normalize(vec3(0.5f, 0, 1));
     EXPECT_EQ(normalWeight(n, n, NORMAL_WEIGHT_DEFAULT_SIGMA2), 1.0f);
     EXPECT_LT(weight(specularLobe(n, v, 0.05f), specularLobe(n, v, 0.3f)), 0.5f);
@@ -306,7 +306,7 @@ TEST(UpsampleWeights, LobeWeightSeesWhatNormalWeightMisses) {
               weight(specularLobe(n, v, 0.02f), specularLobe(n, v2, 0.02f)));
 }
 
-// --- the lobe-aware weight: hard cases (DESIGN §4) ---------------------------------------------------------------
+// --- the lobe-aware weight: hard cases (docs/design.md §7) -------------------------------------------------------
 
 TEST(UpsampleWeights, LobeWeightHardCasesAreFinite) {
     const vec3 n(0, 0, 1);
@@ -541,7 +541,7 @@ TEST(UpsampleWeights, TentKernelIsAPartitionOfUnity) {
 
 TEST(UpsampleWeights, PreparedLobeWeightMatchesTheDefinition) {
     // lobeLogWeightPrepared (ln 2 + ½(ln λ̄a + ln λ̄b) − ln(λ̄a + λ̄b), harmonic term 1/(1/λ̄a + 1/λ̄b)) against
-    // the seed's formula in double, over random lobes and sharpnesses across the whole range [κ/(1+2κ), κ].
+    // Tokuyoshi 2015's formula in double, over random lobes and sharpnesses across the range [κ/(1+2κ), κ].
     Rng rng;
     for (int i = 0; i < 2000; ++i) {
         const vec3 a = rng.unitVector(), b = rng.unitVector();

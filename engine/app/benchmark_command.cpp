@@ -1,4 +1,4 @@
-// vct benchmark: GPU-timed measurements in one run on one device (DESIGN §5), in three modes.
+// vct benchmark: GPU-timed measurements in one run on one device (docs/design.md §8), in three modes.
 //
 // upsampling (default): speed against error of the upsampling configurations. One scene, one renderer per
 //   configuration: the reference (every pixel traced every frame, trace scale 1) and the low-res
@@ -197,7 +197,7 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         {"mode", "upsampling|scenes|scaling|report|study",
          "upsampling: configurations against trace scale 1; scenes: the default configuration on several "
          "scenes; scaling: cost against pixel count and voxel resolution; report: speed against error on the "
-         "report scenes, static, moving and cut cameras, errors every frame; study: the seed's Fig. 6 "
+         "report scenes, static, moving and cut cameras, errors every frame; study: Tokuyoshi 2015's Fig. 6 "
          "parameter "
          "study (beta x kappa, sigma_n, diffuse lobe) per material class",
          "upsampling"},

@@ -37,8 +37,9 @@ int runScalingBenchmark(const ParsedArgs& args, const SessionOptions& session, c
 int runReportBenchmark(const ParsedArgs& args, const SessionOptions& session, const BenchmarkFrames& frames,
                        const std::filesystem::path& outDir);
 
-// study: the seed's parameter study (004 Fig. 6): β × κ for sg, σ_n for normal, the diffuse lobe sharpness,
-// spatial upsampling only, errors per material class. Writes DIR/study.json and DIR/study.md.
+// study: Tokuyoshi 2015's parameter study (Fig. 6; docs/design.md §8.4): β × κ for sg, σ_n for normal, the
+// diffuse lobe sharpness, spatial upsampling only, errors per material class. Writes DIR/study.json and
+// DIR/study.md.
 int runStudyBenchmark(const ParsedArgs& args, const SessionOptions& session, const BenchmarkFrames& frames,
                       const std::filesystem::path& outDir);
 

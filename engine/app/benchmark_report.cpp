@@ -1,6 +1,6 @@
-// vct benchmark --mode report: speed against error as one report (DESIGN §5, issue 9). For every scene of the
-// report list (scenes/report_scenes.json) and every camera (static; the scene's camera path; a cut halfway),
-// one run renders, interleaved on one device:
+// vct benchmark --mode report: speed against error as one report (docs/design.md §8.4, issue 9). For every scene
+// of the report list (scenes/report_scenes.json) and every camera (static; the scene's camera path; a cut
+// halfway), one run renders, interleaved on one device:
 //   - the reference: every pixel traced every frame (trace scale 1);
 //   - trace scales 2 and 4 × weights bilinear / normal / sg × adaptive re-tracing off / on;
 //   - on the moving camera, sg + adaptive at scale 4 with τ swept (re-traced fraction and error against τ).

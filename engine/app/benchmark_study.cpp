@@ -1,9 +1,9 @@
-// vct benchmark --mode study: the seed's parameter study (004 Fig. 6). The seed measures, for materials of
-// different specular sharpness, the error of lobe-aware and normal-aware filtering against their parameter,
-// and finds the lobe-aware optima clustered (one β serves every material) where the normal-aware ones spread.
-// Here: the upsampling alone (trace scale 4, no history, no re-tracing, so that only the weights decide),
-// static camera, errors averaged over s² = 16 frames (every jitter offset once) against the reference of the
-// same frame, per material class of the reference's G-buffer:
+// vct benchmark --mode study: Tokuyoshi 2015's parameter study (Fig. 6; docs/design.md §8.4). The paper
+// measures, for materials of different specular sharpness, the error of lobe-aware and normal-aware filtering
+// against their parameter, and finds the lobe-aware optima clustered (one β serves every material) where the
+// normal-aware ones spread. Here: the upsampling alone (trace scale 4, no history, no re-tracing, so that only
+// the weights decide), static camera, errors averaged over s² = 16 frames (every jitter offset once) against the
+// reference of the same frame, per material class of the reference's G-buffer:
 //   metal (metallic ≥ 0.5), glossy dielectric (perceptual roughness < 0.35), rough dielectric (the rest).
 // Sweeps: sg β × κ (log grid) on the specular light; normal σ_n on specular and diffuse; the sg diffuse lobe
 // sharpness λ_d on the diffuse light. Writes DIR/study.json (heat maps: benchmarks/plot_report.py) and
@@ -227,7 +227,8 @@ int runStudyBenchmark(const ParsedArgs& args, const SessionOptions& session, con
     char caption[800];
     std::snprintf(
         caption, sizeof(caption),
-        "Device: %s, %ux%u. Seed 004 Fig. 6: upsampling alone (trace scale 4, no history, no re-tracing), "
+        "Device: %s, %ux%u. Tokuyoshi 2015 Fig. 6: upsampling alone (trace scale 4, no history, no "
+        "re-tracing), "
         "MSE of the demodulated indirect light against trace scale 1, mean over %u frames (every jitter "
         "offset), per material class of the G-buffer (metal: metallic >= 0.5; glossy: roughness < %.2f).",
         report["device"].get<std::string>().c_str(), session.settings.width, session.settings.height, frames,

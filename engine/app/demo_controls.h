@@ -16,7 +16,8 @@ namespace vct {
 struct DemoControls {
     RenderSettings settings;  // the main configuration (side A of the split view); width/height: the window's
     // The split view (a wipe): side B renders the same frames with `settings` changed by these options
-    // (applySetting names), e.g. {"weights": "normal"} for seed 004 Fig. 7. Both sides are really rendered.
+    // (applySetting names), e.g. {"weights": "normal"} as in Tokuyoshi 2015 Fig. 7. Both sides are really
+    // rendered.
     bool split = false;
     std::map<std::string, std::string> splitOverrides = {{"weights", "normal"}};
     float wipe = 0.5f;  // where side B starts, as a fraction of the width

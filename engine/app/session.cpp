@@ -30,7 +30,8 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
     options.settings.exposure = args.getFloat("exposure", 1e-4f, 1e4f);
     options.context.deviceSubstring = args.get("device");
     options.context.validation = args.has("validate");
-    // Material filtering (DESIGN §3.2): only commands that declare the flags (materialFilterOptions) see them.
+    // Material filtering (docs/design.md §4): only commands that declare the flags (materialFilterOptions)
+    // see them.
     options.settings.toksvig = onOff(args, "toksvig", options.settings.toksvig);
     options.settings.specularAA = onOff(args, "specular-aa", options.settings.specularAA);
     options.settings.textureLod0 = args.has("texture-lod0");
@@ -40,7 +41,7 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
             throw UsageError("--anisotropy '" + value + "': expected 0, 2, 4, 8 or 16");
         options.settings.anisotropy = uint32_t(std::stoul(value));
     }
-    // Global illumination (DESIGN §3.6), likewise only where declared (giOptions).
+    // Global illumination (docs/design.md §5), likewise only where declared (giOptions).
     options.settings.gi = onOff(args, "gi", options.settings.gi);
     if (args.has("trace-scale")) {
         const std::string value = args.get("trace-scale");
@@ -66,7 +67,7 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
 }
 
 void applyUpsampleOptions(const ParsedArgs& args, RenderSettings& settings) {
-    // Spatio-temporal upsampling and adaptive re-tracing (DESIGN §3.3–3.5), where declared (upsampleOptions).
+    // Spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6), where declared (upsampleOptions).
     if (args.has("weights")) {
         const std::string value = args.get("weights");
         if (value == "bilinear") settings.weights = RenderSettings::Weights::Bilinear;
@@ -98,7 +99,8 @@ std::string onOffText(bool value) { return value ? "on" : "off"; }
 
 std::vector<Option> upsampleOptions() {
     const RenderSettings defaults;
-    return {{"weights", "bilinear|normal|sg", "upsampling guide: none, depth x normal, depth x SG lobe (DESIGN 3.4)",
+    return {{"weights", "bilinear|normal|sg",
+             "upsampling guide: none, depth x normal, depth x SG lobe (docs/design.md sec. 6.3)",
              weightsName(defaults.weights)},
             {"beta", "B", "SG lobe weight exponent", text(defaults.beta)},
             {"kappa", "K", "SG smoothing kernel sharpness (bounds every lobe's sharpness)", text(defaults.kappa)},
@@ -113,7 +115,8 @@ std::vector<Option> upsampleOptions() {
 
 std::vector<Option> materialFilterOptions() {
     const RenderSettings defaults;
-    return {{"toksvig", "on|off", "Toksvig roughness from normal-map mips (DESIGN 3.2)", onOffText(defaults.toksvig)},
+    return {{"toksvig", "on|off", "Toksvig roughness from normal-map mips (docs/design.md sec. 4.1)",
+             onOffText(defaults.toksvig)},
             {"specular-aa", "on|off", "geometric specular anti-aliasing from normal derivatives",
              onOffText(defaults.specularAA)},
             {"texture-lod0", "", "diagnostic: sample material textures at level 0 only (supersampled references)",

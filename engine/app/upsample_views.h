@@ -1,5 +1,5 @@
-// What the upsampling shows (seed 004 Fig. 8): the pixels re-traced at full resolution in red over the frame,
-// and the per-pixel sum of upsampling weights as a heat map; their --aux files.
+// What the upsampling shows (Tokuyoshi 2015 Fig. 8; docs/design.md §6.6): the pixels re-traced at full resolution
+// in red over the frame, and the per-pixel sum of upsampling weights as a heat map; their --aux files.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
-// Error metrics on linear HDR images (DESIGN §5): how far an image is from a reference computed in the same
-// run. Over the RGB channels of every pixel (alpha ignored).
+// Error metrics on linear HDR images (docs/design.md §8.2): how far an image is from a reference computed in the
+// same run. Over the RGB channels of every pixel (alpha ignored).
 #pragma once
 
 #include <string>

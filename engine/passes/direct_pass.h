@@ -1,4 +1,4 @@
-// direct: full-resolution direct light (GGX + height-correlated Smith + Schlick, DESIGN §3.1) from every
+// direct: full-resolution direct light (GGX + height-correlated Smith + Schlick, docs/design.md §3.2) from every
 // punctual light, the main light shadow-mapped, plus emission and the constant ambient term.
 #pragma once
 

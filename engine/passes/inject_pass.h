@@ -1,5 +1,5 @@
 // inject: direct light (main light shadow-mapped, other lights unshadowed) and emission into the occupied
-// voxels → mip 0 of the grid's premultiplied radiance + opacity texture (DESIGN §2, §3.6).
+// voxels → mip 0 of the grid's premultiplied radiance + opacity texture (docs/design.md §5.2).
 #pragma once
 
 #include "render/pass.h"

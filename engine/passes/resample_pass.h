@@ -1,5 +1,5 @@
-// resample: adaptive re-tracing (DESIGN §3.5). Traces, at full resolution, only the pixels the upsample pass
-// listed (sum of weights < τ), through an indirect dispatch sized by that list, and overwrites their
+// resample: adaptive re-tracing (docs/design.md §6.6). Traces, at full resolution, only the pixels the upsample
+// pass listed (sum of weights < τ), through an indirect dispatch sized by that list, and overwrites their
 // upsampled indirect light; then copies the list's length back for `resampled_fraction`.
 #pragma once
 

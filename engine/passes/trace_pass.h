@@ -1,5 +1,5 @@
-// trace: voxel cone tracing at 1/traceScale resolution (DESIGN §3.6): 6 diffuse cones and 1 specular cone per
-// low-res pixel, from the full-res G-buffer at pixel (s·x, s·y), through the voxel grid's radiance mips.
+// trace: voxel cone tracing at 1/traceScale resolution (docs/design.md §5): 6 diffuse cones and 1 specular cone
+// per low-res pixel, from the full-res G-buffer at pixel (s·x, s·y), through the voxel grid's radiance mips.
 // Writes demodulated diffuse and specular indirect light (lib/cone.glsl) to the low-res targets.
 #pragma once
 

@@ -1,5 +1,5 @@
 // upsample: brings the low-res demodulated indirect light (trace) back to full resolution over space and time
-// with depth × lobe (or normal) weights (DESIGN §3.5, shaders/upsample.comp); keeps the per-pixel sum of
+// with depth × lobe (or normal) weights (docs/design.md §6, shaders/upsample.comp); keeps the per-pixel sum of
 // weights and lists the pixels whose sum is below τ for the resample pass (resetting that list first).
 #pragma once
 

@@ -1,9 +1,9 @@
-// voxelize: scene triangles → the voxel grid's albedo + opacity, normal and emission volumes (DESIGN §3.6).
-// A compute pass over triangles (no conservative rasterization on lavapipe): static instances are voxelized
-// once, on the first frame, into a persistent accumulator; moving instances every frame into a second one,
-// cleared first; a resolve merges both into the volumes. One timer scope covers all of it. With a voxel cache
-// (--voxel-cache, VoxelGrid::loadStaticCache) the first frame copies the cached static accumulator instead of
-// voxelizing the static instances: the same uints, so the same image.
+// voxelize: scene triangles → the voxel grid's albedo + opacity, normal and emission volumes (docs/design.md
+// §5.1). A compute pass over triangles (no conservative rasterization on lavapipe): static instances are
+// voxelized once, on the first frame, into a persistent accumulator; moving instances every frame into a second
+// one, cleared first; a resolve merges both into the volumes. One timer scope covers all of it. With a voxel
+// cache (--voxel-cache, VoxelGrid::loadStaticCache) the first frame copies the cached static accumulator instead
+// of voxelizing the static instances: the same uints, so the same image.
 #pragma once
 
 #include "render/pass.h"

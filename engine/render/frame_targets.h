@@ -33,7 +33,7 @@ struct FrameTargets {
     vk::Image guidePosition;        // RGBA32F world position, w: 1 (0 background)
     vk::Image guideNormal;          // RGBA16F unit normal, w: smoothed specular lobe sharpness
     vk::Image guideAxis;            // RGBA16F specular lobe axis
-    vk::Image indirect;             // upsample output, full res; weights: accumulated weight A (DESIGN §3.5)
+    vk::Image indirect;             // upsample output, full res; weights: accumulated A (docs/design.md §6.5)
     // Last frame's upsample output and G-buffer, for the temporal history (swapped in by swapHistory()).
     vk::Image indirectHistory;
     vk::Image prevDepth;

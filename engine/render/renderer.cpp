@@ -47,10 +47,10 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE, settings.traceScale,
                     settings.gi);
     createSamplers();
-    // The frame, in order (DESIGN §2).
+    // The frame, in order (docs/design.md §2.1).
     passes_.push_back(std::make_unique<ShadowPass>(context));
     if (settings.gi) {
-        // The voxel grid and its light (DESIGN §3.6); inject reads the shadow map drawn just before.
+        // The voxel grid and its light (docs/design.md §5.1–5.2); inject reads the shadow map drawn just before.
         voxelGrid_ = std::make_unique<VoxelGrid>(context, scene, chooseVoxelResolution(context, settings));
         settings_.voxelResolution = voxelGrid_->resolution();
         // The static voxelization from a file (vct voxelize) instead of computing it; validated here.
@@ -62,7 +62,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     passes_.push_back(std::make_unique<GBufferPass>(context));
     passes_.push_back(std::make_unique<DirectPass>(context));
     if (settings.gi) {
-        // Indirect light: traced at low resolution, brought back to full resolution (DESIGN §3.5, §3.6).
+        // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
         const VoxelSource voxels{&voxelGrid_->radiance(), voxelGrid_->sampler()};
         auto trace = std::make_unique<TracePass>(context, settings.traceScale);
         tracePass_ = trace.get();
@@ -160,7 +160,7 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
                               voxelGrid_ ? float(voxelGrid_->mipCount()) : 0.0f, settings_.gi ? 1.0f : 0.0f,
                               float(settings_.traceScale));
 
-    // Spatio-temporal upsampling (DESIGN §3.5): weights, history and this frame's trace offset o_k.
+    // Spatio-temporal upsampling (docs/design.md §6): weights, history and this frame's trace offset o_k.
     const bool history = settings_.temporal && !input.cut && hasPrevious_;
     u.prevInvViewProj = history ? previousInvViewProj_ : u.invViewProj;
     u.prevCameraPosition = history ? previousCameraPosition_ : u.cameraPosition;

@@ -38,7 +38,7 @@ struct RenderSettings {
     // of skipping them).
     bool recomputeEveryFrame = false;
 
-    // ---- spatio-temporal upsampling and adaptive re-tracing (DESIGN §3.3–3.5) ----
+    // ---- spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6.7) ----
     enum class Weights { Bilinear, Normal, Sg };
     Weights weights = Weights::Sg;  // bilateral guide: none, depth × normal, depth × SG lobe
     float beta = 20.0f;             // SG lobe weight exponent β
@@ -54,8 +54,8 @@ struct RenderSettings {
     bool writeWeightSum = false;
 
     // ---- material filtering ----
-    bool toksvig = true;     // normal-map mip length → effective roughness (DESIGN §3.2)
-    bool specularAA = true;  // geometric specular anti-aliasing from normal derivatives (seed 000)
+    bool toksvig = true;     // normal-map mip length → effective roughness (docs/design.md §4.1)
+    bool specularAA = true;  // geometric specular anti-aliasing from normal derivatives (docs/design.md §4.2)
     // Diagnostic: sample every material texture at level 0 (bilinear, no mips, no anisotropy). A render
     // supersampled this way and box-filtered down is the ground truth that texture filtering approximates.
     bool textureLod0 = false;
@@ -75,9 +75,9 @@ inline const char* weightsName(RenderSettings::Weights weights) {
 // spatial neighbourhood (the spatial kernel sums to 1): glsl::EXACT_SAMPLE_WEIGHT (lib/upsample_weights.glsl says
 // why 64; renderer.cpp checks that the two agree).
 constexpr float kExactSampleWeight = 64.0f;
-// Cap A_max on the accumulated history weight (DESIGN §3.5): 8 pixel-own samples, so that the history never
-// outweighs that many frames of new samples and follows changing light. With γ = 0.8 and one own sample every
-// s² frames the sum stays below ~1.25 of them, so the cap binds only at scale 1.
+// Cap A_max on the accumulated history weight (docs/design.md §6.5): 8 pixel-own samples, so that the history
+// never outweighs that many frames of new samples and follows changing light. With γ = 0.8 and one own sample
+// every s² frames the sum stays below ~1.25 of them, so the cap binds only at scale 1.
 constexpr float kHistoryWeightCap = 8.0f * kExactSampleWeight;
 // Largest κ (--kappa): glsl::SG_MAX_KAPPA, the largest fp16 value, since the trace stores each sample's
 // smoothed sharpness λ̄ ≤ κ in a 16-bit float (lib/upsample_weights.glsl; tests/upsample_weights_test.cpp

@@ -1,5 +1,5 @@
-// The voxel grid of voxel cone tracing (DESIGN §3.6): an N³ cube fitted to the scene's bounds, its resolved
-// material volumes and the premultiplied radiance + opacity texture with its mip chain. Owned by the
+// The voxel grid of voxel cone tracing (docs/design.md §5.1): an N³ cube fitted to the scene's bounds, its
+// resolved material volumes and the premultiplied radiance + opacity texture with its mip chain. Owned by the
 // Renderer (only when GI is on); written by the voxelize, inject and mips passes, read by the trace pass.
 //
 // Conventions (shared with shaders/lib/voxel.glsl and FrameUniforms::voxelOrigin / voxelParams):

@@ -1,4 +1,4 @@
-// Microfacet BRDF (DESIGN §3.1, seed 002): GGX NDF, height-correlated Smith visibility, Schlick Fresnel,
+// Microfacet BRDF (docs/design.md §3): GGX NDF, height-correlated Smith visibility, Schlick Fresnel,
 // Lambert diffuse, glTF metallic-roughness parameters, and the split-sum DFG term with multiple-scattering
 // energy compensation. Shared by GLSL and C++ (lib/cpp_glsl.h): pure functions, `f` literals.
 //
@@ -86,7 +86,7 @@ VCT_INLINE vec3 specularBrdf(float NoV, float NoL, float NoH, float VoH, vec3 f0
     return D_GGX(NoH, alpha) * V_SmithGGXCorrelated(NoV, NoL, alpha) * F_Schlick(f0, VoH);
 }
 
-// Diffuse lobe weighted by the light Fresnel did not reflect, f_d·(1 − F) (seed 002; glTF appendix B).
+// Diffuse lobe weighted by the light Fresnel did not reflect, f_d·(1 − F) (docs/design.md §3.2; glTF appendix B).
 VCT_INLINE vec3 diffuseBrdf(vec3 albedo, vec3 F) { return (1.0f - F) * albedo * Fd_Lambert(); }
 
 // f(v, l) = f_d·(1 − F) + f_s for a glTF material, in 1/sr, without the cosine. 0 for light below the
@@ -162,7 +162,7 @@ VCT_INLINE vec2 integrateDFG(float NoV, float alpha, int sampleCount) {
     return dfg / max(dfg.x + dfg.y, 1.0f);
 }
 
-// Multiple-scattering energy compensation (seed 002, last section; Filament §4.7.2; Fdez-Agüera 2019):
+// Multiple-scattering energy compensation (docs/design.md §3.3; Filament §4.7.2; Fdez-Agüera 2019):
 // scales single-scattering specular by 1 + F0 (1/E − 1), E = scale + bias from integrateDFG. ≥ 1 for E ≤ 1.
 VCT_INLINE vec3 specularEnergyCompensation(vec3 f0, vec2 dfg) {
     // E ≥ ~0.4 in practice. The lower guard keeps 1/E finite; the upper one absorbs rounding (fp16 tables,

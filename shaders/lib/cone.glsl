@@ -1,4 +1,4 @@
-// Voxel cone tracing math (DESIGN §3.6, Crassin et al. 2011): cone footprint, mip level, step length,
+// Voxel cone tracing math (docs/design.md §5.3–5.5, Crassin et al. 2011): cone footprint, mip level, step length,
 // front-to-back compositing with step-length opacity correction, the 6 diffuse cones and the specular aperture.
 // Shared by GLSL and C++ (lib/cpp_glsl.h): pure functions, `f` literals. The march loop itself lives in
 // trace.comp (GLSL cannot take a sample function as a parameter); tests/cone_test.cpp repeats it on the CPU
@@ -25,16 +25,16 @@ const float CONE_STEP_SCALE = 0.5f;
 const float CONE_MAX_OPACITY = 0.95f;
 // Where a cone starts, in voxels v0: from the origin p + n·v0·CONE_START_OFFSET, its first sample at distance
 // t0 = v0·CONE_START_DISTANCE along the cone. Both are 1: the offset is taken twice, once along the normal and
-// once along the cone (the normal cone's first sample is 2 voxels out, a 60° side cone's 1.5), where DESIGN
-// §3.6 reads as once (start at p + n·v0, t0 = 0). Kept on purpose, measured against analytic cases under a
-// uniform sky (tests/cone_test.cpp, Cone.StartOffsetAgainstAnalyticFloorAndWall; a 64-voxel march, the surface
-// voxelized as the voxel containing it at 5 alignments): the surface's own voxel and its trilinear neighbourhood
-// reach up to 2 voxels above it, and on an open black floor (exact irradiance π·L) the double start's
-// self-occlusion is a mean −10.6 % (worst −22.0 %, surface at the bottom of its voxel) against −18.6 % (worst
-// −49.8 %) for the single start and −50.7 % starting at p. Leaking beside a one-voxel-thin wall is the same
-// (+37.0 % against +36.9 %: coarse mips, not the start). The price: under a one-voxel-thin ceiling 1–3 voxels
-// up (exact: dark) it sees 39.8 % of the sky against 29.8 %. Starting 2 voxels out along n would cut the
-// self-occlusion to −3.5 % but put the origin inside such occluders.
+// once along the cone (the normal cone's first sample is 2 voxels out, a 60° side cone's 1.5), where the
+// usual reading of Crassin et al. is once (start at p + n·v0, t0 = 0; docs/design.md §5.4). Kept on purpose,
+// measured against analytic cases under a uniform sky (tests/cone_test.cpp,
+// Cone.StartOffsetAgainstAnalyticFloorAndWall; a 64-voxel march, the surface voxelized as the voxel containing it
+// at 5 alignments): the surface's own voxel and its trilinear neighbourhood reach up to 2 voxels above it, and on
+// an open black floor (exact irradiance π·L) the double start's self-occlusion is a mean −10.6 % (worst −22.0 %,
+// surface at the bottom of its voxel) against −18.6 % (worst −49.8 %) for the single start and −50.7 % starting
+// at p. Leaking beside a one-voxel-thin wall is the same (+37.0 % against +36.9 %: coarse mips, not the start).
+// The price: under a one-voxel-thin ceiling 1–3 voxels up (exact: dark) it sees 39.8 % of the sky against 29.8 %.
+// Starting 2 voxels out along n would cut the self-occlusion to −3.5 % but put the origin inside such occluders.
 const float CONE_START_OFFSET = 1.0f;
 const float CONE_START_DISTANCE = 1.0f;
 // Widest specular cone: half-angle 45°. Wider lobes are as blurry as the diffuse cones, and a wider cone

@@ -1,5 +1,5 @@
-// Cone tracing of one full-res pixel through the voxel grid (DESIGN §3.6): shared by trace.comp (one low-res
-// sample per thread) and resample.comp (the listed full-res pixels). GLSL only: it marches a sampler3D.
+// Cone tracing of one full-res pixel through the voxel grid (docs/design.md §5.3–5.5): shared by trace.comp (one
+// low-res sample per thread) and resample.comp (the listed full-res pixels). GLSL only: it marches a sampler3D.
 // Expects before inclusion: `frame` (FrameUniforms), lib/constants, brdf, cone and gbuffer_read.
 #ifndef VCT_CONE_TRACE_GLSL
 #define VCT_CONE_TRACE_GLSL

@@ -1,5 +1,5 @@
 // The indirect light of one pixel (or one low-res sample) in one RGBA32_UINT texel: demodulated diffuse and
-// specular radiance, each with its accumulated weight A (DESIGN §3.5), as eight bfloat16 values (a float's
+// specular radiance, each with its accumulated weight A (docs/design.md §6.5), as eight bfloat16 values (a float's
 // upper 16 bits, rounded to nearest even). One texel instead of two RGBA16F images: the upsample stores once and
 // reads its history once per pixel, composite reads once. bfloat16, not half: packing is three integer
 // operations (packHalf2x16 measured 3 ms of 20 in the upsample at 640×360 on lavapipe), and it keeps float's

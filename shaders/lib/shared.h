@@ -34,7 +34,7 @@ struct FrameUniforms {
     vec4 voxelParams;      // x: resolution N (N³ voxels), y: mip count, z: 1 when GI is on, w: trace scale
     vec4 materialParams;   // x: 1 when Toksvig roughness is on, y: 1 when geometric specular AA is on,
                            // z: 1 to sample material textures at level 0 only (supersampled references)
-    // ---- spatio-temporal upsampling (DESIGN §3.5) ----
+    // ---- spatio-temporal upsampling (docs/design.md §6) ----
     mat4 prevInvViewProj;  // last frame's inverse view-projection (history positions from the previous depth)
     vec4 prevCameraPosition;  // xyz last frame's camera position (history view vectors)
     vec4 upsampleParams;   // x: β, y: κ, z: σ_n², w: γ (history decay)

@@ -1,5 +1,6 @@
-// Normal-map filtering (DESIGN §3.2): Toksvig's roughness from the length of an averaged normal, and geometric
-// specular anti-aliasing from screen-space normal derivatives (seed 000, the average-normal isotropic form).
+// Normal-map filtering (docs/design.md §4): Toksvig's roughness from the length of an averaged normal, and
+// geometric specular anti-aliasing from screen-space normal derivatives (Kaplanyan et al. 2016, in the
+// average-normal isotropic form: docs/design.md §4.2).
 // Shared by GLSL and C++ (lib/cpp_glsl.h): pure functions, `f` literals. All work on α² (α = perceptual²,
 // the GGX width) and return α'² in [0, 1]; every finite input, r = 0 and infinite derivatives included,
 // gives a finite result.
@@ -11,7 +12,7 @@
 // Shortest averaged-normal length used: r → 0 (normals that cancel) would give σ² → ∞.
 const float TOKSVIG_MIN_LENGTH = 1e-3f;
 
-// Pixel filter of the specular AA: a Gaussian of variance 0.25 pixel² (seed 000 §1.1).
+// Pixel filter of the specular AA: a Gaussian of variance 0.25 pixel² (docs/design.md §4.2).
 const float SPECULAR_AA_KERNEL_VARIANCE = 0.25f;
 // Largest roughness (α²) the specular AA may add: keeps the bias bounded where derivatives explode
 // (silhouettes, grazing angles).
@@ -39,7 +40,7 @@ VCT_INLINE float toksvigAlpha2Exact(float alpha2, float sigma2) {
 
 // Screen-space variance of the normal for the pixel filter: σ_k² (|∂n/∂x|² + |∂n/∂y|²), where the
 // arguments are the squared lengths of the derivatives of the (average) normal across one pixel. This is the
-// trace of the covariance, an upper bound of its largest eigenvalue (the isotropic form of seed 000 §3).
+// trace of the covariance, an upper bound of its largest eigenvalue (the isotropic form, docs/design.md §4.2).
 VCT_INLINE float specularAAVariance(float dndx2, float dndy2) {
     return SPECULAR_AA_KERNEL_VARIANCE * (max(dndx2, 0.0f) + max(dndy2, 0.0f));
 }

@@ -1,6 +1,6 @@
-// The weights of the spatio-temporal upsampling (DESIGN §3.3–3.5, seed 004 §4): spherical-Gaussian (SG)
-// approximations of each pixel's specular and diffuse lobes, the lobe-aware weight that compares two of them,
-// the normal-aware baseline it replaces, the geometric (plane-distance) weight and the spatial kernel.
+// The weights of the spatio-temporal upsampling (docs/design.md §6, Tokuyoshi 2015 §4): spherical-Gaussian
+// (SG) approximations of each pixel's specular and diffuse lobes, the lobe-aware weight that compares two of
+// them, the normal-aware baseline it replaces, the geometric (plane-distance) weight and the spatial kernel.
 // Shared by GLSL (upsample.comp) and C++ (tests/upsample_weights_test.cpp) through lib/cpp_glsl.h: pure
 // functions, `f` literals.
 //
@@ -12,7 +12,7 @@
 #include "lib/constants.glsl"
 #include "lib/cone.glsl"
 
-// Seed 004's parameters: β sharpens the lobe weight, κ is the sharpness of the smoothing kernel that bounds
+// Tokuyoshi 2015's parameters: β sharpens the lobe weight, κ is the sharpness of the smoothing kernel that bounds
 // every lobe's sharpness (λ̄ ≤ κ), so no two lobes are "infinitely" different.
 const float SG_DEFAULT_BETA = 20.0f;
 const float SG_DEFAULT_KAPPA = 100.0f;
@@ -29,7 +29,7 @@ const float SG_DIFFUSE_SHARPNESS = 2.0f;
 // back-facing views (normal maps) of rough surfaces from turning into mirror lobes.
 const float SG_MIN_NOV = 1e-4f;
 
-// Specular lobe of a pixel (DESIGN §3.3): the GGX NDF as an SG around n with λ_h = 2/α², warped into the
+// Specular lobe of a pixel (docs/design.md §6.2): the GGX NDF as an SG around n with λ_h = 2/α², warped into the
 // reflected direction ξ = 2(n·v)n − v with λ = λ_h / (4 n·v), i.e. 1/λ = 2α²·max(n·v, ε).
 // n, v unit; alpha the effective (Toksvig, AA) GGX roughness α = perceptual².
 VCT_INLINE vec4 specularLobe(vec3 n, vec3 v, float alpha) {
@@ -48,7 +48,8 @@ VCT_INLINE float smoothedSharpness(float invLambda, float kappa) {
     return k / (1.0f + k * max(invLambda, 0.0f));
 }
 
-// Lobe-aware weight of seed 004 §4.2 between lobes a and b, in [0, 1], symmetric, 1 for identical lobes:
+// Lobe-aware weight of Tokuyoshi 2015 §4.2 (docs/design.md §6.3) between lobes a and b, in [0, 1],
+// symmetric, 1 for identical lobes:
 //   w = ( 2√(λ̄a λ̄b) / (λ̄a + λ̄b) )^β · exp( β · λ̄a λ̄b / (λ̄a + λ̄b) · (ξa·ξb − 1) ).
 // The first factor penalises a sharpness mismatch, the second the angle between the axes. ξa·ξb − 1 is taken
 // as −½‖ξa − ξb‖², exact for unit axes and free of the cancellation of 1 − cos near 0. The exponent reaches
@@ -168,7 +169,7 @@ const float BSPLINE_CENTRE = 0.5625f;
 // sample by its plain kernel weight (upsample.comp keeps both sums); the re-trace writes this weight too.
 const float EXACT_SAMPLE_WEIGHT = 64.0f;
 
-// Low-res sample offsets o_k (DESIGN §3.5): frame k traces low-res pixel (x, y) at full-res pixel
+// Low-res sample offsets o_k (docs/design.md §6.1): frame k traces low-res pixel (x, y) at full-res pixel
 // s·(x, y) + o_k. The sequence visits all s×s offsets every s² frames in an order that spreads consecutive
 // offsets apart (the 2×2 and 4×4 Bayer matrices' ranks), so a partial history already covers the block evenly.
 VCT_INLINE ivec2 jitterOffset(uint frameIndex, int scale) {
