@@ -157,7 +157,7 @@ int compareDirectories(const ParsedArgs& args) {
 
     const float usedExposure = exposure.value_or(info.exposure.value_or(1.0f));
     const TruthComparison comparison = compareWithTruth(reference, vct, usedExposure);
-    std::printf("vct %s against the reference %s\n%s", imageDir.c_str(), referenceDir.c_str(),
+    std::printf("%s against the reference %s\n%s", imageDir.c_str(), referenceDir.c_str(),
                 formatTruthTable(comparison).c_str());
 
     nlohmann::json json = truthJson(comparison);

@@ -373,8 +373,9 @@ std::string formatTruthTable(const TruthComparison& c) {
     for (const SurfaceRatios& surface : c.surfaces)
         text += regionLine(std::to_string(surface.id) + " " + surface.name, surface.sums);
     text += regionLine("whole image", c.image);
+    text += "(noise:*: the reference's own relative noise on its sum, sqrt(sum var lum) / sum lum)\n";
     std::snprintf(line, sizeof(line), "\n%-10s %12s %12s %14s %14s %14s\n", "light", "sRGB PSNR", "sRGB MSE",
-                  "relMSE-noise", "ref.noise", "relMSE raw");
+                  "relMSE", "ref.noise", "relMSE raw");
     text += line;
     const std::pair<const char*, const TruthError*> errors[] = {{"final", &c.finalError},
                                                                 {"indirect", &c.indirectError},
@@ -395,8 +396,11 @@ std::string formatTruthTable(const TruthComparison& c) {
         }
         text += line;
     }
-    std::snprintf(line, sizeof(line), "(tone map: exposure %g, ACES, sRGB, peak 1; relMSE epsilon %g)\n",
-                  double(c.exposure), kTruthRelMseEpsilon);
+    std::snprintf(
+        line, sizeof(line),
+        "(sRGB: exposure %g, ACES, sRGB, peak 1; relMSE: linear HDR, mean ((v - r)^2 - var r) / (r^2 + %g), "
+        "the reference's noise subtracted; ref.noise: mean var r / (r^2 + eps))\n",
+        double(c.exposure), kTruthRelMseEpsilon);
     text += line;
     return text;
 }
