@@ -14,6 +14,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "io/image_io.h"
 #include "io/image_metrics.h"
 #include "io/truth_metrics.h"
@@ -352,6 +353,22 @@ TEST(TruthMetrics, InputProblemsNameThePixel) {
     EXPECT_NE(vct::surfaceIdProblem(ids).value_or("").find("surface id -2"), std::string::npos);
     ids.pixels[4] = std::nanf("");
     EXPECT_TRUE(vct::surfaceIdProblem(ids).has_value());
+}
+
+TEST(TruthMetrics, SizeMismatchOrBadIdsThrowNamingTheBuffer) {
+    const TruthReference reference = makeReference();
+    LightBuffers vctLight = makeScaledVct();
+    vctLight.diffuse = makeImage(refDiffuse, 4, 4);
+    try {
+        vct::compareWithTruth(reference, vctLight, 1.0f);
+        ADD_FAILURE() << "no error for a 4x4 diffuse";
+    } catch (const vct::Error& e) {
+        EXPECT_EQ(std::string(e.what()), "vct diffuse_indirect is 4x4, the reference's final 8x4");
+    }
+    EXPECT_THROW(vct::log2RatioMap(reference, vctLight, vct::Light::Diffuse), vct::Error);
+    TruthReference badIds = makeReference();
+    badIds.surfaceId.pixels[0] = std::nanf("");
+    EXPECT_THROW(vct::compareWithTruth(badIds, makeScaledVct(), 1.0f), vct::Error);
 }
 
 TEST(TruthMetrics, Log2RatioMaps) {

@@ -193,6 +193,26 @@ std::string regionLine(const std::string& label, const RegionRatios& region) {
     return line;
 }
 
+// Every image of both directories at the reference's final size (throws naming the first that is not).
+void checkSizes(const TruthReference& reference, const LightBuffers& vct) {
+    const uint32_t w = reference.mean.finalImage.width, h = reference.mean.finalImage.height;
+    const std::pair<const ImageRgba32f*, const char*> images[] = {
+        {&reference.mean.finalImage, "reference final"},
+        {&reference.mean.direct, "reference direct"},
+        {&reference.mean.diffuse, "reference diffuse_indirect"},
+        {&reference.mean.specular, "reference specular_indirect"},
+        {&reference.variance.finalImage, "reference final_variance"},
+        {&reference.variance.direct, "reference direct_variance"},
+        {&reference.variance.diffuse, "reference diffuse_indirect_variance"},
+        {&reference.variance.specular, "reference specular_indirect_variance"},
+        {&reference.surfaceId, "reference surface_id"},
+        {&vct.finalImage, "vct final"},
+        {&vct.direct, "vct direct"},
+        {&vct.diffuse, "vct diffuse_indirect"},
+        {&vct.specular, "vct specular_indirect"}};
+    for (const auto& [image, what] : images) checkSize(*image, what, w, h);
+}
+
 }  // namespace
 
 const char* lightName(Light light) {
@@ -248,29 +268,15 @@ std::optional<std::string> surfaceIdProblem(const ImageRgba32f& image) {
 }
 
 std::vector<int> surfaceIds(const ImageRgba32f& surfaceIdImage) {
+    if (auto problem = surfaceIdProblem(surfaceIdImage)) throw Error("reference surface_id: " + *problem);
     std::vector<int> ids(size_t(surfaceIdImage.width) * surfaceIdImage.height);
     for (size_t i = 0; i < ids.size(); ++i) ids[i] = int(surfaceIdImage.pixels[i * 4]);
     return ids;
 }
 
 TruthComparison compareWithTruth(const TruthReference& reference, const LightBuffers& vct, float exposure) {
+    checkSizes(reference, vct);
     const uint32_t w = reference.mean.finalImage.width, h = reference.mean.finalImage.height;
-    const std::pair<const ImageRgba32f*, const char*> images[] = {
-        {&reference.mean.finalImage, "reference final"},
-        {&reference.mean.direct, "reference direct"},
-        {&reference.mean.diffuse, "reference diffuse_indirect"},
-        {&reference.mean.specular, "reference specular_indirect"},
-        {&reference.variance.finalImage, "reference final_variance"},
-        {&reference.variance.direct, "reference direct_variance"},
-        {&reference.variance.diffuse, "reference diffuse_indirect_variance"},
-        {&reference.variance.specular, "reference specular_indirect_variance"},
-        {&reference.surfaceId, "reference surface_id"},
-        {&vct.finalImage, "vct final"},
-        {&vct.direct, "vct direct"},
-        {&vct.diffuse, "vct diffuse_indirect"},
-        {&vct.specular, "vct specular_indirect"}};
-    for (const auto& [image, what] : images) checkSize(*image, what, w, h);
-
     TruthComparison result;
     result.width = w;
     result.height = h;
@@ -298,6 +304,7 @@ TruthComparison compareWithTruth(const TruthReference& reference, const LightBuf
 }
 
 std::vector<float> log2RatioMap(const TruthReference& reference, const LightBuffers& vct, Light light) {
+    checkSizes(reference, vct);
     const std::vector<int> ids = surfaceIds(reference.surfaceId);
     std::vector<float> values(ids.size(), 0.0f);
     for (size_t i = 0; i < ids.size(); ++i) {

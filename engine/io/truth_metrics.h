@@ -90,7 +90,7 @@ std::optional<std::string> varianceProblem(const ImageRgba32f& image);
 // R not an integer in [−1, kMaxSurfaceId] ("pixel (0, 0) has surface id 0.5, not an integer >= -1").
 std::optional<std::string> surfaceIdProblem(const ImageRgba32f& image);
 
-// The reference's integer surface id at each pixel (assumes surfaceIdProblem found nothing).
+// The reference's integer surface id at each pixel; throws vct::Error when surfaceIdProblem finds one.
 std::vector<int> surfaceIds(const ImageRgba32f& surfaceIdImage);
 
 // The comparison. Every image must have the reference's final size (throws vct::Error otherwise); values are
