@@ -150,6 +150,9 @@ int compareDirectories(const ParsedArgs& args) {
     const fs::path referenceFinal = referenceDir / "final.exr";
     reference.variance =
         loadLight(referenceDir, "_variance", varianceProblem, &reference.mean.finalImage, referenceFinal);
+    if (const fs::path indirect = referenceDir / "indirect_variance.exr"; fs::exists(indirect))
+        reference.variance.indirect =
+            loadChecked(indirect, varianceProblem, &reference.mean.finalImage, referenceFinal);
     reference.surfaceId = loadChecked(referenceDir / "surface_id.exr", surfaceIdProblem,
                                       &reference.mean.finalImage, referenceFinal);
     const LightBuffers vct =

@@ -53,9 +53,10 @@ glm::dvec3 value(const LightBuffers& buffers, Light light, size_t pixel) {
     return {};
 }
 
-// The variance of the reference's Indirect (final − direct) is var_final + var_direct: an upper bound (see
-// compareWithTruth in the header).
+// The variance of the reference's Indirect (final − direct): its own estimate when the reference wrote one,
+// else var_final + var_direct, an upper bound (see compareWithTruth in the header).
 glm::dvec3 variance(const LightBuffers& variances, Light light, size_t pixel) {
+    if (light == Light::Indirect && !variances.indirect.pixels.empty()) return rgb(variances.indirect, pixel);
     if (light == Light::Indirect) return rgb(variances.finalImage, pixel) + rgb(variances.direct, pixel);
     return value(variances, light, pixel);
 }

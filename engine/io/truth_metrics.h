@@ -29,6 +29,9 @@ inline constexpr int kMaxSurfaceId = 1 << 24;
 // The four light buffers of one directory (linear HDR RGBA, row-major, top row first).
 struct LightBuffers {
     ImageRgba32f finalImage, direct, diffuse, specular;
+    // Only in a reference's variances, when it wrote indirect_variance.exr: the variance of its final −
+    // direct estimated per sample. Empty otherwise: var_final + var_direct then bounds it.
+    ImageRgba32f indirect;
 };
 
 // What `vct reference --out` writes.

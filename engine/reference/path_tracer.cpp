@@ -21,7 +21,7 @@ namespace {
 using glm::vec2;
 using glm::vec3;
 
-enum Buffer { kFinal, kDirect, kDiffuse, kSpecular, kBufferCount };
+enum Buffer { kFinal, kDirect, kDiffuse, kSpecular, kIndirect, kBufferCount };
 
 // The split-sum DFG values (F0·scale + bias = the specular lobe's albedo) the reference demodulates with and
 // composes `final` with: integrateDFG, the function vct's table holds, on a grid whose corners are exactly
@@ -333,6 +333,7 @@ struct PathTracer::Impl {
         sums[kDirect][half][pixel] += glm::dvec3(direct);
         sums[kDiffuse][half][pixel] += glm::dvec3(diffuse);
         sums[kSpecular][half][pixel] += glm::dvec3(specular);
+        sums[kIndirect][half][pixel] += glm::dvec3(final - direct);
     }
 };
 
@@ -398,7 +399,7 @@ ReferenceImages PathTracer::images() const {
     const double n = double(impl.spp);
     const double nEven = double((impl.spp + 1) / 2), nOdd = double(impl.spp / 2);
     EstimateImage* images[kBufferCount] = {&out.final, &out.direct, &out.diffuseIndirect,
-                                           &out.specularIndirect};
+                                           &out.specularIndirect, &out.indirect};
     const size_t pixels = size_t(out.width) * out.height;
     for (int b = 0; b < kBufferCount; ++b) {
         EstimateImage& image = *images[b];

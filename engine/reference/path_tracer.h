@@ -76,6 +76,7 @@ struct EstimateImage {
 struct ReferenceImages {
     uint32_t width = 0, height = 0, samplesPerPixel = 0;
     EstimateImage final, direct, diffuseIndirect, specularIndirect;
+    EstimateImage indirect;          // final − direct per sample: the indirect light leaving the surface
     std::vector<int32_t> surfaceId;  // primary hit at the pixel centre; -1: background
 };
 

@@ -156,7 +156,8 @@ std::vector<std::string> writeReferenceDirectory(const std::filesystem::path& di
          {{"final_relative_mse", relativeNoise(images.final, images.surfaceId)},
           {"direct_relative_mse", relativeNoise(images.direct, images.surfaceId)},
           {"diffuse_indirect_relative_mse", relativeNoise(images.diffuseIndirect, images.surfaceId)},
-          {"specular_indirect_relative_mse", relativeNoise(images.specularIndirect, images.surfaceId)}}},
+          {"specular_indirect_relative_mse", relativeNoise(images.specularIndirect, images.surfaceId)},
+          {"indirect_relative_mse", relativeNoise(images.indirect, images.surfaceId)}}},
         {"units",
          "direct: emission + punctual lights (every light shadowed by a ray); diffuse_indirect: (1/pi) * "
          "integral of "

@@ -1,8 +1,9 @@
 // The reference directory `vct reference --out DIR` writes, in vct's own units so that it compares pixel for
-// pixel with `vct render --aux`: final, direct, diffuse_indirect, specular_indirect (EXR, linear HDR, RGBA
-// float, A = 1) with the variance of each mean (`*_variance.exr`), surface_id.exr (R: the surface id of the
-// primary hit at the pixel centre, −1 background), final.png (tone-mapped sRGB) and reference.json (settings,
-// samples, seed, rays/s, wall time, the surface table with per-surface sums, noise).
+// pixel with `vct render --aux`: final, direct, diffuse_indirect, specular_indirect, indirect (= final −
+// direct) (EXR, linear HDR, RGBA float, A = 1) with the variance of each mean (`*_variance.exr`),
+// surface_id.exr (R: the surface id of the primary hit at the pixel centre, −1 background), final.png
+// (tone-mapped sRGB) and reference.json (settings, samples, seed, rays/s, wall time, the surface table with
+// per-surface sums, noise).
 #pragma once
 
 #include <filesystem>
