@@ -15,6 +15,7 @@
 #   TRUTH_WORK   where renders go (default: a fresh temporary directory); references already there with the same
 #                settings are reused, so a run can be resumed
 #   TRUTH_QUICK=1   64x36, 8 spp, 8 frames: a smoke test of the script, not for claims
+#   TRUTH_TAG    appended to the results directory's name (e.g. t0 for TRUTH_FRAMES=1: the static pose at t = 0)
 #   VCT          the program [build/vct]
 set -euo pipefail
 # Scene arguments that are files are made absolute before common.sh changes to the repository root.
@@ -141,16 +142,19 @@ for scene in "${scenes[@]}"; do
                 "$vct" compare --reference-dir "$(reference_dir "$name" "$kind")" --image-dir "$image" \
                     --json "$json" --maps "$work/maps/$stem" "${exposure_flags[@]}"
                 produced+=("$json")
+                seconds_file="$(reference_dir "$name" "$kind").seconds"
+                reference_seconds=null
+                [ -f "$seconds_file" ] && reference_seconds="$(cat "$seconds_file")"
                 annotate "$json" "scene=$name" "scene_path=$scene" "voxels=$v" "trace_scale=$t" \
                     "reference_kind=$kind" "reference_label=$(reference_label "$kind")" "size=$size" \
                     "spp=$spp" "frames=$frames" "frame=$frame" \
-                    "reference_seconds=$(cat "$(reference_dir "$name" "$kind").seconds" 2>/dev/null || echo null)"
+                    "reference_seconds=$reference_seconds"
             done
         done
     done
 done
 
-results="benchmarks/results/${slug}-truth${suffix}"
+results="benchmarks/results/${slug}-truth${suffix}${TRUTH_TAG:+-$TRUTH_TAG}"
 rm -rf "$results"
 mkdir -p "$results"
 cp "${produced[@]}" "$results/"
