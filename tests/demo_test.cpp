@@ -1,18 +1,23 @@
 // The demo's controls, scripts and timers on the CPU; and `vct demo --script` under xvfb-run on lavapipe:
 // the issue's acceptance run (weights, trace scale, resample view, adaptive, camera cut), the split view's
 // honesty (each side bit for bit the frame of its configuration alone), camera paths (demo = render, and
-// reproducible), recording, scene loading errors, shader hot reload, and every live setting under validation.
+// reproducible), recording, scene loading errors, shader hot reload, and every live setting under validation;
+// the path-traced reference on side B (its worker thread on the CPU, and in the window).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "app/demo_controls.h"
+#include "app/demo_reference.h"
 #include "app/demo_script.h"
 #include "app/demo_timers.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "scene/builtin_scenes.h"
 #include "scene/camera_path.h"
 #include "test_util.h"
 
@@ -73,6 +78,31 @@ TEST(DemoControls, ActionsAreOneShotFlags) {
     EXPECT_THROW(applyOption(c, "screenshot", ""), UsageError);
 }
 
+TEST(DemoControls, SplitSourceAndReferenceBounces) {
+    DemoControls c;
+    EXPECT_EQ(c.splitSource, SplitSource::Vct);
+    EXPECT_EQ(c.referenceBounces, 1);  // what vct's cones estimate
+    applyOption(c, "split", "on");
+    EXPECT_TRUE(c.rendersB());
+    EXPECT_FALSE(c.showsReference());
+    applyOption(c, "split-source", "reference");
+    EXPECT_FALSE(c.rendersB());  // no second vct renderer while B is the reference
+    EXPECT_TRUE(c.showsReference());
+    applyOption(c, "reference-bounces", "all");
+    EXPECT_EQ(c.referenceBounces, reference::kUnlimitedBounces);
+    EXPECT_EQ(referenceBouncesText(c.referenceBounces), "all");
+    applyOption(c, "reference-bounces", "3");
+    EXPECT_EQ(referenceBouncesText(c.referenceBounces), "3");
+    for (const char* bad : {"65", "-1", "1.5", "", "some"})
+        EXPECT_THROW(applyOption(c, "reference-bounces", bad), UsageError) << bad;
+    EXPECT_THROW(applyOption(c, "split-source", "truth"), UsageError);
+    EXPECT_EQ(c.referenceBounces, 3);
+    EXPECT_STREQ(splitSourceName(c.splitSource), "reference");
+    applyOption(c, "split", "off");
+    EXPECT_FALSE(c.showsReference());
+    EXPECT_FALSE(c.rendersB());
+}
+
 TEST(DemoScript, ParsesStepsInFrameOrderKeepingFileOrderWithinAFrame) {
     const DemoScript script = parseDemoScript(
         R"([{"frame": 5, "screenshot": "b.png", "ui": true},
@@ -122,6 +152,128 @@ TEST(DemoTimers, RollingMediansPerPassAndFrame) {
     for (float v : {1.0f, 5.0f, 3.0f}) history.push(v);
     EXPECT_EQ(history.values(), (std::vector<float>{5.0f, 3.0f}));
     EXPECT_FLOAT_EQ(history.max(), 5.0f);
+}
+
+// ---- the reference's worker (CPU) ----
+
+ReferenceRequest referenceRequest(std::shared_ptr<const Scene> scene, uint32_t width, uint32_t height) {
+    ReferenceRequest request;
+    request.camera = sceneCamera(*scene, 0.0f);
+    request.scene = std::move(scene);
+    request.width = width;
+    request.height = height;
+    return request;
+}
+
+// Lockstep (scripted runs): one pass per update, waited for; a camera move restarts, a new time rebuilds, and
+// what it shows is the tracer's own mean, bit for bit.
+TEST(DemoReference, LockstepAddsOnePassPerFrameAndRestartsOnChanges) {
+    auto scene = std::make_shared<const Scene>(loadScene("cornell"));
+    ReferenceRequest request = referenceRequest(scene, 32, 18);
+    DemoReference worker(1);
+    ReferenceSnapshot snapshot;
+    for (uint32_t frame = 0; frame < 4; ++frame) {
+        EXPECT_EQ(worker.update(request, true), frame == 0);
+        worker.waitForFrame();
+        snapshot = worker.snapshot();
+        ASSERT_TRUE(snapshot.images) << snapshot.state;
+        EXPECT_EQ(snapshot.samplesPerPixel, frame + 1);
+        EXPECT_EQ(snapshot.images->samplesPerPixel, frame + 1);
+        EXPECT_TRUE(snapshot.current);
+        EXPECT_FALSE(snapshot.failed);
+    }
+    EXPECT_GT(snapshot.raysPerSecond, 0.0);
+    EXPECT_EQ(snapshot.threads, 1u);
+    reference::ReferenceSettings settings;
+    settings.width = 32;
+    settings.height = 18;
+    settings.threads = 1;
+    reference::PathTracer tracer(*scene, 0.0f, request.camera, settings);
+    tracer.addSamples(4);
+    EXPECT_TRUE(snapshot.images->final.mean == tracer.images().final.mean);
+
+    request.camera = cutCamera(request.camera);  // a camera move: restart
+    EXPECT_TRUE(worker.update(request, true));
+    worker.waitForFrame();
+    EXPECT_EQ(worker.snapshot().samplesPerPixel, 1u);
+    EXPECT_FALSE(worker.update(request, true));
+    worker.waitForFrame();
+    EXPECT_EQ(worker.snapshot().samplesPerPixel, 2u);
+    request.timeSeconds = 0.5f;  // the animation moved: a new tracer at the new time
+    EXPECT_TRUE(worker.update(request, true));
+    worker.waitForFrame();
+    EXPECT_EQ(worker.snapshot().samplesPerPixel, 1u);
+    request.bounces = reference::kUnlimitedBounces;
+    EXPECT_TRUE(worker.update(request, true));
+    worker.waitForFrame();
+    EXPECT_EQ(worker.snapshot().samplesPerPixel, 1u);
+    EXPECT_TRUE(worker.snapshot().current);
+}
+
+// The clock runs whenever the animation is not paused; a scene that stands still at the new time (plane has
+// no animation) keeps its tracer converging.
+TEST(DemoReference, ATimeStepThatMovesNothingKeepsConverging) {
+    auto scene = std::make_shared<const Scene>(loadScene("plane"));
+    ASSERT_TRUE(scene->animations.empty());
+    ReferenceRequest request = referenceRequest(scene, 16, 9);
+    DemoReference worker(1);
+    EXPECT_TRUE(worker.update(request, true));
+    worker.waitForFrame();
+    request.timeSeconds = 1.0f / 60.0f;
+    EXPECT_FALSE(worker.update(request, true));
+    worker.waitForFrame();
+    EXPECT_EQ(worker.snapshot().samplesPerPixel, 2u);
+    EXPECT_TRUE(worker.snapshot().current);
+}
+
+// Interactive: update never waits; the worker converges on its own, a camera move makes the image shown
+// stale at once, and destroying it mid-pass cancels, joins and frees the scene it kept alive.
+TEST(DemoReference, ConvergesOnItsOwnThreadAndStopsCleanly) {
+    auto scene = std::make_shared<const Scene>(loadScene("cornell"));
+    const std::weak_ptr<const Scene> weak = scene;
+    ReferenceRequest request = referenceRequest(scene, 64, 36);
+    scene.reset();  // the request (and then the worker) holds the only share
+    auto worker = std::make_unique<DemoReference>(1);
+    auto waitFor = [&](const char* what, auto done) {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        ReferenceSnapshot s = worker->snapshot();
+        while (!done(s) && std::chrono::steady_clock::now() < deadline) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            s = worker->snapshot();
+        }
+        EXPECT_TRUE(done(s)) << what << ": " << s.samplesPerPixel << " spp, " << s.state;
+        return s;
+    };
+    worker->update(request, false);
+    // No further update: the passes come from the worker alone.
+    const ReferenceSnapshot converging =
+        waitFor("converging", [](const ReferenceSnapshot& s) { return s.current && s.samplesPerPixel >= 3; });
+    ASSERT_TRUE(converging.images);
+    EXPECT_EQ(converging.images->width, 64u);
+    request.camera = cutCamera(request.camera);
+    EXPECT_TRUE(worker->update(request, false));
+    EXPECT_FALSE(worker->snapshot().current) << "the image of the previous camera counts as current";
+    waitFor("restarted", [](const ReferenceSnapshot& s) { return s.current && s.samplesPerPixel >= 1; });
+    // Passes that take a while (640x360, every bounce): destroyed inside one, the worker cancels it.
+    request.width = 640;
+    request.height = 360;
+    request.bounces = reference::kUnlimitedBounces;
+    auto start = std::chrono::steady_clock::now();
+    EXPECT_TRUE(worker->update(request, false));
+    waitFor("a long pass", [](const ReferenceSnapshot& s) { return s.current && s.samplesPerPixel >= 1; });
+    auto since = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    const double passSeconds = since(start);  // with the scene build: at least one pass
+    std::this_thread::sleep_for(std::chrono::duration<double>(passSeconds / 4));
+    request.scene.reset();
+    EXPECT_FALSE(weak.expired()) << "the worker's tracer must keep its scene alive";
+    start = std::chrono::steady_clock::now();
+    worker.reset();  // it would not stop on its own before 65536 spp
+    const double stopSeconds = since(start);
+    std::printf("first pass at 640x360 %.3f s, stopped in %.4f s\n", passSeconds, stopSeconds);
+    EXPECT_TRUE(weak.expired()) << "the scene outlived the worker";
+    EXPECT_LT(stopSeconds, passSeconds / 2) << "stopping the worker did not cancel its pass";
 }
 
 // ---- the demo window under xvfb-run ----
@@ -268,6 +420,87 @@ TEST(DemoWindow, SplitViewSidesAreTheirConfigurationsFrames) {
     EXPECT_NE(outSplit.find("renderer B (split view)"), std::string::npos) << outSplit;
 }
 
+// Mean luminance (0..1 of the sRGB bytes) of the columns [x0, x1).
+double meanLuminance(const ImageRgba8& image, uint32_t x0, uint32_t x1) {
+    double sum = 0.0;
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = x0; x < x1; ++x) {
+            const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+            sum += test::luminance(p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f);
+        }
+    return sum / (double(image.height) * (x1 - x0));
+}
+
+// Bytes that differ in the columns [x0, x1).
+size_t differingBytes(const ImageRgba8& a, const ImageRgba8& b, uint32_t x0, uint32_t x1) {
+    if (a.width != b.width || a.height != b.height) return ~size_t(0);
+    size_t count = 0;
+    for (uint32_t y = 0; y < a.height; ++y)
+        for (uint32_t x = x0; x < x1; ++x)
+            for (uint32_t c = 0; c < 4; ++c) {
+                const size_t i = (size_t(y) * a.width + x) * 4 + c;
+                count += a.pixels[i] != b.pixels[i];
+            }
+    return count;
+}
+
+// Side B as the path-traced reference (split-source reference), the animation paused: one pass per frame in a
+// scripted run, so B at frame 15 is `vct reference --spp 16` bit for bit; a camera cut restarts it (spp back
+// down); switching the source, a scene load and the split view off stop its worker, under validation.
+TEST(DemoWindow, SplitViewShowsThePathTracedReferenceConvergingAndRestarting) {
+    REQUIRE_XVFB();
+    const std::filesystem::path dir = test::freshOutputDir("demo/reference");
+    auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
+    const nlohmann::json steps = {
+        {{"frame", 0}, {"set", {{"pause", "on"}, {"split", "on"}, {"split-source", "reference"}}}},
+        {{"frame", 7}, {"screenshot", shot("0-8spp")}},
+        {{"frame", 15}, {"screenshot", shot("1-16spp")}},
+        {{"frame", 16}, {"set", {{"camera-cut", true}}}},
+        {{"frame", 18}, {"screenshot", shot("2-cut")}},
+        {{"frame", 19}, {"set", {{"split-source", "vct"}}}},
+        {{"frame", 20}, {"screenshot", shot("3-vct")}},
+        {{"frame", 21}, {"set", {{"split-source", "reference"}, {"reference-bounces", "all"}}}},
+        {{"frame", 22}, {"set", {{"scene", "plane"}}}},
+        {{"frame", 25}, {"screenshot", shot("4-plane")}},
+        {{"frame", 26}, {"set", {{"split", "off"}}}}};
+    const auto start = std::chrono::steady_clock::now();
+    const test::RunResult run = runDemo({"--script", writeScript(dir, steps).string()});
+    std::printf("demo run: %.1f s\n",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    expectClean(run);
+    // The spp of what B showed at each screenshot: growing one per frame, down again after the cut and the
+    // scene load.
+    for (const char* line : {"frame 7: reference 8 spp,", "frame 15: reference 16 spp,",
+                             "frame 18: reference 3 spp,", "frame 25: reference 4 spp,"})
+        EXPECT_NE(run.out.find(line), std::string::npos) << line << "\n" << run.out;
+    EXPECT_EQ(run.out.find("frame 20: reference"), std::string::npos) << "B is vct again at frame 20";
+    EXPECT_NE(run.out.find("loaded plane"), std::string::npos) << run.out;
+
+    const test::RunResult reference =
+        test::runVct({"reference", "--size", "160x90", "--spp", "16", "--frame", "0", "--threads", "1",
+                      "--out", (dir / "reference").string()});
+    ASSERT_TRUE(reference.exited() && reference.exitCode == 0) << reference.describe();
+    const ImageRgba8 truth = readPng(dir / "reference" / "final.png");
+    const ImageRgba8 at8 = readPng(shot("0-8spp")), at16 = readPng(shot("1-16spp")),
+                     cut = readPng(shot("2-cut")), vct = readPng(shot("3-vct")),
+                     plane = readPng(shot("4-plane"));
+    ASSERT_EQ(at16.width, 160u);
+    const uint32_t wipe = 80, w = 160;  // the default wipe, 0.5
+    EXPECT_EQ(differingBytes(at16, truth, wipe, w), 0u) << "B is not the reference's 16 spp image";
+    EXPECT_GT(differingBytes(at16, truth, 0, wipe), 0u) << "A is the reference too";
+    const double luminance8 = meanLuminance(at8, wipe, w), luminance16 = meanLuminance(at16, wipe, w);
+    std::printf("B mean luminance: %.4f at 8 spp, %.4f at 16 spp, %.4f after the cut, %.4f on plane\n",
+                luminance8, luminance16, meanLuminance(cut, wipe, w), meanLuminance(plane, wipe, w));
+    EXPECT_GT(luminance8, 0.1) << "B is (nearly) black";
+    EXPECT_GT(luminance16, 0.1) << "B is (nearly) black";
+    EXPECT_GT(meanLuminance(cut, wipe, w), 0.1) << "B is (nearly) black after the cut";
+    EXPECT_GT(meanLuminance(plane, wipe, w), 0.05) << "B is (nearly) black on plane";
+    EXPECT_GT(differingBytes(at8, at16, wipe, w), 0u) << "B did not change from 8 to 16 spp";
+    EXPECT_GT(difference(at16, cut).changed, 0.5) << "the cut did not change B";
+    EXPECT_GT(differingBytes(vct, truth, wipe, w), 0u)
+        << "B still shows the reference after split-source vct";
+}
+
 std::filesystem::path writeCameraPath(const std::filesystem::path& dir) {
     const std::filesystem::path file = dir / "path.camera.json";
     test::writeTextFile(file, R"({"scene": "cornell", "keys": [
@@ -369,19 +602,23 @@ TEST(DemoWindow, ShaderHotReloadRebuildsAndACompileErrorKeepsTheOldPipelines) {
 TEST(DemoWindow, EverySettingAndViewChangesLiveWithoutValidationMessages) {
     REQUIRE_XVFB();
     const std::filesystem::path dir = test::freshOutputDir("demo/all");
+    // clang-format off
     const std::vector<std::pair<std::string, nlohmann::json>> changes = {
-        {"beta", 5},         {"kappa", 300},        {"sigma-n", 0.3},
-        {"gamma", 0.5},      {"tau", 1.0},          {"temporal", "off"},
-        {"temporal", "on"},  {"toksvig", "off"},    {"specular-aa", "off"},
-        {"exposure", 2.5},   {"anisotropy", 2},     {"weights", "bilinear"},
-        {"trace-scale", 1},  {"view", "weights"},   {"trace-scale", 2},
-        {"view", "weights"}, {"view", "diffuse"},   {"view", "specular"},
+        {"beta", 5}, {"kappa", 300}, {"sigma-n", 0.3},
+        {"gamma", 0.5}, {"tau", 1.0}, {"temporal", "off"},
+        {"temporal", "on"}, {"toksvig", "off"}, {"specular-aa", "off"},
+        {"exposure", 2.5}, {"anisotropy", 2}, {"weights", "bilinear"},
+        {"trace-scale", 1}, {"view", "weights"}, {"trace-scale", 2},
+        {"view", "weights"}, {"view", "diffuse"}, {"view", "specular"},
         {"view", "normals"}, {"view", "roughness"}, {"view", "direct"},
-        {"view", "voxels"},  {"voxel-mip", 2},      {"voxels", 64},
-        {"gi", "off"},       {"view", "resample"},  {"gi", "on"},
-        {"split", "on"},     {"b-trace-scale", 1},  {"b-gi", "off"},
-        {"wipe", 0.3},       {"view", "final"},     {"reset-history", true},
-        {"step", true},      {"pause", "on"},       {"panel", "off"}};
+        {"view", "voxels"}, {"voxel-mip", 2}, {"voxels", 64},
+        {"gi", "off"}, {"view", "resample"}, {"gi", "on"},
+        {"split", "on"}, {"b-trace-scale", 1}, {"b-gi", "off"},
+        {"wipe", 0.3}, {"split-source", "reference"}, {"view", "specular"},
+        {"reference-bounces", "all"}, {"exposure", 1.5}, {"step", true},
+        {"split-source", "vct"}, {"view", "final"}, {"reset-history", true},
+        {"step", true}, {"pause", "on"}, {"panel", "off"}};
+    // clang-format on
     nlohmann::json steps = nlohmann::json::array();
     uint32_t frame = 1;
     for (const auto& [name, value] : changes) steps.push_back({{"frame", frame++}, {"set", {{name, value}}}});

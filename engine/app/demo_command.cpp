@@ -1,8 +1,8 @@
 // vct demo: the frame of `vct render`, live in a window, with a fly camera, a Dear ImGui panel for every live
 // setting, a per-pass GPU timer overlay, the split view, scene loading, camera paths, scripts and shader hot
 // reload. One frame: input and script steps → applyOption → renderers brought to the settings → the frame
-// rendered (side A, and side B for the split view) → views and UI composed in the window
-// (app/demo_display.h).
+// rendered (side A, and side B for the split view; or the path-traced reference told what to trace, on its
+// own thread: app/demo_reference.h) → views and UI composed in the window (app/demo_display.h).
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -21,6 +21,7 @@
 #include "app/demo_display.h"
 #include "app/demo_input.h"
 #include "app/demo_panel.h"
+#include "app/demo_reference.h"
 #include "app/demo_renderers.h"
 #include "app/demo_script.h"
 #include "app/demo_timers.h"
@@ -58,6 +59,13 @@ CommandSpec makeDemoSpec() {
          "final"},
         {"voxel-mip", "M", "--view voxels: the mip shown", "0"},
         {"panel", "on|off", "show the panel and timers at start (F1 toggles)", "on"},
+        {"split", "on|off", "split view at start (V toggles): side A left of the wipe, B right", "off"},
+        {"split-source", "vct|reference",
+         "what side B shows: vct with its own settings (b-NAME in scripts) or the path-traced reference, "
+         "converging on a CPU thread",
+         "vct"},
+        {"reference-bounces", "0..64|all",
+         "the reference's indirect bounces: 1 is what vct estimates, all is full GI", "1"},
         {"exposure", "X", "linear exposure before tone mapping", "1"},
         {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""}};
@@ -158,6 +166,8 @@ class DemoApp {
     void present();
     void fillInfo(double cpuMs);
     DisplaySource source(Renderer& renderer, std::vector<uint8_t>& pixels);
+    void updateReference(const FrameInput& input);
+    DisplaySource referenceSource();
     float animationTime() const {
         return fixedStep_ ? float(animationTicks_) / 60.0f : float(animationSeconds_);
     }
@@ -189,6 +199,15 @@ class DemoApp {
     CameraPath recorded_;
     double recordStart_ = 0.0;
     std::vector<uint8_t> pixelsA_, pixelsB_;
+    // Side B as the path-traced reference (split-source reference): its worker runs while this exists.
+    // Declared after renderers_, so it is stopped first (it holds its own share of the scene anyway).
+    std::unique_ptr<DemoReference> reference_;
+    ReferenceSnapshot referenceShown_;  // what pixelsReference_ shows (made from its version)
+    uint64_t referenceVersion_ = 0;
+    float referenceExposure_ = 0.0f;
+    std::string referenceError_;  // the last failure reported
+    AuxView referenceView_ = AuxView::Final;
+    std::vector<uint8_t> pixelsReference_;
 };
 
 void DemoApp::resetCamera() {
@@ -236,6 +255,7 @@ void DemoApp::runJobs() {
     if (loadedScene_) {
         try {
             renderers_.replaceScene(std::move(loadedScene_), controls_);
+            reference_.reset();  // joins the worker; the next frame starts one on the new scene
             resetCamera();
             info_.message = "loaded " + renderers_.scene().name + " (" + renderers_.lastRebuild() + ")";
             std::printf("%s\n", info_.message.c_str());
@@ -387,6 +407,51 @@ DisplaySource DemoApp::source(Renderer& renderer, std::vector<uint8_t>& pixels) 
     return {nullptr, &pixels};
 }
 
+void DemoApp::updateReference(const FrameInput& input) {
+    if (!controls_.showsReference()) {
+        reference_.reset();  // cancels the pass under way and joins the worker
+        return;
+    }
+    if (!reference_)
+        reference_ = std::make_unique<DemoReference>(
+            demoReferenceThreads(context_.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU));
+    ReferenceRequest request;
+    request.scene = renderers_.sharedScene();
+    request.timeSeconds = input.timeSeconds;
+    request.camera = input.camera;
+    request.width = controls_.settings.width;
+    request.height = controls_.settings.height;
+    request.bounces = controls_.referenceBounces;
+    request.environment = controls_.settings.ambient;
+    // Scripted runs go in lockstep (one pass per frame, waited for) so that they are reproducible.
+    reference_->update(request, fixedStep_);
+}
+
+// Side B as the reference's latest complete pass, tone mapped again only when it, the exposure or the view
+// changed; black until a pass of the window's size is done.
+DisplaySource DemoApp::referenceSource() {
+    const ReferenceSnapshot latest = reference_->snapshot();
+    const uint32_t w = controls_.settings.width, h = controls_.settings.height;
+    const float exposure = controls_.settings.exposure;
+    const bool fits = latest.images && latest.images->width == w && latest.images->height == h;
+    if (!fits) {
+        pixelsReference_.assign(size_t(w) * h * 4, 0);
+        for (size_t i = 3; i < pixelsReference_.size(); i += 4) pixelsReference_[i] = 255;
+        referenceShown_ = {};
+        referenceVersion_ = 0;
+        return {nullptr, &pixelsReference_};
+    }
+    if (latest.version != referenceVersion_ || exposure != referenceExposure_ ||
+        controls_.view != referenceView_) {
+        pixelsReference_ = referencePixels(*latest.images, controls_.view, exposure);
+        referenceVersion_ = latest.version;
+        referenceExposure_ = exposure;
+        referenceView_ = controls_.view;
+    }
+    referenceShown_ = latest;
+    return {nullptr, &pixelsReference_};
+}
+
 void DemoApp::fillInfo(double cpuMs) {
     Renderer& a = renderers_.a();
     info_.width = a.settings().width;
@@ -403,6 +468,20 @@ void DemoApp::fillInfo(double cpuMs) {
     info_.timersDisplay = &timersDisplay_;
     info_.frameTimes = &frameTimes_;
     info_.animationTime = animationTime();
+    info_.reference = reference_ != nullptr;
+    if (reference_) {
+        const ReferenceSnapshot snapshot = reference_->snapshot();
+        info_.referenceSpp = snapshot.current ? snapshot.samplesPerPixel : 0;
+        info_.referenceShownSpp = snapshot.samplesPerPixel;
+        info_.referenceRaysPerSecond = snapshot.raysPerSecond;
+        info_.referenceThreads = snapshot.threads;
+        info_.referenceState = snapshot.state;
+        if (snapshot.failed && snapshot.state != referenceError_) {
+            referenceError_ = snapshot.state;
+            info_.error = "reference: " + snapshot.state;
+            std::fprintf(stderr, "%s\n", info_.error.c_str());
+        }
+    }
 }
 
 uint32_t DemoApp::run() {
@@ -441,7 +520,9 @@ uint32_t DemoApp::run() {
         updateCamera(dt, input);
         input.timeSeconds = animationTime();
         input.cut = std::exchange(cut_, false);
+        updateReference(input);  // before rendering: the worker traces while the device renders side A
         renderers_.render(input);
+        if (reference_ && fixedStep_) reference_->waitForFrame();  // scripted: one pass per frame
         timersA_.add(renderers_.a().timer().lastFrame());
         if (renderers_.b())
             timersB_.add(renderers_.b()->timer().lastFrame());
@@ -479,8 +560,10 @@ uint32_t DemoApp::run() {
 void DemoApp::present() {
     SwapchainImage image;
     const DisplaySource a = source(renderers_.a(), pixelsA_);
-    const DisplaySource b = renderers_.b() ? source(*renderers_.b(), pixelsB_) : DisplaySource{};
-    const bool split = renderers_.b() != nullptr;
+    const DisplaySource b = reference_       ? referenceSource()
+                            : renderers_.b() ? source(*renderers_.b(), pixelsB_)
+                                             : DisplaySource{};
+    const bool split = renderers_.b() != nullptr || reference_ != nullptr;
     // A screenshot without the UI leaves the panel out of this one frame.
     const bool ui = controls_.panel && (controls_.screenshot.empty() || controls_.screenshotUi);
     display_.beginUi();
@@ -498,6 +581,13 @@ void DemoApp::present() {
             writePng(file, display_.width(), display_.height(), display_.read());
             info_.message = "wrote " + file;
             std::printf("frame %u: wrote %s\n", frame_, file.c_str());
+            if (reference_) {
+                // What B showed: the spp of that image, and whether it is of this frame's camera and time.
+                std::printf("frame %u: reference %u spp%s, %.3f Mrays/s on %u threads\n", frame_,
+                            referenceShown_.samplesPerPixel,
+                            referenceShown_.current ? "" : " (previous view)",
+                            referenceShown_.raysPerSecond * 1e-6, reference_->threads());
+            }
         } catch (const Error& e) {
             info_.error = e.what();
         }
@@ -515,6 +605,12 @@ void DemoApp::printTimers() const {
     line("renderer A", timersA_);
     line("renderer B (split view)", timersB_);
     line("window (view, ui, blit)", timersDisplay_);
+    if (reference_) {
+        const ReferenceSnapshot snapshot = reference_->snapshot();
+        std::printf("reference (split view B): %u spp, %.3f Mrays/s on %u threads, %s\n",
+                    snapshot.samplesPerPixel, snapshot.raysPerSecond * 1e-6, snapshot.threads,
+                    snapshot.state.c_str());
+    }
 }
 
 }  // namespace
@@ -534,6 +630,8 @@ int runDemoCommand(int argc, char** argv, int first) {
     applyOption(args.controls, "view", parsedArgs.get("view"));
     applyOption(args.controls, "voxel-mip", parsedArgs.get("voxel-mip"));
     applyOption(args.controls, "panel", parsedArgs.get("panel"));
+    for (const char* name : {"split", "split-source", "reference-bounces"})
+        applyOption(args.controls, name, parsedArgs.get(name));
     // The scene first: a bad file is reported before any window opens.
     auto scene = std::make_unique<Scene>(loadScene(args.session.scene));
     for (const std::string& note : scene->notes) std::printf("note: %s\n", note.c_str());

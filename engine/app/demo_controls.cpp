@@ -1,10 +1,12 @@
 #include "app/demo_controls.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
 #include "core/error.h"
+#include "reference/path_tracer.h"
 
 namespace vct {
 
@@ -114,13 +116,22 @@ RenderSettings DemoControls::settingsB() const {
     return b;
 }
 
+const char* splitSourceName(SplitSource source) {
+    return source == SplitSource::Reference ? "reference" : "vct";
+}
+
+std::string referenceBouncesText(int bounces) {
+    return bounces == reference::kUnlimitedBounces ? "all" : std::to_string(bounces);
+}
+
 const std::vector<std::string>& demoOptionNames() {
+    // clang-format off
     static const std::vector<std::string> names = {
-        "weights",    "trace-scale",   "beta",       "kappa",         "sigma-n",    "gamma",      "tau",
-        "temporal",   "adaptive",      "toksvig",    "specular-aa",   "anisotropy", "exposure",   "gi",
-        "voxels",     "view",          "voxel-mip",  "split",         "wipe",       "b-NAME",     "panel",
-        "pause",      "play-path",     "camera-cut", "reset-history", "step",       "hot-reload", "record",
-        "screenshot", "screenshot-ui", "scene",      "quit"};
+        "weights", "trace-scale", "beta", "kappa", "sigma-n", "gamma", "tau", "temporal", "adaptive", "toksvig",
+        "specular-aa", "anisotropy", "exposure", "gi", "voxels", "view", "voxel-mip", "split", "wipe",
+        "split-source", "reference-bounces", "b-NAME", "panel", "pause", "play-path", "camera-cut",
+        "reset-history", "step", "hot-reload", "record", "screenshot", "screenshot-ui", "scene", "quit"};
+    // clang-format on
     return names;
 }
 
@@ -143,6 +154,25 @@ void applyOption(DemoControls& c, const std::string& name, const std::string& va
         c.split = onOff(name, value);
     } else if (name == "wipe") {
         c.wipe = number(name, value, 0.0f, 1.0f);
+    } else if (name == "split-source") {
+        if (value == "vct")
+            c.splitSource = SplitSource::Vct;
+        else if (value == "reference")
+            c.splitSource = SplitSource::Reference;
+        else
+            throw UsageError("split-source '" + value + "': expected vct or reference");
+    } else if (name == "reference-bounces") {
+        // As `vct reference --bounces`: 0 direct light only, 1 what vct's cones estimate, N, all (full GI).
+        if (value == "all") {
+            c.referenceBounces = reference::kUnlimitedBounces;
+        } else {
+            int bounces = -1;
+            const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), bounces);
+            if (value.empty() || error != std::errc() || end != value.data() + value.size() || bounces < 0 ||
+                bounces > 64)
+                throw UsageError(name + " '" + value + "': expected 0 to 64 or all");
+            c.referenceBounces = bounces;
+        }
     } else if (name == "panel") {
         c.panel = onOff(name, value);
     } else if (name == "pause") {

@@ -13,6 +13,10 @@
 
 namespace vct {
 
+// What side B of the split view shows: a second vct renderer (`settingsB()`) or the path-traced reference
+// (app/demo_reference.h) of the frame side A renders.
+enum class SplitSource { Vct, Reference };
+
 struct DemoControls {
     RenderSettings settings;  // the main configuration (side A of the split view); width/height: the window's
     // The split view (a wipe): side B renders the same frames with `settings` changed by these options
@@ -21,6 +25,8 @@ struct DemoControls {
     bool split = false;
     std::map<std::string, std::string> splitOverrides = {{"weights", "normal"}};
     float wipe = 0.5f;  // where side B starts, as a fraction of the width
+    SplitSource splitSource = SplitSource::Vct;
+    int referenceBounces = 1;  // the reference's indirect bounces: 1 (what vct estimates), N, or -1 (all)
     AuxView view = AuxView::Final;
     uint32_t voxelMip = 0;
     bool panel = true;      // F1
@@ -40,6 +46,9 @@ struct DemoControls {
 
     // Side B's settings: `settings` with splitOverrides applied.
     RenderSettings settingsB() const;
+    // The split view is on and B is a vct renderer / the path-traced reference.
+    bool rendersB() const { return split && splitSource == SplitSource::Vct; }
+    bool showsReference() const { return split && splitSource == SplitSource::Reference; }
 };
 
 // Sets one RenderSettings field by its command-line name (weights, trace-scale, beta, kappa, sigma-n, gamma,
@@ -48,13 +57,18 @@ struct DemoControls {
 // value (one line, naming the option).
 bool applySetting(RenderSettings& settings, const std::string& name, const std::string& value);
 
-// Applies a render setting (above), a demo option (view, voxel-mip, split, wipe, panel, pause, play-path,
-// b-NAME: NAME for side B only) or an action (camera-cut, reset-history, step, hot-reload, record,
-// quit, screenshot FILE, screenshot-ui FILE, scene FILE). UsageError for an unknown name or a bad value.
+// Applies a render setting (above), a demo option (view, voxel-mip, split, wipe, split-source vct|reference,
+// reference-bounces 0..64|all, panel, pause, play-path, b-NAME: NAME for side B only) or an action
+// (camera-cut, reset-history, step, hot-reload, record, quit, screenshot FILE, screenshot-ui FILE, scene
+// FILE). UsageError for an unknown name or a bad value.
 void applyOption(DemoControls& controls, const std::string& name, const std::string& value);
 
 // The names applyOption takes, for the README and the error message.
 const std::vector<std::string>& demoOptionNames();
+
+// The values of split-source and reference-bounces as applyOption takes them ("reference", "all").
+const char* splitSourceName(SplitSource source);
+std::string referenceBouncesText(int bounces);
 
 // A setting's current value as applyOption takes it ("sg", "4", "on", "0.25"); empty for unknown names.
 std::string settingText(const RenderSettings& settings, const std::string& name);

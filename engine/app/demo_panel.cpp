@@ -66,6 +66,21 @@ void bars(const RollingTimers& timers, const char* id) {
     ImGui::PopID();
 }
 
+// The reference's progress, in the panel and the timer overlay.
+void referenceLine(const PanelInfo& info) {
+    if (info.referenceSpp > 0)
+        ImGui::TextWrapped("reference: %u spp, %.2f Mrays/s (%u CPU thread%s)", info.referenceSpp,
+                           info.referenceRaysPerSecond * 1e-6, info.referenceThreads,
+                           info.referenceThreads == 1 ? "" : "s");
+    else if (info.referenceState.rfind("failed", 0) == 0)
+        ImGui::TextWrapped("reference %s", info.referenceState.c_str());
+    else if (info.referenceShownSpp > 0)
+        ImGui::TextWrapped("reference: %s, first pass (showing %u spp of the previous view)",
+                           info.referenceState.c_str(), info.referenceShownSpp);
+    else
+        ImGui::TextWrapped("reference: %s, first pass", info.referenceState.c_str());
+}
+
 void timerWindow(const PanelInfo& info) {
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(viewport->Size.x - 8.0f, 8.0f), ImGuiCond_Always, ImVec2(1.0f, 0.0f));
@@ -92,6 +107,10 @@ void timerWindow(const PanelInfo& info) {
     ImGui::Separator();
     ImGui::TextUnformatted("GPU median of the last 60 frames");
     if (info.timersA) bars(*info.timersA, "a");
+    if (info.reference) {
+        ImGui::Separator();
+        referenceLine(info);
+    }
     if (info.timersB) {
         ImGui::Separator();
         const double b = info.timersB->frameMedianMs();
@@ -167,6 +186,21 @@ void drawPanel(DemoControls& c, PanelInfo& info, char* sceneField, size_t sceneF
         toggle(set, "split view (B right of the wipe)", "split", c.split);
         if (c.split) {
             slider(set, "wipe", "wipe", c.wipe, 0.0f, 1.0f, false);
+            const bool reference = c.splitSource == SplitSource::Reference;
+            if (ImGui::BeginCombo("B source", reference ? "path-traced reference" : "vct settings")) {
+                if (ImGui::Selectable("vct settings", !reference)) set("split-source", "vct");
+                if (ImGui::Selectable("path-traced reference", reference)) set("split-source", "reference");
+                ImGui::EndCombo();
+            }
+        }
+        if (c.showsReference()) {
+            choice(set, "B bounces", "reference-bounces", referenceBouncesText(c.referenceBounces),
+                   {"1", "all"});
+            referenceLine(info);
+            ImGui::TextWrapped(
+                "B is the path-traced truth of A's frame, converging on the CPU: a camera move restarts it, "
+                "a playing animation rebuilds it every frame (pause to let it converge).");
+        } else if (c.split) {
             const RenderSettings b = c.settingsB();
             ImGui::PushID("b");
             choice(set, "B weights", "b-weights", weightsName(b.weights), {"bilinear", "normal", "sg"});

@@ -24,6 +24,13 @@ struct PanelInfo {
     const RollingTimers* timersDisplay = nullptr;  // view, ui, blit
     const History* frameTimes = nullptr;
     float animationTime = 0.0f;
+    // Side B as the path-traced reference (split-source reference).
+    bool reference = false;
+    uint32_t referenceSpp = 0;       // of the current camera and time (0 while the first pass runs)
+    uint32_t referenceShownSpp = 0;  // of the image shown (an earlier view's while restarting)
+    double referenceRaysPerSecond = 0.0;
+    uint32_t referenceThreads = 0;
+    std::string referenceState;
     bool hasCameraPath = false;
     bool recording = false;
     size_t recordedKeys = 0;

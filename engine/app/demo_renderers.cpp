@@ -72,7 +72,7 @@ void DemoRenderers::sync(DemoControls& controls) {
         controls.settings.height = h;
         throw;
     }
-    if (!controls.split) {
+    if (!controls.rendersB()) {
         b_.reset();
         return;
     }
@@ -93,16 +93,18 @@ void DemoRenderers::render(const FrameInput& input) {
 void DemoRenderers::replaceScene(std::unique_ptr<Scene> scene, const DemoControls& controls) {
     std::unique_ptr<Renderer> a = make(*scene, withViewNeeds(controls.settings, controls.view));
     std::unique_ptr<Renderer> b;
-    if (controls.split) b = make(*scene, withViewNeeds(controls.settingsB(), controls.view));
+    if (controls.rendersB()) b = make(*scene, withViewNeeds(controls.settingsB(), controls.view));
     b_ = std::move(b);
     a_ = std::move(a);
-    scene_ = std::move(scene);  // after the renderers that referenced the old one are gone
+    // After the renderers that referenced the old one are gone; a reference tracer still running on the old
+    // scene holds its own share of it.
+    scene_ = std::move(scene);
 }
 
 void DemoRenderers::rebuild(const DemoControls& controls) {
     std::unique_ptr<Renderer> a = make(*scene_, withViewNeeds(controls.settings, controls.view));
     std::unique_ptr<Renderer> b;
-    if (controls.split) b = make(*scene_, withViewNeeds(controls.settingsB(), controls.view));
+    if (controls.rendersB()) b = make(*scene_, withViewNeeds(controls.settingsB(), controls.view));
     b_ = std::move(b);
     a_ = std::move(a);
 }
