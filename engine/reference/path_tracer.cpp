@@ -274,7 +274,7 @@ struct PathTracer::Impl {
         const size_t pixel = size_t(y) * settings.width + x;
         Pcg32 rng = sampleRng(settings.seed, pixel, sample);
         const vec2 jitter = rng.uniform2();
-        vec3 final(0.0f), direct(0.0f), diffuse(0.0f), specular(0.0f);
+        vec3 final(0.0f), direct(0.0f), diffuse(0.0f), specular(0.0f), indirect(0.0f);
         vec3 origin, direction;
         float length;
         RayHit hit;
@@ -325,15 +325,19 @@ struct PathTracer::Impl {
                                indirectRadiance(spawnOrigin(s, ls), ls, rng, rayCount);
                 }
             }
-            final = direct + s.occlusion * glsl::diffuseAlbedo(s.baseColor, s.metallic) * diffuse +
-                    glsl::specularDfg(f0, dfg) * specular;
+            // Kept apart rather than taken as final − direct: a highlight of a punctual light on a
+            // near-mirror reaches 10⁸ in one sample, where float subtraction would lose the indirect light
+            // entirely.
+            indirect = s.occlusion * glsl::diffuseAlbedo(s.baseColor, s.metallic) * diffuse +
+                       glsl::specularDfg(f0, dfg) * specular;
+            final = direct + indirect;
         }
         const int half = int(sample & 1u);
         sums[kFinal][half][pixel] += glm::dvec3(final);
         sums[kDirect][half][pixel] += glm::dvec3(direct);
         sums[kDiffuse][half][pixel] += glm::dvec3(diffuse);
         sums[kSpecular][half][pixel] += glm::dvec3(specular);
-        sums[kIndirect][half][pixel] += glm::dvec3(final - direct);
+        sums[kIndirect][half][pixel] += glm::dvec3(indirect);
     }
 };
 

@@ -74,7 +74,8 @@ std::vector<std::string> writeReferenceDirectory(const std::filesystem::path& di
         {"final", &images.final},
         {"direct", &images.direct},
         {"diffuse_indirect", &images.diffuseIndirect},
-        {"specular_indirect", &images.specularIndirect}};
+        {"specular_indirect", &images.specularIndirect},
+        {"indirect", &images.indirect}};
     for (const auto& [name, image] : buffers) {
         writeExr(dir / (std::string(name) + ".exr"), w, h, rgba(image->mean));
         writeExr(dir / (std::string(name) + "_variance.exr"), w, h, rgba(image->variance));
@@ -114,11 +115,8 @@ std::vector<std::string> writeReferenceDirectory(const std::filesystem::path& di
         diffuse[s].varianceLuminance += luminanceVariance(glm::dvec3(images.diffuseIndirect.variance[p]));
         specular[s].rgb += glm::dvec3(images.specularIndirect.mean[p]);
         specular[s].varianceLuminance += luminanceVariance(glm::dvec3(images.specularIndirect.variance[p]));
-        indirect[s].rgb += glm::dvec3(images.final.mean[p]) - glm::dvec3(images.direct.mean[p]);
-        // final − direct: the two estimates share their samples, so this only bounds the variance (sum of
-        // both).
-        indirect[s].varianceLuminance +=
-            luminanceVariance(glm::dvec3(images.final.variance[p]) + glm::dvec3(images.direct.variance[p]));
+        indirect[s].rgb += glm::dvec3(images.indirect.mean[p]);
+        indirect[s].varianceLuminance += luminanceVariance(glm::dvec3(images.indirect.variance[p]));
     }
     nlohmann::json surfaceList = nlohmann::json::array();
     for (size_t s = 0; s < surfaces.size(); ++s)
