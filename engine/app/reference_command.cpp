@@ -31,7 +31,9 @@ const CommandSpec& referenceSpec() {
     static const CommandSpec spec(
         "reference",
         "Path-traces the ground truth of one frame on the CPU (Embree) and writes DIR/final.exr, direct.exr, "
-        "diffuse_indirect.exr, specular_indirect.exr (with *_variance.exr), surface_id.exr, final.png and "
+        "diffuse_indirect.exr, specular_indirect.exr, indirect.exr (each with *_variance.exr), "
+        "surface_id.exr, final.png "
+        "and "
         "reference.json, in the units of vct render --aux.",
         {{"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
          {"size", "WxH", "image size in pixels (the pixel grid of vct render --size)", "320x180"},
