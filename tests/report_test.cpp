@@ -115,6 +115,84 @@ TEST(Report, ReportModeMeasuresEveryConfigurationEveryFrame) {
     EXPECT_TRUE(fs::is_regular_file(dir / "report.md"));
 }
 
+TEST(Report, DumpedLastFramesLoadBackAgainstAPathTracedReference) {
+    // --dump-last: the static camera's last frame of every configuration, as vct render --aux writes it,
+    // measured by vct compare --reference-dir against a tiny path-traced reference of that frame (what
+    // benchmarks/report.sh does at full size). Only that the files are there and the metrics finite: no
+    // accuracy numbers at 48x27 and 4 spp.
+    const fs::path dir = vct::test::freshOutputDir("report/dump_last");
+    const fs::path dump = dir / "last";
+    std::vector<std::string> args = {"benchmark", "--mode", "report", "--report-scenes", kReportScenes};
+    for (const char* flag : {"--scenes cornell", "--cameras static,cut", "--size 48x27", "--voxels 32",
+                             "--frames 4", "--warmup 1", "--block 2"}) {
+        const std::string text = flag;
+        args.push_back(text.substr(0, text.find(' ')));
+        args.push_back(text.substr(text.find(' ') + 1));
+    }
+    args.insert(args.end(), {"--dump-last", dump.string(), "--out", (dir / "report").string()});
+    const auto r = vct::test::runVct(args);
+    ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
+    const json manifest = json::parse(std::ifstream(dump / "manifest.json"));
+    // Only the report mode has last frames to dump.
+    const auto other = vct::test::runVct({"benchmark", "--mode", "scenes", "--dump-last",
+                                          (dir / "x").string(), "--out", (dir / "scenes").string()});
+    ASSERT_TRUE(other.exited());
+    EXPECT_EQ(other.exitCode, 2) << other.describe();
+    EXPECT_NE(other.err.find("--dump-last"), std::string::npos) << other.err;
+    EXPECT_EQ(manifest["frame"], 3);
+    EXPECT_EQ(manifest["width"], 48);
+    EXPECT_EQ(manifest["height"], 27);
+    ASSERT_EQ(manifest["scenes"].size(), 1u);  // the static camera only, not the cut
+    const json& scene = manifest["scenes"][0];
+    EXPECT_EQ(scene["name"], "cornell");
+    EXPECT_EQ(scene["scene"], "cornell");
+    EXPECT_TRUE(scene["camera_path"].is_null());
+    ASSERT_EQ(scene["configs"].size(), 13u);
+    EXPECT_EQ(scene["configs"][0]["name"], "reference");
+    EXPECT_EQ(scene["configs"][0]["trace_scale"], 1);
+    const json report = json::parse(std::ifstream(dir / "report" / "report.json"));
+    ASSERT_EQ(report["runs"].size(), 2u);
+    EXPECT_EQ(report["runs"][0]["last_frame"]["frame"], 3);
+    EXPECT_FALSE(report["runs"][1].contains("last_frame")) << "the cut camera is not dumped";
+
+    const fs::path reference = dir / "reference";
+    const auto ref = vct::test::runVct({"reference", "--scene", "cornell", "--size", "48x27", "--frame", "3",
+                                        "--spp", "4", "--out", reference.string()});
+    ASSERT_TRUE(ref.exited() && ref.exitCode == 0) << ref.describe();
+    fs::create_directories(dir / "truth");
+    std::set<std::string> dirs;
+    for (const json& config : scene["configs"]) {
+        const std::string name = config["dir"].get<std::string>();
+        EXPECT_TRUE(dirs.insert(name).second) << "two configurations share " << name;
+        const fs::path images = dump / scene["dir"].get<std::string>() / name;
+        for (const char* file : {"final.exr", "direct.exr", "diffuse_indirect.exr", "specular_indirect.exr"})
+            ASSERT_TRUE(fs::is_regular_file(images / file)) << images / file;
+        const fs::path out = dir / "truth" / (name + ".json");
+        const auto c = vct::test::runVct({"compare", "--reference-dir", reference.string(), "--image-dir",
+                                          images.string(), "--json", out.string()});
+        ASSERT_TRUE(c.exited() && c.exitCode == 0) << name << ": " << c.describe();
+        const json truth = json::parse(std::ifstream(out));
+        for (const char* light : {"final", "indirect"})
+            for (const char* metric : {"psnr_srgb", "rel_mse"}) {
+                const json& v = truth["errors"][light][metric];
+                EXPECT_TRUE(v.is_number() && std::isfinite(v.get<double>()))
+                    << name << " " << light << " " << metric;
+            }
+        const json& ratio = truth["image"]["indirect"]["ratio"];
+        EXPECT_TRUE(ratio.is_number() && std::isfinite(ratio.get<double>())) << name;
+    }
+
+    // The every-pixel trace's dump is the frame vct render --frames 4 ends on (the frame vct reference
+    // --frame 3 renders).
+    const fs::path rendered = dir / "render_s1";
+    const auto s1 = vct::test::runVct({"render", "--scene", "cornell", "--size", "48x27", "--voxels", "32",
+                                       "--frames", "4", "--trace-scale", "1", "--out", rendered.string()});
+    ASSERT_TRUE(s1.exited() && s1.exitCode == 0) << s1.describe();
+    const vct::ImageError same = vct::compareImages(vct::readExr(rendered / "final.exr"),
+                                                    vct::readExr(dump / "cornell/reference/final.exr"));
+    EXPECT_TRUE(same.mse < 1e-8) << "every-pixel dump against vct render: MSE " << same.mse;
+}
+
 TEST(Report, StudyModeFindsOptimaPerMaterialClass) {
     const fs::path dir = vct::test::freshOutputDir("report/study_mode");
     const auto r = vct::test::runVct({"benchmark", "--mode", "study", "--report-scenes", kReportScenes,

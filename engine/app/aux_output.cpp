@@ -35,6 +35,25 @@ void opaque(std::vector<float>& rgba) {
 
 uint8_t toByte(float v) { return uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) * 255.0f)); }
 
+// direct.exr, and diffuse_indirect.exr and specular_indirect.exr with GI on: the light buffers of --aux.
+void writeLightBuffers(Renderer& renderer, const std::filesystem::path& dir,
+                       std::vector<std::string>& written) {
+    FrameTargets& t = renderer.targets();
+    std::vector<float> direct = renderer.readFloatImage(t.direct);  // at the image's own size
+    opaque(direct);
+    writeExr(dir / "direct.exr", t.direct.width(), t.direct.height(), direct);
+    written.push_back("direct.exr");
+    if (renderer.voxelGrid()) {
+        Renderer::IndirectLight light = renderer.readIndirect();
+        opaque(light.diffuse);
+        opaque(light.specular);
+        writeExr(dir / "diffuse_indirect.exr", t.width, t.height, light.diffuse);
+        writeExr(dir / "specular_indirect.exr", t.width, t.height, light.specular);
+        written.push_back("diffuse_indirect.exr");
+        written.push_back("specular_indirect.exr");
+    }
+}
+
 }  // namespace
 
 const char* auxViewName(AuxView view) {
@@ -80,6 +99,18 @@ AuxView parseAuxView(const std::string& value) {
                      "': expected final, direct, diffuse, specular, normals, roughness, voxels, resample or weights");
 }
 
+void writeFinalExr(Renderer& renderer, const std::filesystem::path& path) {
+    writeExr(path, renderer.settings().width, renderer.settings().height,
+             renderer.readFloatImage(renderer.targets().hdr));
+}
+
+std::vector<std::string> writeLightImages(Renderer& renderer, const std::filesystem::path& dir) {
+    writeFinalExr(renderer, dir / "final.exr");
+    std::vector<std::string> written = {"final.exr"};
+    writeLightBuffers(renderer, dir, written);
+    return written;
+}
+
 std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesystem::path& dir) {
     FrameTargets& t = renderer.targets();
     const uint32_t w = t.width, h = t.height;
@@ -88,20 +119,7 @@ std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesyste
         writeExr(dir / name, w, h, rgba);
         written.push_back(name);
     };
-    auto writeRadiance = [&](const std::string& name, vk::Image& image) {  // at the image's own size
-        std::vector<float> rgba = renderer.readFloatImage(image);
-        opaque(rgba);
-        writeExr(dir / name, image.width(), image.height(), rgba);
-        written.push_back(name);
-    };
-    writeRadiance("direct.exr", t.direct);
-    if (renderer.voxelGrid()) {
-        Renderer::IndirectLight light = renderer.readIndirect();
-        opaque(light.diffuse);
-        opaque(light.specular);
-        write("diffuse_indirect.exr", std::move(light.diffuse));
-        write("specular_indirect.exr", std::move(light.specular));
-    }
+    writeLightBuffers(renderer, dir, written);
     std::vector<float> normalRoughness = renderer.readFloatImage(t.normalRoughness);
     std::vector<float> normal = normalRoughness;
     opaque(normal);

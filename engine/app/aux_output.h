@@ -24,6 +24,14 @@ bool auxViewNeedsGi(AuxView view);
 // albedo and depth as EXR into `dir`; returns the names written.
 std::vector<std::string> writeAuxImages(Renderer& renderer, const std::filesystem::path& dir);
 
+// Writes the frame's linear HDR final image as `path` (vct render's final.exr).
+void writeFinalExr(Renderer& renderer, const std::filesystem::path& path);
+
+// What `vct compare --reference-dir` measures, read back as `vct render --aux` does: final.exr, direct.exr,
+// diffuse_indirect.exr and specular_indirect.exr (the last two only with GI on) into `dir`; returns the names
+// written. The report mode's last frames (vct benchmark --mode report --dump-last).
+std::vector<std::string> writeLightImages(Renderer& renderer, const std::filesystem::path& dir);
+
 // RGBA8 for final.png: the LDR frame for AuxView::Final, else the buffer encoded for display (radiance
 // exposed, tone mapped and sRGB-encoded like the composite; normals as n·0.5 + 0.5; roughness grey).
 // AuxView::Voxels renders the voxel view at `voxelMip` first (valid mips: see Renderer::renderVoxelView).

@@ -206,6 +206,11 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         {"cameras", "LIST", "report: which cameras, of static, moving (the scene's camera path) and cut",
          "static,moving,cut"},
         {"camera-path", "FILE.json", "upsampling: play this camera path instead of the scene camera", ""},
+        {"dump-last", "DIR",
+         "report: write the static camera's last frame of every configuration (and of the reference) as "
+         "DIR/SCENE/CONFIG/{final,direct,diffuse_indirect,specular_indirect}.exr for vct compare "
+         "--reference-dir, and DIR/manifest.json",
+         ""},
         {"scene", "NAME|FILE", "built-in scene name or a .gltf/.glb file (upsampling, scaling)", "cornell"},
         {"scenes", "A,B,...",
          "scenes mode: built-in names and glTF files (default: cornell, plane and every "
@@ -236,9 +241,10 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
     timing.warmup =
         args.has("warmup") ? args.getUint("warmup", 0, timing.frames - 1) : std::min(10u, timing.frames / 4);
     timing.block = args.getUint("block", 1, 100000);
+    const std::string mode = args.get("mode");
+    if (args.has("dump-last") && mode != "report") throw UsageError("--dump-last: only with --mode report");
     const std::filesystem::path outDir = args.get("out");
     prepareOutputDirectory(outDir, "--out");  // before any frame: not only once the report is written
-    const std::string mode = args.get("mode");
     if (mode == "upsampling") return runUpsamplingBenchmark(args, session, timing, outDir);
     if (mode == "scenes") return runScenesBenchmark(args, session, timing, outDir);
     if (mode == "scaling") return runScalingBenchmark(args, session, timing, outDir);

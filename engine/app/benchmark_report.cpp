@@ -1,6 +1,6 @@
-// vct benchmark --mode report: speed against error as one report (docs/design.md §8.4, issue 9). For every scene
-// of the report list (scenes/report_scenes.json) and every camera (static; the scene's camera path; a cut
-// halfway), one run renders, interleaved on one device:
+// vct benchmark --mode report: speed against error as one report (docs/design.md §8.4, issue 9). For every
+// scene of the report list (scenes/report_scenes.json) and every camera (static; the scene's camera path; a
+// cut halfway), one run renders, interleaved on one device:
 //   - the reference: every pixel traced every frame (trace scale 1);
 //   - trace scales 2 and 4 × weights bilinear / normal / sg × adaptive re-tracing off / on;
 //   - on the moving camera, sg + adaptive at scale 4 with τ swept (re-traced fraction and error against τ).
@@ -8,6 +8,10 @@
 // compared with the reference's same frame: PSNR on the indirect buffers (peak = the reference's largest
 // value), on the tone-mapped sRGB final (peak 1), MSE and relative MSE on linear HDR. Per-pass GPU medians
 // come from the same run. Writes DIR/report.json (plots: benchmarks/plot_report.py) and DIR/report.md.
+// --dump-last DUMP also writes, for the static camera, every configuration's last frame (the reference's
+// included) as DUMP/SCENE/CONFIG/{final,direct,diffuse_indirect,specular_indirect}.exr, what
+// `vct compare --reference-dir` measures against a path-traced reference of that frame (`vct reference
+// --frame FRAMES-1`; benchmarks/report.sh), and DUMP/manifest.json listing them.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,10 +21,12 @@
 #include <optional>
 #include <sstream>
 
+#include "app/aux_output.h"
 #include "app/benchmark_modes.h"
 #include "app/benchmark_run.h"
 #include "core/error.h"
 #include "io/image_metrics.h"
+#include "io/safe_write.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera_path.h"
 
@@ -54,6 +60,21 @@ json errorJson(const ImageError& e) {
 // A JSON number for a PSNR that may be infinite (identical images): JSON has no Inf, so a large finite value.
 double finitePsnr(double psnr) {
     return std::isfinite(psnr) ? psnr : 200.0;
+}
+
+// A name as a directory name: runs of anything but letters and digits become one '-' ("s4 sg+adaptive" →
+// "s4-sg-adaptive").
+std::string pathSlug(const std::string& name) {
+    std::string slug;
+    for (char c : name) {
+        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+        if (keep)
+            slug += c;
+        else if (!slug.empty() && slug.back() != '-')
+            slug += '-';
+    }
+    while (!slug.empty() && slug.back() == '-') slug.pop_back();
+    return slug.empty() ? "unnamed" : slug;
 }
 
 // The report's scenes: --scenes (comma-separated built-in names or files) or the list file. Entries whose
@@ -146,10 +167,11 @@ struct ReportCamera {
 };
 
 // One (scene, camera) run: configurations interleaved, errors every frame. Returns its JSON and adds its rows
-// to the Markdown table.
+// to the Markdown table. With `dumpDir`, writes each configuration's last frame into dumpDir/CONFIG/ and
+// lists them in the JSON's "last_frame".
 json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& entry,
                    const ReportCamera& camera, const SessionOptions& session, const BenchmarkFrames& timing,
-                   std::string& table) {
+                   std::string& table, const std::filesystem::path* dumpDir) {
     std::vector<BenchmarkRun> configs = reportConfigs(scene, session.settings, camera.name == "moving");
     for (BenchmarkRun& config : configs)
         config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
@@ -197,6 +219,20 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
                  camera.name.c_str(), configs.size());
     renderInterleaved(configs, timing.frames, timing.warmup, std::max(timing.block, 1u), hooks);
 
+    // The last frames, read back once every configuration has rendered all of its frames (outside the
+    // timings): each renderer still holds its last frame.
+    std::vector<std::string> dumpSlugs(configs.size());
+    if (dumpDir) {
+        for (size_t index = 0; index < configs.size(); ++index) {
+            dumpSlugs[index] = pathSlug(configs[index].name);
+            const std::filesystem::path dir = *dumpDir / dumpSlugs[index];
+            prepareOutputDirectory(dir, "--dump-last");
+            writeLightImages(*configs[index].renderer, dir);
+        }
+        std::printf("wrote the last frames (%u) of %s, %s camera, into %s\n", timing.frames - 1,
+                    entry.name.c_str(), camera.name.c_str(), dumpDir->c_str());
+    }
+
     const Renderer& reference = *configs[0].renderer;
     auto indirectMs = [](const Renderer& r) {
         return passMedian(r, "trace") + passMedian(r, "upsample") + passMedian(r, "resample");
@@ -205,6 +241,7 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
     const double referenceFrame = reference.timer().frameStats().medianMs;
     json out = {{"scene", entry.name}, {"camera", camera.name}, {"configs", json::array()}};
     if (camera.cutFrame) out["cut_frame"] = camera.cutFrame;
+    if (dumpDir) out["last_frame"] = {{"frame", timing.frames - 1}, {"dir", dumpDir->string()}};
     char line[512];
     for (size_t index = 0; index < configs.size(); ++index) {
         const BenchmarkRun& config = configs[index];
@@ -244,6 +281,7 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
                           r.timer().frameStats().medianMs, indirectMs(r));
         }
         entryJson["settings"]["tau_used"] = resampleThreshold(r.settings());
+        if (dumpDir) entryJson["last_frame_dir"] = dumpSlugs[index];
         table += line;
         out["configs"].push_back(entryJson);
     }
@@ -266,6 +304,22 @@ int runReportBenchmark(const ParsedArgs& args, const SessionOptions& session, co
             cameras.push_back(item);
         }
     }
+    // --dump-last: checked and made before any frame, as --out is.
+    std::optional<std::filesystem::path> dumpDir;
+    if (args.has("dump-last")) {
+        dumpDir = std::filesystem::path(args.get("dump-last"));
+        prepareOutputDirectory(*dumpDir, "--dump-last");
+        if (std::find(cameras.begin(), cameras.end(), "static") == cameras.end())
+            std::printf("note: --dump-last: no static camera in --cameras, no last frame written\n");
+    }
+    // The dump's manifest: per scene, what `vct reference` needs to render the same frame, and the
+    // configurations' directories.
+    json manifest = {{"frame", timing.frames - 1},
+                     {"width", session.settings.width},
+                     {"height", session.settings.height},
+                     {"exposure", session.settings.exposure},
+                     {"camera", "static"},
+                     {"scenes", json::array()}};
     json report = {
         {"frames", timing.frames},         {"warmup", timing.warmup},           {"block", timing.block},
         {"width", session.settings.width}, {"height", session.settings.height}, {"runs", json::array()}};
@@ -290,12 +344,41 @@ int runReportBenchmark(const ParsedArgs& args, const SessionOptions& session, co
                     camera.path = &*entry.path;
                 }
                 if (cameraName == "cut") camera.cutFrame = timing.frames / 2;
-                report["runs"].push_back(
-                    measureCamera(context, scene, entry, camera, session, timing, table));
+                // Only the static camera's last frame is dumped: the frame `vct reference --frame` renders
+                // with the scene's own camera.
+                std::optional<std::filesystem::path> sceneDump;
+                if (dumpDir && cameraName == "static") sceneDump = *dumpDir / pathSlug(entry.name);
+                json run = measureCamera(context, scene, entry, camera, session, timing, table,
+                                         sceneDump ? &*sceneDump : nullptr);
+                if (sceneDump) {
+                    // A glTF file by its absolute path (benchmarks/report.sh may run vct reference
+                    // elsewhere); a built-in scene by its name.
+                    std::string sceneSpec = entry.scene;
+                    const std::vector<std::string> builtins = builtinSceneNames();
+                    if (std::find(builtins.begin(), builtins.end(), entry.scene) == builtins.end())
+                        sceneSpec = std::filesystem::absolute(entry.scene).lexically_normal().string();
+                    json configs = json::array();
+                    for (const json& config : run["configs"])
+                        configs.push_back({{"name", config["name"]},
+                                           {"dir", config["last_frame_dir"]},
+                                           {"trace_scale", config["settings"]["trace_scale"]},
+                                           {"frame_median_ms", config["frame_median_ms"]}});
+                    manifest["scenes"].push_back({{"name", entry.name},
+                                                  {"scene", sceneSpec},
+                                                  {"dir", pathSlug(entry.name)},
+                                                  {"camera_path", nullptr},
+                                                  {"configs", configs}});
+                }
+                report["runs"].push_back(std::move(run));
             }
         }
     }
     checkValidation(session);
+    if (dumpDir) {
+        report["last_frame_dump"] = dumpDir->string();
+        writeTextReplacing(*dumpDir / "manifest.json", manifest.dump(2) + "\n");
+        std::printf("wrote %s\n", (*dumpDir / "manifest.json").c_str());
+    }
     char caption[800];
     std::snprintf(
         caption, sizeof(caption),

@@ -89,7 +89,7 @@ int runRenderCommand(int argc, char** argv, int first) {
 
         const uint32_t w = renderer.settings().width, h = renderer.settings().height;
         writePng(outDir / "final.png", w, h, viewImage(renderer, view, mip));
-        writeExr(outDir / "final.exr", w, h, renderer.readFloatImage(renderer.targets().hdr));
+        writeFinalExr(renderer, outDir / "final.exr");
 
         TimingReport report;
         report.device = session.context().deviceName();
