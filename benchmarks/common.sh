@@ -19,3 +19,20 @@ flags_suffix() {
     flags="$(echo "$*" | tr -cs 'A-Za-z0-9' '-' | sed 's/^-*//; s/-*$//')"
     echo "${flags:+-$flags}"
 }
+
+# cached_reference DIR ARGS...: `$vct reference ARGS... --out DIR`, unless DIR already holds a reference made with
+# the same ARGS (recorded in DIR.settings); the wall time goes to DIR.seconds.
+cached_reference() {
+    local dir="$1" stamp start
+    shift
+    stamp="$*"
+    if [ -f "$dir/reference.json" ] && [ "$(cat "$dir.settings" 2>/dev/null)" = "$stamp" ]; then
+        echo "reusing $dir"
+        return
+    fi
+    echo "== vct reference $* -> $dir"
+    start=$SECONDS
+    "$vct" reference "$@" --out "$dir"
+    echo "$((SECONDS - start))" >"$dir.seconds"
+    echo "$stamp" >"$dir.settings"
+}

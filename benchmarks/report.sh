@@ -71,17 +71,8 @@ EOF
         mkdir -p "$json_dir"
         # vct reference of the static camera's last frame (the scene camera: no --camera-path), reused from
         # REPORT_WORK when it was rendered with the same settings.
-        stamp="$scene $wxh $frame $spp $exposure ${reference_flags[*]}"
-        if [ -f "$reference/reference.json" ] && [ "$(cat "$reference.settings" 2>/dev/null)" = "$stamp" ]; then
-            echo "reusing $reference"
-        else
-            echo "== vct reference --scene $scene --size $wxh --frame $frame --spp $spp -> $reference"
-            start=$SECONDS
-            "$vct" reference --scene "$scene" --size "$wxh" --frame "$frame" --spp "$spp" \
-                --exposure "$exposure" "${reference_flags[@]}" --out "$reference"
-            echo "$((SECONDS - start))" >"$reference.seconds"
-            echo "$stamp" >"$reference.settings"
-        fi
+        cached_reference "$reference" --scene "$scene" --size "$wxh" --frame "$frame" --spp "$spp" \
+            --exposure "$exposure" "${reference_flags[@]}"
         configs="$("$PYTHON" -c 'import json, sys
 for s in json.load(open(sys.argv[1]))["scenes"]:
     if s["dir"] == sys.argv[2]:

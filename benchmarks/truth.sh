@@ -76,21 +76,10 @@ reference_label() {
 
 # render_reference SCENE NAME KIND: vct reference, unless TRUTH_WORK already holds it with the same settings.
 render_reference() {
-    local scene="$1" dir stamp start
-    dir="$(reference_dir "$2" "$3")"
     local flags=(--bounces 1)
     case "$3" in all) flags=(--bounces all) ;; diffuse) flags=(--bounces 1 --secondary diffuse) ;; esac
-    stamp="$scene $size $spp $frame ${flags[*]} ${reference_flags[*]}"
-    if [ -f "$dir/reference.json" ] && [ "$(cat "$dir.settings" 2>/dev/null)" = "$stamp" ]; then
-        echo "reusing $dir"
-        return
-    fi
-    echo "== vct reference --scene $scene ${flags[*]} ($size, $spp spp, frame $frame) -> $dir"
-    start=$SECONDS
-    "$vct" reference --scene "$scene" --size "$size" --spp "$spp" --frame "$frame" "${flags[@]}" \
-        "${reference_flags[@]}" --out "$dir"
-    echo "$((SECONDS - start))" >"$dir.seconds"
-    echo "$stamp" >"$dir.settings"
+    cached_reference "$(reference_dir "$2" "$3")" --scene "$1" --size "$size" --spp "$spp" --frame "$frame" \
+        "${flags[@]}" "${reference_flags[@]}"
 }
 
 # annotate JSON KEY=VALUE...: records the configuration (and vct's timings) in a compare JSON as "config".
