@@ -113,8 +113,9 @@ TEST(SettingTable, HelpListsTheFlagsWithTheirDefaults) {
         upsample[option.name] = option.defaultValue;
     // Today's flags and the defaults their --help printed before the table (more rows may follow).
     const std::map<std::string, std::string> expected = {
-        {"weights", "sg"}, {"beta", "20"},  {"kappa", "100"},   {"sigma-n", "0.1"},  {"diffuse-sharpness", "2"},
-        {"gamma", "0.8"},  {"tau", "0.25"}, {"temporal", "on"}, {"adaptive", "on"}};
+        {"weights", "sg"},          {"beta", "20"},   {"kappa", "100"}, {"sigma-n", "0.1"},
+        {"diffuse-sharpness", "2"}, {"gamma", "0.8"}, {"tau", "0.25"},  {"temporal", "on"},
+        {"adaptive", "on"}};
     for (const auto& [name, value] : expected) EXPECT_EQ(upsample[name], value) << name;
     // Resolved by the renderer: described in the help, no default printed.
     EXPECT_EQ(settingOption("voxels").defaultValue, "");
@@ -133,9 +134,9 @@ TEST(SettingTable, JsonWritesTheMarkedRowsUnderTheirNames) {
         if (spec.json) marked.insert(settingJsonKey(spec));
     EXPECT_EQ(keys, marked);
     // What timings.json held before the table, which reports and scripts read.
-    for (const char* key : {"gi", "voxels", "trace_scale", "weights", "beta", "kappa", "sigma_n", "diffuse_sharpness",
-                            "gamma", "temporal", "adaptive", "tau", "toksvig", "specular_aa", "anisotropy",
-                            "exposure"})
+    for (const char* key :
+         {"gi", "voxels", "trace_scale", "weights", "beta", "kappa", "sigma_n", "diffuse_sharpness", "gamma",
+          "temporal", "adaptive", "tau", "toksvig", "specular_aa", "anisotropy", "exposure"})
         EXPECT_TRUE(keys.count(key)) << key;
     EXPECT_EQ(json["weights"], "sg");
     EXPECT_EQ(json["trace_scale"], 4);
