@@ -171,7 +171,7 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     u.upsample.diffuseSharpness = settings_.diffuseSharpness;
     u.upsample.gamma = settings_.gamma;
     u.upsample.tau = adaptive ? resampleThreshold(settings_) : 0.0f;
-    u.upsample.maxHistoryWeight = kHistoryWeightCap;
+    u.upsample.maxHistoryWeight = settings_.historyCap * kExactSampleWeight;
 
     u.flags = (settings_.gi ? VCT_FLAG_GI : 0u) | (settings_.toksvig ? VCT_FLAG_TOKSVIG : 0u) |
               (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) |

@@ -22,6 +22,16 @@ constexpr uint32_t kAnisotropyFromDevice = ~0u;
 // neighbourhood, the history counted in pixel-own samples (a neighbourhood's worth each).
 constexpr float kDefaultResampleThreshold = 0.25f;
 
+// Weight of a sample traced at the pixel itself in the accumulated history, in units of one fully agreeing
+// spatial neighbourhood (the spatial kernel sums to 1): glsl::EXACT_SAMPLE_WEIGHT (lib/upsample_weights.glsl
+// says why 64; renderer.cpp checks that the two agree).
+constexpr float kExactSampleWeight = 64.0f;
+// Default cap A_max on the accumulated history weight (docs/design.md §6.5, --history-cap): 8 pixel-own
+// samples, so that the history never outweighs that many frames of new samples and follows changing light.
+// With γ = 0.8 and one own sample every s² frames the sum stays below ~1.25 of them, so the cap binds only at
+// scale 1.
+constexpr float kHistoryWeightCap = 8.0f * kExactSampleWeight;
+
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -55,6 +65,8 @@ struct RenderSettings {
     bool temporal = true;           // reproject and accumulate last frame's result
     float tau = kDefaultResampleThreshold;  // re-trace pixels whose sum of weights is below τ
     bool adaptive = true;           // adaptive re-tracing of low-weight pixels at full resolution
+    // Cap A_max on the accumulated history weight, in pixel-own samples (A_max / kExactSampleWeight).
+    float historyCap = kHistoryWeightCap / kExactSampleWeight;
     // Write the per-pixel sum of weights image (FrameTargets::weightSum) for --aux and the weights / resample
     // views; off, upsample skips that store (nothing in the frame reads it).
     bool writeWeightSum = false;
@@ -76,14 +88,6 @@ inline const char* weightsName(RenderSettings::Weights weights) {
     return kWeightsNames[size_t(weights)];
 }
 
-// Weight of a sample traced at the pixel itself in the accumulated history, in units of one fully agreeing
-// spatial neighbourhood (the spatial kernel sums to 1): glsl::EXACT_SAMPLE_WEIGHT (lib/upsample_weights.glsl says
-// why 64; renderer.cpp checks that the two agree).
-constexpr float kExactSampleWeight = 64.0f;
-// Cap A_max on the accumulated history weight (docs/design.md §6.5): 8 pixel-own samples, so that the history
-// never outweighs that many frames of new samples and follows changing light. With γ = 0.8 and one own sample
-// every s² frames the sum stays below ~1.25 of them, so the cap binds only at scale 1.
-constexpr float kHistoryWeightCap = 8.0f * kExactSampleWeight;
 // Largest κ (--kappa): glsl::SG_MAX_KAPPA, the largest fp16 value, since the trace stores each sample's
 // smoothed sharpness λ̄ ≤ κ in a 16-bit float (lib/upsample_weights.glsl; tests/upsample_weights_test.cpp
 // checks that the two agree). The shaders clamp a larger κ to it; the command line and the demo reject one.
