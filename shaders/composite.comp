@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // composite: linear HDR result, then exposure, tone map and sRGB encoding for display.
-// With GI on (frame.voxelParams.z): direct + albedo·diffuse·occlusion + specularDfg(F0, DFG)·specular, where
+// With GI on (VCT_FLAG_GI): direct + albedo·diffuse·occlusion + specularDfg(F0, DFG)·specular, where
 // diffuse and specular are the demodulated cone-traced incoming radiance (lib/cone.glsl) and DFG the split-sum
 // table with multiple-scattering energy compensation (brdf.glsl). With GI off, direct already holds the
 // constant ambient term.
@@ -29,13 +29,13 @@ layout(set = 0, binding = VCT_COMPOSITE_BINDING_DFG) uniform sampler2D dfgTable;
 vec3 indirect(ivec2 pixel) {
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     if (isBackground(depth)) return vec3(0.0);  // the background's radiance is already in direct
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
     const float occlusion = texelFetch(emissiveOcclusionTexture, pixel, 0).a;
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
     const vec3 n = gbufferNormal(normalRoughness);
-    const vec3 v = viewDirection(frame.cameraPosition.xyz - p, n);
+    const vec3 v = viewDirection(frame.cameraPosition - p, n);
     const float NoV = max(dot(n, v), MIN_N_DOT_V);
     // Table texel centres are at (i + 0.5)/size for both axes, so (n·v, roughness) is the uv directly.
     const vec2 dfg = textureLod(dfgTable, vec2(NoV, saturate(normalRoughness.w)), 0.0).rg;
@@ -49,9 +49,9 @@ vec3 indirect(ivec2 pixel) {
 
 void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, ivec2(frame.imageSize.xy)))) return;
+    if (any(greaterThanEqual(pixel, ivec2(frame.imageSize)))) return;
     vec3 hdr = imageLoad(directImage, pixel).rgb;
-    if (frame.voxelParams.z > 0.5) hdr += indirect(pixel);
+    if ((frame.flags & VCT_FLAG_GI) != 0u) hdr += indirect(pixel);
     imageStore(hdrImage, pixel, vec4(hdr, 1.0));
-    imageStore(ldrImage, pixel, vec4(linearToSrgb(toneMapAces(hdr, frame.ambient.w)), 1.0));
+    imageStore(ldrImage, pixel, vec4(linearToSrgb(toneMapAces(hdr, frame.exposure)), 1.0));
 }

@@ -21,7 +21,7 @@ layout(set = 0, binding = VCT_DIRECT_BINDING_OUTPUT, rgba16f) uniform writeonly 
 // 3x3 PCF on the main light's shadow map; the position is pushed along the normal by a texel or so,
 // which removes acne on surfaces at grazing light angles without detaching shadows.
 float shadowVisibility(vec3 worldPosition, vec3 normal) {
-    const vec3 offsetPosition = worldPosition + normal * frame.shadowParams.x * 1.5;
+    const vec3 offsetPosition = worldPosition + normal * frame.lighting.shadowNormalOffset * 1.5;
     const vec4 clip = frame.lightViewProj * vec4(offsetPosition, 1.0);
     if (clip.w <= 0.0) return 1.0;
     const vec3 ndc = clip.xyz / clip.w;
@@ -30,19 +30,19 @@ float shadowVisibility(vec3 worldPosition, vec3 normal) {
     float visible = 0.0;
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x)
-            visible += texture(shadowMap, vec3(uv + vec2(x, y) * frame.shadowParams.y, ndc.z));
+            visible += texture(shadowMap, vec3(uv + vec2(x, y) * frame.lighting.shadowTexelSize, ndc.z));
     return visible / 9.0;
 }
 
 void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    const ivec2 size = ivec2(frame.imageSize.xy);
+    const ivec2 size = ivec2(frame.imageSize);
     if (any(greaterThanEqual(pixel, size))) return;
 
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     if (isBackground(depth)) {
-        imageStore(outputImage, pixel, vec4(frame.ambient.rgb, 1.0));
+        imageStore(outputImage, pixel, vec4(frame.lighting.ambient, 1.0));
         return;
     }
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
@@ -50,11 +50,11 @@ void main() {
     const vec4 emissiveOcclusion = texelFetch(emissiveOcclusionTexture, pixel, 0);
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
     const vec3 n = gbufferNormal(normalRoughness);  // never NaN: a zero-length normal reads as +y
-    const vec3 v = viewDirection(frame.cameraPosition.xyz - p, n);
+    const vec3 v = viewDirection(frame.cameraPosition - p, n);
 
     vec3 radiance = emissiveOcclusion.rgb;
-    const int lightCount = int(frame.shadowParams.z);
-    const int shadowLight = int(frame.shadowParams.w);
+    const int lightCount = int(frame.lighting.lightCount);
+    const int shadowLight = frame.lighting.shadowLight;
     for (int i = 0; i < lightCount; ++i) {
         const IncidentLight light = incidentLight(lights[i], p);
         vec3 reflected = light.radiance * evalBrdfCosine(n, v, light.towardsLight, baseColorMetallic.rgb,
@@ -65,10 +65,10 @@ void main() {
     // Constant ambient, only with GI off (with GI on, composite adds the cone-traced indirect light instead):
     // a uniform environment of radiance `ambient` reflected by the diffuse albedo plus F0, attenuated by the
     // material's occlusion.
-    if (frame.voxelParams.z < 0.5) {
+    if ((frame.flags & VCT_FLAG_GI) == 0u) {
         const vec3 albedo = diffuseAlbedo(baseColorMetallic.rgb, baseColorMetallic.a);
         const vec3 f0 = f0FromMetallic(baseColorMetallic.rgb, baseColorMetallic.a);
-        radiance += frame.ambient.rgb * (albedo + f0) * emissiveOcclusion.a;
+        radiance += frame.lighting.ambient * (albedo + f0) * emissiveOcclusion.a;
     }
     imageStore(outputImage, pixel, vec4(radiance, 1.0));
 }

@@ -40,10 +40,10 @@ vec3 safeNormalize(vec3 v, vec3 fallback) {
 }
 
 // A material texture: mip-mapped (and anisotropic where the sampler is), or level 0 only when
-// materialParams.z is set, so that a supersampled, box-filtered render shows the unfiltered material: the
+// VCT_FLAG_TEXTURE_LOD0 is set, so that a supersampled, box-filtered render shows the unfiltered material: the
 // ground truth that mip filtering and Toksvig approximate (tests/toksvig_test.cpp). The condition is uniform.
 vec4 materialTexture(sampler2D map, vec2 uv) {
-    return frame.materialParams.z > 0.5 ? textureLod(map, uv, 0.0) : texture(map, uv);
+    return (frame.flags & VCT_FLAG_TEXTURE_LOD0) != 0u ? textureLod(map, uv, 0.0) : texture(map, uv);
 }
 
 void main() {
@@ -52,7 +52,7 @@ void main() {
     // zeros, or opposite normals averaging to nothing), so such a mesh shades as flat, not as a fixed axis.
     // Taken before the discard below, while the whole quad still runs.
     const vec3 faceCross = cross(dFdx(inWorld), dFdy(inWorld));
-    const vec3 towardsCamera = frame.cameraPosition.xyz - inWorld;
+    const vec3 towardsCamera = frame.cameraPosition - inWorld;
     const vec3 faceNormal = safeNormalize(dot(faceCross, towardsCamera) < 0.0 ? -faceCross : faceCross,
                                           safeNormalize(towardsCamera, vec3(0.0, 0.0, 1.0)));
     const GpuMaterial material = materials[draw.indices.y];
@@ -86,7 +86,7 @@ void main() {
     float alpha2 = alpha * alpha;
     // Derivatives outside the switches (uniform anyway): the shading normal's change across one pixel.
     const vec3 dndx = dFdx(shadingNormal), dndy = dFdy(shadingNormal);
-    if (frame.materialParams.x > 0.5) {
+    if ((frame.flags & VCT_FLAG_TOKSVIG) != 0u) {
         // Slopes of the scaled map are normalScale × the texels' slopes, so their variance scales by its square.
         const float r = min(length(mapped) + NORMAL_LENGTH_TOLERANCE, 1.0);
         const float sigma2 = toksvigVariance(r) * normalScale * normalScale;
@@ -96,7 +96,7 @@ void main() {
         alpha2 = toksvigAlpha2(alpha2, sigma2);
 #endif
     }
-    if (frame.materialParams.y > 0.5)
+    if ((frame.flags & VCT_FLAG_SPECULAR_AA) != 0u)
         alpha2 = specularAAAlpha2(alpha2, specularAAVariance(dot(dndx, dndx), dot(dndy, dndy)), SPECULAR_AA_THRESHOLD);
     const float roughness = sqrt(sqrt(saturate(alpha2)));
 

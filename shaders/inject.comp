@@ -31,7 +31,7 @@ float shadowVisibility(vec3 p) {
 
 void main() {
     const ivec3 voxel = ivec3(gl_GlobalInvocationID);
-    const int n = int(frame.voxelParams.x);
+    const int n = int(frame.voxels.resolution);
     if (any(greaterThanEqual(voxel, ivec3(n)))) return;
     const vec4 albedoOpacity = imageLoad(albedoImage, voxel);
     if (albedoOpacity.a <= 0.0) {
@@ -40,12 +40,12 @@ void main() {
     }
     const vec3 nbar = imageLoad(normalImage, voxel).xyz;
     const vec3 emission = imageLoad(emissionImage, voxel).rgb;
-    const float voxelSize = frame.voxelOrigin.w;
-    const vec3 center = voxelCenterWorld(voxel, frame.voxelOrigin);
+    const float voxelSize = frame.voxels.voxelSize;
+    const vec3 center = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
 
     vec3 radiance = emission;
-    const int lightCount = int(frame.shadowParams.z);
-    const int shadowLight = int(frame.shadowParams.w);
+    const int lightCount = int(frame.lighting.lightCount);
+    const int shadowLight = frame.lighting.shadowLight;
     for (int i = 0; i < lightCount; ++i) {
         const IncidentLight light = incidentLight(lights[i], center);
         const vec3 incident = light.radiance;

@@ -15,9 +15,11 @@
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
+// The trace scale s (lib/shared.h, VCT_SPEC_TRACE_SCALE: the one way it reaches the shaders).
+layout(constant_id = VCT_SPEC_TRACE_SCALE) const int SCALE = 4;
 // Trace scale 1: every pixel traced, written straight into the full-res indirect targets with the weight of
 // one fresh sample; no upsample pass runs, so no guides are written (their images are 1×1 stand-ins).
-layout(constant_id = VCT_TRACE_SPEC_FULL_RESOLUTION) const bool FULL_RESOLUTION = false;
+const bool FULL_RESOLUTION = SCALE == 1;
 
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = VCT_TRACE_BINDING_DEPTH) uniform sampler2D depthTexture;
@@ -33,11 +35,10 @@ layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_AXIS, rgba16f) uniform writeon
 void main() {
     const ivec2 lowPixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(lowPixel, imageSize(indirectImage)))) return;
-    const int scale = max(int(frame.voxelParams.w), 1);
     // Clamped at the right and bottom edges (the low-res image rounds up); upsample clamps the same way.
-    const ivec2 pixel = min(lowPixel * scale + frame.traceJitter.xy, ivec2(frame.imageSize.xy) - 1);
+    const ivec2 pixel = min(lowPixel * SCALE + frame.upsample.traceOffset, ivec2(frame.imageSize) - 1);
     const float depth = texelFetch(depthTexture, pixel, 0).r;
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     if (isBackground(depth) || isDegeneratePosition(worldFromDepth(frame.invViewProj, uv, depth))) {
         // Nothing to light; the guide marks the sample as background for the upsample.
         imageStore(indirectImage, lowPixel, packIndirect(vec4(0.0, 0.0, 0.0, 1.0), vec4(0.0, 0.0, 0.0, 1.0)));
@@ -47,11 +48,11 @@ void main() {
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     // The sample's guide for the upsample weights, computed once here rather than by every pixel it serves.
     const Guide g = guideFromGBuffer(normalRoughness, worldFromDepth(frame.invViewProj, uv, depth),
-                                     frame.cameraPosition.xyz, frame.upsampleParams.y);
+                                     frame.cameraPosition, frame.upsample.kappa);
     // No grid yet: no indirect light.
     IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
-    if (frame.voxelOrigin.w > 0.0)
-        s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition.xyz - g.p, g.n),
+    if (frame.voxels.voxelSize > 0.0)
+        s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition - g.p, g.n),
                          normalRoughness.w);
     // Weight 1: one fresh sample (what the history accumulates at trace scale 1).
     imageStore(indirectImage, lowPixel, packIndirect(vec4(s.diffuse, 1.0), vec4(s.specular, 1.0)));

@@ -42,7 +42,7 @@
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
 // The configuration, fixed per pipeline (engine/passes/upsample_pass.cpp keeps one pipeline per combination).
-layout(constant_id = VCT_UPSAMPLE_SPEC_SCALE) const int SCALE = 4;  // trace scale s: 2 or 4
+layout(constant_id = VCT_SPEC_TRACE_SCALE) const int SCALE = 4;  // trace scale s: 2 or 4
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHTS) const int WEIGHTS = VCT_WEIGHTS_SG;
 layout(constant_id = VCT_UPSAMPLE_SPEC_TEMPORAL) const bool TEMPORAL = true;  // --temporal
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;  // write weightSumImage
@@ -100,9 +100,9 @@ struct Sample {
 // (preparedSharpness: λ̄, ln λ̄, 1/λ̄), once per pixel and once per sample.
 vec2 lobeLogWeights(Guide a, vec3 sharpnessA, vec3 nq, vec3 axisQ, vec3 sharpnessQ) {
     if (WEIGHTS == VCT_WEIGHTS_BILINEAR) return vec2(0.0);
-    if (WEIGHTS == VCT_WEIGHTS_NORMAL) return vec2(normalLogWeight(a.n, nq, frame.upsampleParams.z));
-    const float beta = frame.upsampleParams.x;
-    const float diffuseSharpness = smoothedSharpness(1.0 / frame.upsampleMode.x, frame.upsampleParams.y);
+    if (WEIGHTS == VCT_WEIGHTS_NORMAL) return vec2(normalLogWeight(a.n, nq, frame.upsample.normalVariance));
+    const float beta = frame.upsample.beta;
+    const float diffuseSharpness = smoothedSharpness(1.0 / frame.upsample.diffuseSharpness, frame.upsample.kappa);
     return vec2(equalLobeLogWeight(a.n, nq, diffuseSharpness, beta),
                 lobeLogWeightPrepared(a.specularAxis, sharpnessA, axisQ, sharpnessQ, beta));
 }
@@ -115,17 +115,17 @@ float planeLogWeightFrom(vec4 plane, vec3 q) {
 // Reconstructs one full-res pixel from its cell's samples and its history; writes it and lists it for
 // re-tracing when its sum of weights is low.
 void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
-    const ivec2 size = ivec2(frame.imageSize.xy);
+    const ivec2 size = ivec2(frame.imageSize);
     const float depth = texelFetch(depthTexture, pixel, 0).r;
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const vec3 position = worldFromDepth(frame.invViewProj, uv, depth);
     // A position that cannot be shaded (lib/gbuffer_read.glsl) is treated as the background, as the trace does.
     const bool background = isBackground(depth) || isDegeneratePosition(position);
-    const float kappa = frame.upsampleParams.y;
+    const float kappa = frame.upsample.kappa;
     // A background pixel's "position" is at the far plane (or infinite): its weights may be garbage, even NaN;
     // its outputs are replaced by zeros at the end, without a branch around the work.
     const Guide here = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0), position,
-                                        frame.cameraPosition.xyz, kappa);
+                                        frame.cameraPosition, kappa);
     const vec4 herePlane = scaledTangentPlane(here.n, here.p, here.cameraDistance);
     const vec3 hereSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.specularSharpness) : vec3(0.0);
 
@@ -166,8 +166,8 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     // Without a guide (bilinear) nothing can validate a tap, so the history is resampled bilinearly over the 4
     // texels around the reprojected position (outside the image or on the background: weight 0), the
     // guide-free baseline as a whole.
-    if (WEIGHTS == VCT_WEIGHTS_BILINEAR && TEMPORAL && frame.upsampleMode.y > 0.5) {
-        const vec2 prevCoord = (uv - texelFetch(motionTexture, pixel, 0).xy) * frame.imageSize.xy - 0.5;
+    if (WEIGHTS == VCT_WEIGHTS_BILINEAR && TEMPORAL && (frame.flags & VCT_FLAG_HISTORY) != 0u) {
+        const vec2 prevCoord = (uv - texelFetch(motionTexture, pixel, 0).xy) * frame.imageSize - 0.5;
         const ivec2 prevBase = ivec2(floor(prevCoord));
         const vec2 fraction = prevCoord - vec2(prevBase);
         [[unroll]] for (int tap = 0; tap < 4; ++tap) {
@@ -188,16 +188,16 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
             historyWeight += w;
         }
     }
-    if (WEIGHTS != VCT_WEIGHTS_BILINEAR && TEMPORAL && frame.upsampleMode.y > 0.5) {
+    if (WEIGHTS != VCT_WEIGHTS_BILINEAR && TEMPORAL && (frame.flags & VCT_FLAG_HISTORY) != 0u) {
         const vec2 prevUv = uv - texelFetch(motionTexture, pixel, 0).xy;
-        const ivec2 texel = ivec2(floor(prevUv * frame.imageSize.xy));
+        const ivec2 texel = ivec2(floor(prevUv * frame.imageSize));
         const bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size));
         const ivec2 at = clamp(texel, ivec2(0), size - 1);
         const float prevDepth = texelFetch(prevDepthTexture, at, 0).r;
-        const vec2 atUv = (vec2(at) + 0.5) * frame.imageSize.zw;
+        const vec2 atUv = (vec2(at) + 0.5) * frame.texelSize;
         const Guide then = guideFromGBuffer(texelFetch(prevNormalRoughnessTexture, at, 0),
                                             worldFromDepth(frame.prevInvViewProj, atUv, prevDepth),
-                                            frame.prevCameraPosition.xyz, kappa);
+                                            frame.prevCameraPosition, kappa);
         const vec3 thenSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(then.specularSharpness) : vec3(0.0);
         const uvec4 historyTexel = texelFetch(indirectHistory, at, 0);
         const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
@@ -214,7 +214,7 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         historySpecular = historyWeight.y * specularTexel.rgb;
     }
 
-    const float gamma = frame.upsampleParams.w;
+    const float gamma = frame.upsample.gamma;
     const vec2 accumulated = accumulationWeight + gamma * historyWeight;
     // The sum of weights τ tests: this frame's neighbourhood by its kernel weights, plus the history counted
     // in pixel-own samples (EXACT_SAMPLE_WEIGHT each). Where the guide rejects most neighbours (silhouettes,
@@ -225,11 +225,11 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     const float minSum = 1e-30;
     const vec3 diffuse = (spatialDiffuse + gamma * historyDiffuse) / max(accumulated.x, minSum);
     const vec3 specular = (spatialSpecular + gamma * historySpecular) / max(accumulated.y, minSum);
-    const float maxWeight = frame.upsampleMode.w;
+    const float maxWeight = frame.upsample.maxHistoryWeight;
     // Nothing to light on the background: no indirect light, never re-traced.
     // τ is 0 without adaptive re-tracing (nothing is listed). A uniform, not a specialization constant: the
     // variant without the append measured 25 % slower on lavapipe (LLVM then unrolled the 16-pixel loop).
-    const bool resample = !background && min(weightSum.x, weightSum.y) < frame.upsampleMode.z;
+    const bool resample = !background && min(weightSum.x, weightSum.y) < frame.upsample.tau;
     const vec4 diffuseOut = background ? vec4(0.0) : vec4(diffuse, min(accumulated.x, maxWeight));
     const vec4 specularOut = background ? vec4(0.0) : vec4(specular, min(accumulated.y, maxWeight));
     const vec4 weightOut = background ? vec4(0.0) : vec4(weightSum, resample ? 1.0 : 0.0, 0.0);
@@ -245,8 +245,8 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
 }
 
 void main() {
-    const ivec2 size = ivec2(frame.imageSize.xy);
-    const ivec2 jitter = frame.traceJitter.xy;
+    const ivec2 size = ivec2(frame.imageSize);
+    const ivec2 jitter = frame.upsample.traceOffset;
     const ivec2 lowSize = textureSize(indirectLow, 0);
     // Cell b holds the pixels x with floor((x − o)/s) = b: x ∈ [s·b + o, s·b + o + s). Cells start at −1, where
     // the offset o leaves pixels left of sample 0.

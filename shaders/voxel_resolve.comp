@@ -19,7 +19,7 @@ layout(push_constant) uniform Push { VoxelizePushConstants push; };
 
 void main() {
     const ivec3 voxel = ivec3(gl_GlobalInvocationID);
-    const int n = int(frame.voxelParams.x);
+    const int n = int(frame.voxels.resolution);
     if (any(greaterThanEqual(voxel, ivec3(n)))) return;
     const uint base = voxelLinearIndex(voxel, n) * VCT_VOXEL_ACCUM_STRIDE;
     const bool dynamic = push.params.y != 0;

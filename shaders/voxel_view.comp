@@ -30,8 +30,8 @@ void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     const ivec2 size = imageSize(outputImage);
     if (any(greaterThanEqual(pixel, size))) return;
-    const vec3 ambient = frame.ambient.rgb;
-    const float v0 = frame.voxelOrigin.w;
+    const vec3 ambient = frame.lighting.ambient;
+    const float v0 = frame.voxels.voxelSize;
     if (v0 <= 0.0) {  // no grid
         imageStore(outputImage, pixel, vec4(ambient, 1.0));
         return;
@@ -39,14 +39,14 @@ void main() {
 
     // The camera ray through the pixel centre.
     const vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
-    const vec3 eye = frame.cameraPosition.xyz;
+    const vec3 eye = frame.cameraPosition;
     const vec3 dir = normalize(worldFromDepth(frame.invViewProj, uv, 1.0) - eye);
 
     // In units of one texel of level `mip`: the grid is [0, cells)³.
     const int mip = int(push.params.x);
-    const int cells = max(int(frame.voxelParams.x) >> mip, 1);
-    const float cellSize = v0 * float(int(frame.voxelParams.x) / cells);
-    const vec3 o = (eye - frame.voxelOrigin.xyz) / cellSize;
+    const int cells = max(int(frame.voxels.resolution) >> mip, 1);
+    const float cellSize = v0 * float(int(frame.voxels.resolution) / cells);
+    const vec3 o = (eye - frame.voxels.origin) / cellSize;
 
     // Slab test against the grid's box. An axis the ray (nearly) runs parallel to never steps and only limits
     // the ray if the eye is outside the grid's slab on it.
@@ -68,10 +68,10 @@ void main() {
     // that surface's voxel (cornell's at N = 32, 0.1 m from the front wall in 0.13 m voxels), which would
     // otherwise veil the whole view. In level-0 units: the first boundary ahead on each axis (the eye exactly on
     // a boundary is in the voxel the ray goes into).
-    const float texelsPerCell = float(int(frame.voxelParams.x) / cells);
+    const float texelsPerCell = float(int(frame.voxels.resolution) / cells);
     const vec3 o0 = o * texelsPerCell;
     float tSkip = 0.0;
-    if (all(greaterThanEqual(o0, vec3(0.0))) && all(lessThan(o0, vec3(frame.voxelParams.x)))) {
+    if (all(greaterThanEqual(o0, vec3(0.0))) && all(lessThan(o0, vec3(float(frame.voxels.resolution))))) {
         float exit0 = 1e30;
         for (int k = 0; k < 3; ++k) {
             const float boundary = dir[k] > 0.0 ? floor(o0[k]) + 1.0 : ceil(o0[k]) - 1.0;

@@ -45,7 +45,7 @@ float lodForVoxel(sampler2D tex, vec2 uvA, vec2 uvB, vec2 uvC, float worldArea2)
     const vec2 du = (uvB - uvA) * size, dv = (uvC - uvA) * size;
     const float texelArea2 = abs(du.x * dv.y - du.y * dv.x);
     const float texelsPerUnit = sqrt(texelArea2 / max(worldArea2, 1e-20));
-    return log2(max(texelsPerUnit * frame.voxelOrigin.w, 1.0));
+    return log2(max(texelsPerUnit * frame.voxels.voxelSize, 1.0));
 }
 
 void main() {
@@ -57,8 +57,8 @@ void main() {
     uint vi[3];
     for (int k = 0; k < 3; ++k) vi[k] = uint(int(indices[push.draw.z + triangle * 3 + k]) + vertexOffset);
 
-    const vec4 grid = frame.voxelOrigin;
-    const int n = int(frame.voxelParams.x);
+    const vec4 grid = vec4(frame.voxels.origin, frame.voxels.voxelSize);
+    const int n = int(frame.voxels.resolution);
     vec3 p[3], worldP[3], nrm[3];
     vec2 uv[3];
     for (int k = 0; k < 3; ++k) {

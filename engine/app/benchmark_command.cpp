@@ -190,6 +190,14 @@ int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session
     return 0;
 }
 
+// --size, smaller than render's by default.
+Option benchmarkSize() {
+    Option size = settingOption("size");
+    size.help += " (scaling: the size of the voxel-resolution sweep)";
+    size.defaultValue = "320x180";
+    return size;
+}
+
 }  // namespace
 
 int runBenchmarkCommand(int argc, char** argv, int first) {
@@ -218,7 +226,7 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
          ""},
         {"scenes-dir", "DIR", "scenes mode: where to look for glTF models (DIR/*/glTF/*.gltf, DIR/*/*.glb)",
          "../shared/scenes"},
-        {"size", "WxH", "image size in pixels (scaling: the size of the voxel-resolution sweep)", "320x180"},
+        benchmarkSize(),
         {"frames", "N", "frames per configuration (>= warmup + 30 for claims)", "64"},
         {"warmup", "K", "frames left out of the timing statistics (default: min(10, frames/4))", ""},
         {"block", "B", "frames a configuration renders in a row before the next takes its turn", "8"},
@@ -226,11 +234,10 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         {"out", "DIR", "where the report (.json, .md) goes", "out/benchmark"},
         {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
-        {"voxels", "N", "voxel grid resolution (default from the device)", ""},
-        {"exposure", "X", "linear exposure before tone mapping", "1"},
-        {"recompute-every-frame", "",
-         "diagnostic: run every pass every frame, also what a static scene and camera would reuse", ""}};
-    for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
+        settingOption("voxels"),
+        settingOption("exposure"),
+        settingOption("recompute-every-frame")};
+    for (Option& option : settingOptions(SettingGroup::Material)) options.push_back(std::move(option));
     static const CommandSpec spec("benchmark", "GPU-timed measurements in one run: see --mode.", options);
     auto parsed = spec.parse(argc, argv, first);
     if (!parsed) return 0;

@@ -1,11 +1,11 @@
 #include "app/cli.h"
 
 #include <charconv>
-#include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include "core/error.h"
+#include "render/setting_table.h"
 
 namespace vct {
 
@@ -26,34 +26,11 @@ uint32_t ParsedArgs::getUint(const std::string& name, uint32_t min, uint32_t max
 }
 
 float ParsedArgs::getFloat(const std::string& name, float min, float max) const {
-    const std::string text = get(name);
-    float value = 0.0f;
-    auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value) || value < min ||
-        value > max) {
-        std::ostringstream message;
-        message << "--" << name << " '" << text << "': expected a number from " << min << " to " << max;
-        throw UsageError(message.str());
-    }
-    return value;
+    return parseNumber(get(name), "--" + name, min, max);
 }
 
 std::pair<uint32_t, uint32_t> ParsedArgs::getSize(const std::string& name, uint32_t maxDimension) const {
-    const std::string text = get(name);
-    const size_t x = text.find('x');
-    uint64_t w = 0, h = 0;
-    bool ok = x != std::string::npos;
-    if (ok) {
-        auto [endW, errorW] = std::from_chars(text.data(), text.data() + x, w);
-        auto [endH, errorH] = std::from_chars(text.data() + x + 1, text.data() + text.size(), h);
-        ok = errorW == std::errc() && errorH == std::errc() && endW == text.data() + x &&
-             endH == text.data() + text.size();
-    }
-    if (!ok) throw UsageError("--" + name + " '" + text + "': expected WIDTHxHEIGHT, e.g. 1280x720");
-    if (w < 1 || h < 1 || w > maxDimension || h > maxDimension)
-        throw UsageError("--" + name + " " + text + ": width and height must be from 1 to " +
-                         std::to_string(maxDimension));
-    return {uint32_t(w), uint32_t(h)};
+    return parseSize(get(name), "--" + name, maxDimension);
 }
 
 CommandSpec::CommandSpec(std::string name, std::string summary, std::vector<Option> options)

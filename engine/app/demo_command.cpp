@@ -38,10 +38,17 @@ namespace vct {
 
 namespace {
 
+// --size: the window's initial size.
+Option windowSize() {
+    Option size = settingOption("size");
+    size.help += " (the window's initial size)";
+    return size;
+}
+
 CommandSpec makeDemoSpec() {
     std::vector<Option> options = {
         {"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
-        {"size", "WxH", "initial window size", "1280x720"},
+        windowSize(),
         {"frames", "N", "quit after N frames, advancing the scene 1/60 s per frame (0: run until closed)",
          "0"},
         {"screenshot", "FILE.png", "write the last frame to FILE.png on exit", ""},
@@ -66,13 +73,12 @@ CommandSpec makeDemoSpec() {
          "vct"},
         {"reference-bounces", "0..64|all",
          "the reference's indirect bounces: 1 is what vct estimates, all is full GI", "1"},
-        {"exposure", "X", "linear exposure before tone mapping", "1"},
+        settingOption("exposure"),
         {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""}};
     // The same GI and material-filtering switches as `render`; the panel changes them live.
-    for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
-    for (Option& option : giOptions()) options.push_back(std::move(option));
-    for (Option& option : upsampleOptions()) options.push_back(std::move(option));
+    for (SettingGroup group : {SettingGroup::Material, SettingGroup::Gi, SettingGroup::Upsample})
+        for (Option& option : settingOptions(group)) options.push_back(std::move(option));
     return CommandSpec("demo",
                        "Opens a window and shows the frame live: WASD + mouse drag, F1 panel, Esc quits "
                        "(README: every control and key).",
@@ -458,8 +464,7 @@ void DemoApp::fillInfo(double cpuMs) {
     info_.height = a.settings().height;
     info_.traceScale = a.settings().gi ? a.settings().traceScale : 1;
     info_.gi = a.settings().gi;
-    info_.voxels = a.settings().voxelResolution;
-    info_.anisotropy = a.settings().anisotropy;
+    info_.resolved = a.settings();
     info_.voxelMips = a.voxelGrid() ? a.voxelGrid()->mipCount() : 1;
     info_.resampled = a.resampledFraction();
     info_.cpuFrameMs = cpuMs;

@@ -1,113 +1,35 @@
 #include "app/demo_controls.h"
 
 #include <charconv>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "core/error.h"
 #include "reference/path_tracer.h"
+#include "render/setting_table.h"
 
 namespace vct {
 
 namespace {
 
+// The demo's own options parse as settings do (render/setting_table.h).
 bool onOff(const std::string& name, const std::string& value) {
-    if (value == "on" || value == "true" || value == "1") return true;
-    if (value == "off" || value == "false" || value == "0") return false;
-    throw UsageError(name + " '" + value + "': expected on or off");
+    return parseOnOff(value, name);
 }
-
 float number(const std::string& name, const std::string& value, float min, float max) {
-    char* end = nullptr;
-    const float v = std::strtof(value.c_str(), &end);
-    if (value.empty() || *end != '\0' || !std::isfinite(v) || v < min || v > max) {
-        char range[64];
-        std::snprintf(range, sizeof(range), "expected a number in [%g, %g]", double(min), double(max));
-        throw UsageError(name + " '" + value + "': " + range);
-    }
-    return v;
-}
-
-uint32_t oneOf(const std::string& name, const std::string& value, std::initializer_list<uint32_t> allowed) {
-    std::string list;
-    for (uint32_t a : allowed) {
-        if (value == std::to_string(a)) return a;
-        list += (list.empty() ? "" : ", ") + std::to_string(a);
-    }
-    throw UsageError(name + " '" + value + "': expected one of " + list);
-}
-
-std::string text(float value) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof(buffer), "%g", double(value));
-    return buffer;
+    return parseNumber(value, name, min, max);
 }
 
 }  // namespace
 
-bool applySetting(RenderSettings& s, const std::string& name, const std::string& value) {
-    if (name == "weights") {
-        if (value == "bilinear")
-            s.weights = RenderSettings::Weights::Bilinear;
-        else if (value == "normal")
-            s.weights = RenderSettings::Weights::Normal;
-        else if (value == "sg")
-            s.weights = RenderSettings::Weights::Sg;
-        else
-            throw UsageError("weights '" + value + "': expected bilinear, normal or sg");
-    } else if (name == "trace-scale") {
-        s.traceScale = oneOf(name, value, {1, 2, 4});
-    } else if (name == "beta") {
-        s.beta = number(name, value, 0.01f, 1000.0f);
-    } else if (name == "kappa") {
-        s.kappa = number(name, value, 0.01f, kMaxKappa);
-    } else if (name == "sigma-n") {
-        s.sigmaN = number(name, value, 1e-3f, 10.0f);
-    } else if (name == "gamma") {
-        s.gamma = number(name, value, 0.0f, 1.0f);
-    } else if (name == "tau") {
-        s.tau = number(name, value, 1e-6f, 1000.0f);
-    } else if (name == "temporal") {
-        s.temporal = onOff(name, value);
-    } else if (name == "adaptive") {
-        s.adaptive = onOff(name, value);
-    } else if (name == "toksvig") {
-        s.toksvig = onOff(name, value);
-    } else if (name == "specular-aa") {
-        s.specularAA = onOff(name, value);
-    } else if (name == "anisotropy") {
-        s.anisotropy = oneOf(name, value, {0, 2, 4, 8, 16});
-    } else if (name == "exposure") {
-        s.exposure = number(name, value, 1e-4f, 1e4f);
-    } else if (name == "gi") {
-        s.gi = onOff(name, value);
-    } else if (name == "voxels") {
-        s.voxelResolution = oneOf(name, value, {32, 64, 128, 256});
-    } else {
-        return false;
-    }
+bool applySetting(RenderSettings& settings, const std::string& name, const std::string& value) {
+    const SettingSpec* spec = findSetting(name);
+    if (!spec || !spec->demo) return false;
+    parseSetting(*spec, value, name, settings);
     return true;
 }
 
-std::string settingText(const RenderSettings& s, const std::string& name) {
-    auto flag = [](bool b) { return std::string(b ? "on" : "off"); };
-    if (name == "weights") return weightsName(s.weights);
-    if (name == "trace-scale") return std::to_string(s.traceScale);
-    if (name == "beta") return text(s.beta);
-    if (name == "kappa") return text(s.kappa);
-    if (name == "sigma-n") return text(s.sigmaN);
-    if (name == "gamma") return text(s.gamma);
-    if (name == "tau") return text(resampleThreshold(s));
-    if (name == "temporal") return flag(s.temporal);
-    if (name == "adaptive") return flag(s.adaptive);
-    if (name == "toksvig") return flag(s.toksvig);
-    if (name == "specular-aa") return flag(s.specularAA);
-    if (name == "anisotropy") return std::to_string(s.anisotropy);
-    if (name == "exposure") return text(s.exposure);
-    if (name == "gi") return flag(s.gi);
-    if (name == "voxels") return std::to_string(s.voxelResolution);
-    return "";
+std::string settingText(const RenderSettings& settings, const std::string& name) {
+    const SettingSpec* spec = findSetting(name);
+    return spec && spec->demo ? settingText(*spec, settings) : std::string();
 }
 
 RenderSettings DemoControls::settingsB() const {
@@ -125,13 +47,17 @@ std::string referenceBouncesText(int bounces) {
 }
 
 const std::vector<std::string>& demoOptionNames() {
-    // clang-format off
-    static const std::vector<std::string> names = {
-        "weights", "trace-scale", "beta", "kappa", "sigma-n", "gamma", "tau", "temporal", "adaptive", "toksvig",
-        "specular-aa", "anisotropy", "exposure", "gi", "voxels", "view", "voxel-mip", "split", "wipe",
-        "split-source", "reference-bounces", "b-NAME", "panel", "pause", "play-path", "camera-cut",
-        "reset-history", "step", "hot-reload", "record", "screenshot", "screenshot-ui", "scene", "quit"};
-    // clang-format on
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> list;
+        for (const SettingSpec& spec : settingTable())
+            if (spec.demo) list.push_back(spec.name);
+        for (const char* name :
+             {"view", "voxel-mip", "split", "wipe", "split-source", "reference-bounces", "b-NAME", "panel",
+              "pause", "play-path", "camera-cut", "reset-history", "step", "hot-reload", "record",
+              "screenshot", "screenshot-ui", "scene", "quit"})
+            list.push_back(name);
+        return list;
+    }();
     return names;
 }
 

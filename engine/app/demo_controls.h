@@ -51,10 +51,11 @@ struct DemoControls {
     bool showsReference() const { return split && splitSource == SplitSource::Reference; }
 };
 
-// Sets one RenderSettings field by its command-line name (weights, trace-scale, beta, kappa, sigma-n, gamma,
-// tau, temporal, adaptive, toksvig, specular-aa, anisotropy, exposure, gi, voxels) from its command-line
-// text, with the command line's checks. False when `name` is not a render setting; UsageError for a bad
-// value (one line, naming the option).
+// Sets one RenderSettings field by its command-line name from its command-line text, with the command line's
+// checks: the rows of the setting table (render/setting_table.h) marked `demo` (gi, trace-scale, voxels,
+// weights, beta, kappa, sigma-n, diffuse-sharpness, gamma, tau, temporal, adaptive, toksvig, specular-aa,
+// anisotropy, exposure). False when `name` is not such a setting; UsageError for a bad value (one line,
+// naming the option).
 bool applySetting(RenderSettings& settings, const std::string& name, const std::string& value);
 
 // Applies a render setting (above), a demo option (view, voxel-mip, split, wipe, split-source vct|reference,

@@ -4,8 +4,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
 
 #include "core/error.h"
+#include "render/setting_table.h"
 
 namespace vct {
 
@@ -30,7 +35,7 @@ struct Setter {
     }
 };
 
-// One combo over command-line values; `prefix` "b-" makes it side B's.
+// One combo over command-line values.
 void choice(Setter& set, const char* label, const std::string& name, const std::string& current,
             std::initializer_list<const char*> values) {
     if (!ImGui::BeginCombo(label, current.c_str())) return;
@@ -49,6 +54,43 @@ void slider(Setter& set, const char* label, const std::string& name, float curre
     float value = current;
     if (ImGui::SliderFloat(label, &value, lo, hi, "%.3g", logarithmic ? ImGuiSliderFlags_Logarithmic : 0))
         set(name, fmt("%g", double(value)));
+}
+
+// The widgets of the setting table's rows (render/setting_table.h) that have one, in table order, showing
+// `shown`; `prefix` "b-" makes them side B's (the rows marked sideB only). Two checkboxes in a row share a
+// line.
+void settingWidgets(Setter& set, const RenderSettings& shown, const std::string& prefix) {
+    const bool sideB = !prefix.empty();
+    const std::string labelPrefix = sideB ? "B " : "";
+    bool checkboxStartedLine = false;
+    for (const SettingSpec& spec : settingTable()) {
+        if (spec.widget == SettingWidget::None || (sideB && !spec.sideB)) continue;
+        const std::string name = prefix + spec.name;
+        const std::string label = labelPrefix + spec.label;
+        const std::string current = settingText(spec, shown);
+        const bool checkbox = spec.widget == SettingWidget::Checkbox;
+        if (checkbox && checkboxStartedLine) ImGui::SameLine();
+        checkboxStartedLine = checkbox && !checkboxStartedLine;
+        std::visit(Overloaded{
+                       [&](const OnOffValue& v) { toggle(set, label.c_str(), name, shown.*v.member); },
+                       [&](const FloatValue& v) {
+                           slider(set, label.c_str(), name, shown.*v.member, v.min, v.max,
+                                  spec.widget == SettingWidget::LogSlider);
+                       },
+                       [&](const auto& v) {
+                           std::vector<std::string> values;
+                           if constexpr (std::is_same_v<std::decay_t<decltype(v)>, ChoiceValue>)
+                               for (uint32_t c : v.choices) values.push_back(std::to_string(c));
+                           if constexpr (std::is_same_v<std::decay_t<decltype(v)>, NamedValue>)
+                               for (const char* n : v.names) values.push_back(n);
+                           if (values.empty() || !ImGui::BeginCombo(label.c_str(), current.c_str())) return;
+                           for (const std::string& value : values)
+                               if (ImGui::Selectable(value.c_str(), current == value)) set(name, value);
+                           ImGui::EndCombo();
+                       },
+                   },
+                   spec.value);
+    }
 }
 
 // Per-pass medians as horizontal bars, all on the scale of the longest.
@@ -155,23 +197,8 @@ void drawPanel(DemoControls& c, PanelInfo& info, char* sceneField, size_t sceneF
     if (!info.message.empty()) ImGui::TextWrapped("%s", info.message.c_str());
 
     if (ImGui::CollapsingHeader("Method", ImGuiTreeNodeFlags_DefaultOpen)) {
-        toggle(set, "GI (cone tracing)", "gi", s.gi);
-        choice(set, "weights", "weights", weightsName(s.weights), {"bilinear", "normal", "sg"});
-        choice(set, "trace scale", "trace-scale", std::to_string(s.traceScale), {"1", "2", "4"});
-        slider(set, "beta", "beta", s.beta, 1.0f, 200.0f, true);
-        slider(set, "kappa", "kappa", s.kappa, 1.0f, 2000.0f, true);
-        slider(set, "sigma_n", "sigma-n", s.sigmaN, 0.01f, 1.0f, true);
-        slider(set, "gamma", "gamma", s.gamma, 0.0f, 1.0f, false);
-        slider(set, "tau", "tau", resampleThreshold(s), 0.01f, 8.0f, true);
-        toggle(set, "temporal", "temporal", s.temporal);
-        ImGui::SameLine();
-        toggle(set, "adaptive", "adaptive", s.adaptive);
-        toggle(set, "Toksvig", "toksvig", s.toksvig);
-        ImGui::SameLine();
-        toggle(set, "specular AA", "specular-aa", s.specularAA);
-        choice(set, "anisotropy", "anisotropy", std::to_string(info.anisotropy), {"0", "2", "4", "8", "16"});
-        choice(set, "voxels", "voxels", std::to_string(info.voxels), {"32", "64", "128", "256"});
-        slider(set, "exposure", "exposure", s.exposure, 0.05f, 20.0f, true);
+        // What a renderer resolves (voxels, anisotropy) is shown as renderer A chose it.
+        settingWidgets(set, withResolvedSettings(info.resolved, s), "");
     }
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
         choice(set, "view", "view", auxViewName(c.view),
@@ -201,14 +228,8 @@ void drawPanel(DemoControls& c, PanelInfo& info, char* sceneField, size_t sceneF
                 "B is the path-traced truth of A's frame, converging on the CPU: a camera move restarts it, "
                 "a playing animation rebuilds it every frame (pause to let it converge).");
         } else if (c.split) {
-            const RenderSettings b = c.settingsB();
             ImGui::PushID("b");
-            choice(set, "B weights", "b-weights", weightsName(b.weights), {"bilinear", "normal", "sg"});
-            choice(set, "B trace scale", "b-trace-scale", std::to_string(b.traceScale), {"1", "2", "4"});
-            toggle(set, "B temporal", "b-temporal", b.temporal);
-            ImGui::SameLine();
-            toggle(set, "B adaptive", "b-adaptive", b.adaptive);
-            toggle(set, "B GI", "b-gi", b.gi);
+            settingWidgets(set, c.settingsB(), "b-");
             ImGui::PopID();
             ImGui::TextWrapped(
                 "Both sides are rendered in full every frame: the split view costs a second frame "

@@ -1,4 +1,5 @@
-// The demo's Dear ImGui windows: the control panel (every live setting, the views, the split view, scene,
+// The demo's Dear ImGui windows: the control panel (a widget for every setting whose row in the setting table
+// has one, render/setting_table.h; the views, the split view, scene,
 // animation, camera path, shader reload) and the timer overlay (per-pass GPU medians as bars, frame-time
 // graph, fps, re-traced fraction, device, sizes). Every change goes through applyOption, like --script.
 #pragma once
@@ -15,7 +16,9 @@ struct PanelInfo {
     std::string device, scene;
     uint32_t width = 0, height = 0;
     uint32_t traceScale = 1, traceScaleB = 1;
-    uint32_t voxels = 0, anisotropy = 0, voxelMips = 1;  // what renderer A chose
+    RenderSettings
+        resolved;  // renderer A's settings: what it resolved automatic requests (voxels, anisotropy) to
+    uint32_t voxelMips = 1;
     bool gi = true, giB = true;
     float resampled = 0.0f, resampledB = 0.0f;  // fraction of the pixels re-traced last frame
     double cpuFrameMs = 0.0;                    // wall-clock time of the last frame (render + present)

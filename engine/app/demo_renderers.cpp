@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "render/setting_table.h"
 
 namespace vct {
 
@@ -39,15 +40,14 @@ std::unique_ptr<Renderer> DemoRenderers::make(const Scene& scene, const RenderSe
 void DemoRenderers::bring(std::unique_ptr<Renderer>& current, const RenderSettings& wanted,
                           const char* side) {
     if (current) {
-        if (current->canApplyLive(wanted)) {
+        // What the change needs, by the setting table (render/setting_table.h).
+        const SettingApply needs = settingsChange(current->settings(), wanted);
+        if (needs == SettingApply::Live) {
             current->applyLive(wanted);
             return;
         }
         // Only the size changed: new targets, same passes and voxel grid.
-        RenderSettings sameSize = wanted;
-        sameSize.width = current->settings().width;
-        sameSize.height = current->settings().height;
-        if (current->canApplyLive(sameSize)) {
+        if (needs == SettingApply::Resize) {
             current->resize(wanted.width, wanted.height);
             current->applyLive(wanted);
             return;

@@ -19,22 +19,28 @@ namespace vct {
 namespace {
 
 std::vector<Option> renderOptions() {
-    std::vector<Option> options = {{"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
-         {"size", "WxH", "image size in pixels", "1280x720"},
-         {"frames", "N", "frames to render; the scene advances 1/60 s per frame from t = 0", "60"},
-         {"warmup", "K", "frames left out of the timing statistics (default: min(10, frames/4))", ""},
-         {"out", "DIR", "output directory (created if missing)", "out"},
-         {"exposure", "X", "linear exposure before tone mapping", "1"},
-         {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
-         {"camera-path", "FILE.json", "play this keyframed camera path (scenes/*.camera.json) instead of the scene camera", ""},
-         {"camera-cut", "K", "from frame K on, the camera jumps to another view (a camera cut: no history)", ""},
-         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
-         {"aux", "", "also write every buffer as EXR: direct, normal, roughness, albedo, depth (and indirect)", ""},
-         {"view", "BUFFER", "what final.png shows: final, direct, diffuse, specular, normals, roughness, voxels, resample (re-traced pixels in red), weights (sum of upsampling weights)", "final"},
-         {"voxel-mip", "M", "--view voxels: ray-march the voxel grid at mip M (0 .. log2(N))", "0"}};
-    for (Option& option : materialFilterOptions()) options.push_back(std::move(option));
-    for (Option& option : giOptions()) options.push_back(std::move(option));
-    for (Option& option : upsampleOptions()) options.push_back(std::move(option));
+    std::vector<Option> options = {
+        {"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
+        settingOption("size"),
+        {"frames", "N", "frames to render; the scene advances 1/60 s per frame from t = 0", "60"},
+        {"warmup", "K", "frames left out of the timing statistics (default: min(10, frames/4))", ""},
+        {"out", "DIR", "output directory (created if missing)", "out"},
+        settingOption("exposure"),
+        {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
+        {"camera-path", "FILE.json",
+         "play this keyframed camera path (scenes/*.camera.json) instead of the scene camera", ""},
+        {"camera-cut", "K", "from frame K on, the camera jumps to another view (a camera cut: no history)",
+         ""},
+        {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
+        {"aux", "", "also write every buffer as EXR: direct, normal, roughness, albedo, depth (and indirect)",
+         ""},
+        {"view", "BUFFER",
+         "what final.png shows: final, direct, diffuse, specular, normals, roughness, voxels, resample "
+         "(re-traced pixels in red), weights (sum of upsampling weights)",
+         "final"},
+        {"voxel-mip", "M", "--view voxels: ray-march the voxel grid at mip M (0 .. log2(N))", "0"}};
+    for (SettingGroup group : {SettingGroup::Material, SettingGroup::Gi, SettingGroup::Upsample})
+        for (Option& option : settingOptions(group)) options.push_back(std::move(option));
     return options;
 }
 

@@ -3,10 +3,12 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/cli.h"
 #include "render/renderer.h"
+#include "render/setting_table.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 
@@ -18,20 +20,19 @@ struct SessionOptions {
     vk::ContextOptions context;
 };
 
-// Reads --scene, --size, --exposure, --device and --validate; --toksvig, --specular-aa (on|off) and
-// --texture-lod0 when the command declares them.
+// Reads --scene, --device, --validate and every setting of the table (render/setting_table.h) that the
+// command declares: those given on the command line, and those the command gives a default.
 SessionOptions sessionOptions(const ParsedArgs& args);
 
-// The --toksvig and --specular-aa options (both default on), --anisotropy (0|2|4|8|16, default from the
-// device) and the diagnostic --texture-lod0 switch, for a command's CommandSpec.
-std::vector<Option> materialFilterOptions();
-
-// The --gi (on|off) and --trace-scale (1|2|4) options, for a command's CommandSpec.
-std::vector<Option> giOptions();
-// The upsampling and adaptive re-tracing flags (--weights, --beta, --kappa, --sigma-n, --gamma, --temporal,
-// --tau, --adaptive), and how they set RenderSettings (called by sessionOptions).
-std::vector<Option> upsampleOptions();
-void applyUpsampleOptions(const ParsedArgs& args, RenderSettings& settings);
+// The flags of the setting table's rows in `group`, in table order, with their help and their defaults from
+// RenderSettings{} (SettingGroup::Gi, Upsample and Material for render and demo; Material for benchmark).
+std::vector<Option> settingOptions(SettingGroup group);
+// The flag of one row, for a command that takes it alone (--size, --exposure, --voxels); the command may
+// change the default (benchmark's --size) or add to the help.
+Option settingOption(std::string_view name);
+// Sets, in table order, every row whose flag the command declares and the command line gives, or the command
+// gives a default for (its --help default): the one parser of settings on the command line.
+void applySettingArgs(const ParsedArgs& args, RenderSettings& settings);
 
 class Session {
 public:

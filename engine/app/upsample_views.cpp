@@ -45,9 +45,9 @@ std::vector<uint8_t> weightHeatMap(Renderer& renderer) {
     const std::vector<float> weights = readWeightSum(renderer);
     const std::vector<float> depth = renderer.readFloatImage(renderer.targets().depth);
     const float tau = resampleThreshold(renderer.settings());
-    // Log scale with τ at a quarter of the ramp (blue) and A_max at the top (white); the image counts the history
-    // in pixel-own samples (upsample.comp), so A_max is kHistoryWeightCap / kExactSampleWeight there.
-    const float lo = std::log2(tau) - 2.0f, hi = std::log2(kHistoryWeightCap / kExactSampleWeight);
+    // Log scale with τ at a quarter of the ramp (blue) and A_max at the top (white); the image counts the
+    // history in pixel-own samples (upsample.comp), so A_max is RenderSettings::historyCap there.
+    const float lo = std::log2(tau) - 2.0f, hi = std::log2(renderer.settings().historyCap);
     std::vector<uint8_t> bytes(weights.size());
     for (size_t i = 0; i * 4 < bytes.size(); ++i) {
         glm::vec3 c(0.35f);

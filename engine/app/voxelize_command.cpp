@@ -25,13 +25,12 @@ const CommandSpec& voxelizeSpec() {
         "emission, opacity, radiance and the static geometry's accumulator (static_*), read back by\n"
         "vct render --voxel-cache FILE.vdb.",
         {{"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
-         {"voxels", "N", "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
-          ""},
+         settingOption("voxels"),
          {"out", "FILE.vdb", "the OpenVDB file to write (required; its directory is created if missing)", ""},
          {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
          {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
-         {"voxel-cache", "FILE.vdb", "start from this file's static voxelization (a re-export gives the same file)",
-          ""}});
+         {"voxel-cache", "FILE.vdb",
+          "start from this file's static voxelization (a re-export gives the same file)", ""}});
     return spec;
 }
 
@@ -87,13 +86,9 @@ int runVoxelizeCommand(int argc, char** argv, int first) {
     options.scene = args.get("scene");
     options.settings.width = options.settings.height = kFrameSize;
     options.settings.gi = true;
-    // Validated (a power of two in 32..256) by chooseVoxelResolution; absent: the device's default, or the
-    // cache's N.
-    if (args.has("voxels")) options.settings.voxelResolution = args.getUint("voxels", 32, 256);
-    if (args.has("voxel-cache")) {
-        options.settings.voxelCache = args.get("voxel-cache");
-        if (options.settings.voxelCache.empty()) throw UsageError("--voxel-cache: expected a file name");
-    }
+    // --voxels (absent: the device's default, or the cache's N) and --voxel-cache, as the setting table
+    // parses them.
+    applySettingArgs(args, options.settings);
     options.context.deviceSubstring = args.get("device");
     options.context.validation = args.has("validate");
 

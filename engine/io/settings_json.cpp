@@ -1,24 +1,29 @@
 #include "io/settings_json.h"
 
+#include <variant>
+
+#include "core/error.h"
+#include "render/setting_table.h"
+
 namespace vct {
 
 nlohmann::json settingsJson(const RenderSettings& s) {
-    return {{"gi", s.gi},
-            {"voxels", s.voxelResolution},
-            {"trace_scale", s.traceScale},
-            {"weights", weightsName(s.weights)},
-            {"beta", s.beta},
-            {"kappa", s.kappa},
-            {"sigma_n", s.sigmaN},
-            {"diffuse_sharpness", s.diffuseSharpness},
-            {"gamma", s.gamma},
-            {"temporal", s.temporal},
-            {"adaptive", s.adaptive},
-            {"tau", resampleThreshold(s)},
-            {"toksvig", s.toksvig},
-            {"specular_aa", s.specularAA},
-            {"anisotropy", s.anisotropy},
-            {"exposure", s.exposure}};
+    nlohmann::json json = nlohmann::json::object();
+    for (const SettingSpec& spec : settingTable()) {
+        if (!spec.json) continue;
+        json[settingJsonKey(spec)] = std::visit(
+            Overloaded{
+                [&](const FloatValue& v) { return nlohmann::json(s.*v.member); },
+                [&](const OnOffValue& v) { return nlohmann::json(s.*v.member); },
+                [&](const ChoiceValue& v) { return nlohmann::json(s.*v.member); },
+                [&](const NamedValue& v) { return nlohmann::json(v.names[size_t(s.*v.member)]); },
+                [&](const auto&) -> nlohmann::json {
+                    throw Error(std::string("settingsJson: no JSON form for setting '") + spec.name + "'");
+                },
+            },
+            spec.value);
+    }
+    return json;
 }
 
 }  // namespace vct

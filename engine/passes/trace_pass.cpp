@@ -18,7 +18,7 @@ TracePass::TracePass(const vk::Context& context, uint32_t traceScale)
                                        {VCT_TRACE_BINDING_GUIDE_POSITION, storage, cs},
                                        {VCT_TRACE_BINDING_GUIDE_NORMAL, storage, cs},
                                        {VCT_TRACE_BINDING_GUIDE_AXIS, storage, cs}},
-                                      0, {fullResolution_ ? 1u : 0u});
+                                      0, {traceScale});  // VCT_SPEC_TRACE_SCALE
 
     // The stand-in grid: 2³ transparent black voxels (3D needs depth > 1), cleared once.
     vk::ImageDesc desc;

@@ -10,7 +10,7 @@ const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
     const uint32_t weights = settings.weights == RenderSettings::Weights::Bilinear ? VCT_WEIGHTS_BILINEAR
                              : settings.weights == RenderSettings::Weights::Normal ? VCT_WEIGHTS_NORMAL
                                                                                      : VCT_WEIGHTS_SG;
-    // Indexed by constant_id (VCT_UPSAMPLE_SPEC_*).
+    // Indexed by constant_id (VCT_SPEC_TRACE_SCALE, VCT_UPSAMPLE_SPEC_*).
     const std::vector<uint32_t> constants = {settings.traceScale, weights, settings.temporal ? 1u : 0u,
                                              settings.writeWeightSum ? 1u : 0u};
     const uint32_t key = constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17;

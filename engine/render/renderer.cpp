@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstring>
-
 #include <glm/gtc/packing.hpp>
 
 #include "passes/composite_pass.h"
@@ -16,8 +15,9 @@
 #include "passes/voxel_mips_pass.h"
 #include "passes/voxel_view_pass.h"
 #include "passes/voxelize_pass.h"
-#include "scene/camera_path.h"
+#include "render/setting_table.h"
 #include "render/shader_math.h"
+#include "scene/camera_path.h"
 #include "vk/check.h"
 
 namespace vct {
@@ -122,20 +122,12 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 }
 
 bool Renderer::canApplyLive(const RenderSettings& wanted) const {
-    // Requests that the constructor resolved (0 voxels, anisotropy from the device) match what it chose.
-    const bool voxels = wanted.voxelResolution == 0 || wanted.voxelResolution == settings_.voxelResolution;
-    const bool anisotropy = wanted.anisotropy == kAnisotropyFromDevice || wanted.anisotropy == settings_.anisotropy;
-    return wanted.width == settings_.width && wanted.height == settings_.height && wanted.gi == settings_.gi &&
-           wanted.traceScale == settings_.traceScale && wanted.adaptive == settings_.adaptive && voxels &&
-           anisotropy && wanted.voxelCache == settings_.voxelCache && wanted.textureLod0 == settings_.textureLod0;
+    return settingsChange(settings_, wanted) == SettingApply::Live;
 }
 
 void Renderer::applyLive(const RenderSettings& wanted) {
     if (!canApplyLive(wanted)) throw Error("Renderer::applyLive: these settings need a new renderer");
-    RenderSettings next = wanted;
-    next.voxelResolution = settings_.voxelResolution;
-    next.anisotropy = settings_.anisotropy;
-    settings_ = next;
+    settings_ = withResolvedSettings(settings_, wanted);
 }
 
 void Renderer::writeFrameUniforms(const FrameInput& input) {
@@ -147,31 +139,43 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     u.invViewProj = glm::inverse(u.viewProj);
     u.prevViewProj = (input.cut || !hasPrevious_) ? u.viewProj : previousViewProj_;
     u.lightViewProj = gpuScene_.lightViewProj();
-    u.cameraPosition = glm::vec4(input.camera.position(), 1.0f);
-    u.imageSize = glm::vec4(settings_.width, settings_.height, 1.0f / float(settings_.width),
-                            1.0f / float(settings_.height));
-    u.ambient = glm::vec4(settings_.ambient, settings_.exposure);
-    u.shadowParams = glm::vec4(gpuScene_.shadowTexelWorldSize(), 1.0f / float(VCT_SHADOW_MAP_SIZE),
-                               float(gpuScene_.lightCount()), float(gpuScene_.shadowLightIndex()));
-    u.materialParams = glm::vec4(settings_.toksvig ? 1.0f : 0.0f, settings_.specularAA ? 1.0f : 0.0f,
-                                 settings_.textureLod0 ? 1.0f : 0.0f, 0.0f);
-    if (voxelGrid_) u.voxelOrigin = voxelGrid_->originSize();
-    u.voxelParams = glm::vec4(voxelGrid_ ? float(voxelGrid_->resolution()) : 0.0f,
-                              voxelGrid_ ? float(voxelGrid_->mipCount()) : 0.0f, settings_.gi ? 1.0f : 0.0f,
-                              float(settings_.traceScale));
+    u.cameraPosition = input.camera.position();
+    u.exposure = settings_.exposure;
+    u.imageSize = glm::vec2(settings_.width, settings_.height);
+    u.texelSize = glm::vec2(1.0f / float(settings_.width), 1.0f / float(settings_.height));
 
-    // Spatio-temporal upsampling (docs/design.md §6): weights, history and this frame's trace offset o_k.
+    u.lighting.ambient = settings_.ambient;
+    u.lighting.lightCount = gpuScene_.lightCount();
+    u.lighting.shadowLight = gpuScene_.shadowLightIndex();
+    u.lighting.shadowNormalOffset = gpuScene_.shadowTexelWorldSize();
+    u.lighting.shadowTexelSize = 1.0f / float(VCT_SHADOW_MAP_SIZE);
+
+    if (voxelGrid_) {
+        u.voxels.origin = voxelGrid_->origin();
+        u.voxels.voxelSize = voxelGrid_->voxelSize();
+        u.voxels.resolution = voxelGrid_->resolution();
+        u.voxels.mipCount = voxelGrid_->mipCount();
+    }
+
+    // Spatio-temporal upsampling (docs/design.md §6): weights, history and this frame's trace offset o_k. The
+    // weights, temporal and the trace scale are specialization constants (passes/upsample_pass.cpp,
+    // passes/trace_pass.cpp).
     const bool history = settings_.temporal && !input.cut && hasPrevious_;
     u.prevInvViewProj = history ? previousInvViewProj_ : u.invViewProj;
     u.prevCameraPosition = history ? previousCameraPosition_ : u.cameraPosition;
-    u.upsampleParams = glm::vec4(settings_.beta, settings_.kappa, settings_.sigmaN * settings_.sigmaN,
-                                 settings_.gamma);
     const bool adaptive = settings_.adaptive && settings_.traceScale > 1;
-    // x unused: the weights are upsample's specialization constant (passes/upsample_pass.cpp).
-    u.upsampleMode = glm::vec4(settings_.diffuseSharpness, history ? 1.0f : 0.0f, adaptive ? resampleThreshold(settings_) : 0.0f,
-                               kHistoryWeightCap);
-    const glm::ivec2 jitter = glsl::jitterOffset(frameIndex_, int(settings_.traceScale));
-    u.traceJitter = glm::ivec4(jitter, int(frameIndex_), 0);
+    u.upsample.traceOffset = glsl::jitterOffset(frameIndex_, int(settings_.traceScale));
+    u.upsample.beta = settings_.beta;
+    u.upsample.kappa = settings_.kappa;
+    u.upsample.normalVariance = settings_.sigmaN * settings_.sigmaN;
+    u.upsample.diffuseSharpness = settings_.diffuseSharpness;
+    u.upsample.gamma = settings_.gamma;
+    u.upsample.tau = adaptive ? resampleThreshold(settings_) : 0.0f;
+    u.upsample.maxHistoryWeight = settings_.historyCap * kExactSampleWeight;
+
+    u.flags = (settings_.gi ? VCT_FLAG_GI : 0u) | (settings_.toksvig ? VCT_FLAG_TOKSVIG : 0u) |
+              (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) |
+              (settings_.textureLod0 ? VCT_FLAG_TEXTURE_LOD0 : 0u) | (history ? VCT_FLAG_HISTORY : 0u);
 
     std::memcpy(frameUniforms_.mapped(), &u, sizeof(u));
     previousViewProj_ = u.viewProj;
@@ -201,8 +205,8 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
                               settings_.recomputeEveryFrame;
     const float aspect = float(settings_.width) / float(settings_.height);
     const glm::mat4 viewProj = input.camera.projection(aspect) * input.camera.view;
-    const bool viewChanged = sceneChanged || viewProj != previousViewProj_ ||
-                             glm::vec4(input.camera.position(), 1.0f) != previousCameraPosition_;
+    const bool viewChanged =
+        sceneChanged || viewProj != previousViewProj_ || input.camera.position() != previousCameraPosition_;
     stableFrames_ = viewChanged ? 0 : stableFrames_ + 1;
     const bool reuseView = stableFrames_ >= 2;
     // Last frame's indirect light and G-buffer become the history (before the uniforms say whether it is valid).

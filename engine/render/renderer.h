@@ -54,11 +54,11 @@ public:
     // Records, submits and waits for one frame; then reads its timestamps.
     void render(const FrameInput& input, const FrameSubmit& submit = {});
     void resize(uint32_t width, uint32_t height);
-    // The demo's live controls. True when going from the settings this renderer was built with to `wanted`
-    // changes only what the next frame reads from its uniforms and specialization constants (weights, beta,
-    // kappa, sigma_n, gamma, tau, temporal, Toksvig, specular AA, exposure, the sum-of-weights store); false
-    // when it changes targets, passes or the voxel grid (size, GI, trace scale, adaptive, voxels,
-    // anisotropy, cache): those need resize() or a new Renderer.
+    // The demo's live controls. True when going from the settings this renderer runs with to `wanted` changes
+    // only what the next frame reads from its uniforms and specialization constants: every setting that
+    // differs is SettingApply::Live in the setting table (render/setting_table.h, settingsChange); false when
+    // one changes targets, passes or the voxel grid: those need resize() (SettingApply::Resize) or a new
+    // Renderer.
     bool canApplyLive(const RenderSettings& wanted) const;
     // Takes those live settings from `wanted` for the next frame; throws when !canApplyLive(wanted).
     void applyLive(const RenderSettings& wanted);
@@ -109,7 +109,7 @@ private:
     VkFence fence_ = VK_NULL_HANDLE;
     glm::mat4 previousViewProj_{1.0f};
     glm::mat4 previousInvViewProj_{1.0f};
-    glm::vec4 previousCameraPosition_{0.0f};
+    glm::vec3 previousCameraPosition_{0.0f};
     uint32_t frameIndex_ = 0;  // frames rendered: picks the trace offset o_k
     // A frame has built what depends only on the scene (shadow map, voxel grid); reset by resize().
     bool sceneBuilt_ = false;

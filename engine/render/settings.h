@@ -1,8 +1,10 @@
 // Everything a frame depends on besides the scene and the camera: one documented place for the tunables and
-// their defaults. The command line's help (app/session.cpp) prints these defaults; README and benchmarks quote
-// them. The defaults run the method: indirect light traced at 1/4 resolution per axis, upsampled with SG lobe
-// weights and temporal history, low-weight pixels re-traced (benchmarks/README.md: the speed and error that
-// chose trace scale 4).
+// their defaults. Each field has one row in the setting table (render/setting_table.cpp: its flag, range,
+// help, panel widget, live or rebuild), from which the command line and its --help, the demo's panel and
+// scripts, the JSON reports and Renderer::canApplyLive are made: a new field needs its row there. README and
+// benchmarks quote these defaults. The defaults run the method: indirect light traced at 1/4 resolution per
+// axis, upsampled with SG lobe weights and temporal history, low-weight pixels re-traced
+// (benchmarks/README.md: the speed and error that chose trace scale 4).
 #pragma once
 
 #include <cstdint>
@@ -15,6 +17,20 @@ namespace vct {
 // RenderSettings::anisotropy before the device is known: chooseAnisotropy (render/gpu_scene.h) picks it.
 // Not 0, which is a valid request (off).
 constexpr uint32_t kAnisotropyFromDevice = ~0u;
+
+// Default τ (RenderSettings::tau): re-trace where the weights kept less than this share of one full
+// neighbourhood, the history counted in pixel-own samples (a neighbourhood's worth each).
+constexpr float kDefaultResampleThreshold = 0.25f;
+
+// Weight of a sample traced at the pixel itself in the accumulated history, in units of one fully agreeing
+// spatial neighbourhood (the spatial kernel sums to 1): glsl::EXACT_SAMPLE_WEIGHT (lib/upsample_weights.glsl
+// says why 64; renderer.cpp checks that the two agree).
+constexpr float kExactSampleWeight = 64.0f;
+// Default cap A_max on the accumulated history weight (docs/design.md §6.5, --history-cap): 8 pixel-own
+// samples, so that the history never outweighs that many frames of new samples and follows changing light.
+// With γ = 0.8 and one own sample every s² frames the sum stays below ~1.25 of them, so the cap binds only at
+// scale 1.
+constexpr float kHistoryWeightCap = 8.0f * kExactSampleWeight;
 
 struct RenderSettings {
     uint32_t width = 1280;
@@ -39,7 +55,7 @@ struct RenderSettings {
     bool recomputeEveryFrame = false;
 
     // ---- spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6.7) ----
-    enum class Weights { Bilinear, Normal, Sg };
+    enum class Weights { Bilinear, Normal, Sg };  // kWeightsNames in this order
     Weights weights = Weights::Sg;  // bilateral guide: none, depth × normal, depth × SG lobe
     float beta = 20.0f;             // SG lobe weight exponent β
     float kappa = 100.0f;           // SG smoothing kernel sharpness κ
@@ -47,8 +63,10 @@ struct RenderSettings {
     float diffuseSharpness = 2.0f;  // sg diffuse lobe sharpness λ_d (SG fit of the cosine lobe; the Fig. 6 study)
     float gamma = 0.8f;             // temporal history decay γ
     bool temporal = true;           // reproject and accumulate last frame's result
-    float tau = 0.0f;               // re-trace pixels whose sum of weights is below τ (0: the default for s)
+    float tau = kDefaultResampleThreshold;  // re-trace pixels whose sum of weights is below τ
     bool adaptive = true;           // adaptive re-tracing of low-weight pixels at full resolution
+    // Cap A_max on the accumulated history weight, in pixel-own samples (A_max / kExactSampleWeight).
+    float historyCap = kHistoryWeightCap / kExactSampleWeight;
     // Write the per-pixel sum of weights image (FrameTargets::weightSum) for --aux and the weights / resample
     // views; off, upsample skips that store (nothing in the frame reads it).
     bool writeWeightSum = false;
@@ -64,29 +82,17 @@ struct RenderSettings {
     uint32_t anisotropy = kAnisotropyFromDevice;
 };
 
-// The weights' name on the command line and in the JSON reports.
+// The weights' names on the command line and in the JSON reports, indexed by RenderSettings::Weights.
+inline constexpr const char* kWeightsNames[] = {"bilinear", "normal", "sg"};
 inline const char* weightsName(RenderSettings::Weights weights) {
-    return weights == RenderSettings::Weights::Bilinear ? "bilinear"
-           : weights == RenderSettings::Weights::Normal ? "normal"
-                                                        : "sg";
+    return kWeightsNames[size_t(weights)];
 }
 
-// Weight of a sample traced at the pixel itself in the accumulated history, in units of one fully agreeing
-// spatial neighbourhood (the spatial kernel sums to 1): glsl::EXACT_SAMPLE_WEIGHT (lib/upsample_weights.glsl says
-// why 64; renderer.cpp checks that the two agree).
-constexpr float kExactSampleWeight = 64.0f;
-// Cap A_max on the accumulated history weight (docs/design.md §6.5): 8 pixel-own samples, so that the history
-// never outweighs that many frames of new samples and follows changing light. With γ = 0.8 and one own sample
-// every s² frames the sum stays below ~1.25 of them, so the cap binds only at scale 1.
-constexpr float kHistoryWeightCap = 8.0f * kExactSampleWeight;
 // Largest κ (--kappa): glsl::SG_MAX_KAPPA, the largest fp16 value, since the trace stores each sample's
 // smoothed sharpness λ̄ ≤ κ in a 16-bit float (lib/upsample_weights.glsl; tests/upsample_weights_test.cpp
 // checks that the two agree). The shaders clamp a larger κ to it; the command line and the demo reject one.
 constexpr float kMaxKappa = 65504.0f;
-// Default τ: re-trace where the weights kept less than this share of one full neighbourhood, the history counted
-// in pixel-own samples (a neighbourhood's worth each).
-constexpr float kDefaultResampleThreshold = 0.25f;
-
+// τ in use: RenderSettings::tau (a τ of 0 or less, which the command line and the demo refuse, the default).
 inline float resampleThreshold(const RenderSettings& settings) {
     return settings.tau > 0.0f ? settings.tau : kDefaultResampleThreshold;
 }

@@ -2,7 +2,7 @@
 // resolved material volumes and the premultiplied radiance + opacity texture with its mip chain. Owned by the
 // Renderer (only when GI is on); written by the voxelize, inject and mips passes, read by the trace pass.
 //
-// Conventions (shared with shaders/lib/voxel.glsl and FrameUniforms::voxelOrigin / voxelParams):
+// Conventions (shared with shaders/lib/voxel.glsl and FrameUniforms::voxels):
 //  - origin() is the world position of the grid's min corner, voxelSize() the edge of one voxel; the grid
 //    spans origin .. origin + N·voxelSize on every axis (a cube, one voxel of padding around the bounds).
 //  - Voxel i (integer xyz, 0..N−1) covers [origin + i·size, origin + (i+1)·size); its texel centre is
@@ -54,7 +54,7 @@ class VoxelGrid {
 
     glm::vec3 origin() const { return glm::vec3(originSize_); }
     float voxelSize() const { return originSize_.w; }
-    glm::vec4 originSize() const { return originSize_; }  // as FrameUniforms::voxelOrigin
+    glm::vec4 originSize() const { return originSize_; }  // (origin, voxelSize), as lib/voxel.glsl takes it
     uint32_t resolution() const { return resolution_; }
     uint32_t mipCount() const { return mipCount_; }
 

@@ -8,15 +8,15 @@
 // Light that leaves the grid unoccluded sees the environment, the constant ambient radiance (the background
 // shows the same value, so the two agree).
 vec4 traceCone(sampler3D voxels, vec3 origin, vec3 dir, float tanHalfAngle) {
-    const vec3 gridOrigin = frame.voxelOrigin.xyz;
-    const float v0 = frame.voxelOrigin.w;
-    const float gridSize = frame.voxelParams.x * v0;
-    const float maxMip = max(frame.voxelParams.y - 1.0, 0.0);
+    const vec3 gridOrigin = frame.voxels.origin;
+    const float v0 = frame.voxels.voxelSize;
+    const float gridSize = float(frame.voxels.resolution) * v0;
+    const float maxMip = max(float(frame.voxels.mipCount) - 1.0, 0.0);
     vec4 acc = vec4(0.0);
     // Start one voxel out along the cone, from an origin one voxel out along the normal (CONE_START_*: why twice).
     float t = v0 * CONE_START_DISTANCE;
     // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
-    const int maxSteps = int(4.0 * frame.voxelParams.x) + 8;
+    const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const float d = coneDiameter(tanHalfAngle, t, v0);
         const vec3 uvw = (origin + dir * t - gridOrigin) / gridSize;
@@ -30,7 +30,7 @@ vec4 traceCone(sampler3D voxels, vec3 origin, vec3 dir, float tanHalfAngle) {
         acc = coneComposite(acc, s, dt, v0 * exp2(mip));
         t += dt;
     }
-    acc.rgb += (1.0 - saturate(acc.a)) * frame.ambient.rgb;
+    acc.rgb += (1.0 - saturate(acc.a)) * frame.lighting.ambient;
     return acc;
 }
 
@@ -45,7 +45,7 @@ struct IndirectSample {
 // Both cone sets from surface point p with unit normal n, seen along unit v (towards the camera).
 IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness) {
     IndirectSample result = IndirectSample(vec3(0.0), vec3(0.0));
-    const vec3 origin = p + n * (frame.voxelOrigin.w * CONE_START_OFFSET);
+    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
         result.diffuse += diffuseConeWeight(i) *
                           traceCone(voxels, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
@@ -56,13 +56,13 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
 
 IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D normalRoughnessTexture, ivec2 pixel) {
     const float depth = texelFetch(depthTexture, pixel, 0).r;
-    if (isBackground(depth) || frame.voxelOrigin.w <= 0.0) return IndirectSample(vec3(0.0), vec3(0.0));
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.imageSize.zw;
+    if (isBackground(depth) || frame.voxels.voxelSize <= 0.0) return IndirectSample(vec3(0.0), vec3(0.0));
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
     if (isDegeneratePosition(p)) return IndirectSample(vec3(0.0), vec3(0.0));
     const vec3 n = gbufferNormal(normalRoughness);
-    return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition.xyz - p, n), normalRoughness.w);
+    return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition - p, n), normalRoughness.w);
 }
 
 #endif  // VCT_CONE_TRACE_GLSL

@@ -1,46 +1,93 @@
 // GPU data layouts, binding numbers and workgroup sizes, written once for C++ and GLSL.
-// Every struct is std140/std430-compatible by construction: only vec4, mat4 and uvec4 members.
+// Every struct is std140/std430-compatible: the storage and push-constant structs by construction (only vec4,
+// mat4 and uvec4 members); the frame uniforms' named fields by their order (a vec3 followed by a 4-byte
+// scalar, vec2 pairs, nested structs of 16-byte multiples at 16-byte offsets), checked by the static_asserts
+// at the end.
 #ifndef VCT_SHARED_H
 #define VCT_SHARED_H
 
 #ifdef __cplusplus
-#include <glm/glm.hpp>
+#include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 namespace vct::gpu {
-using glm::mat4;
-using glm::uvec4;
-using glm::vec4;
+using glm::ivec2;
 using glm::ivec4;
+using glm::mat4;
+using glm::uint;
+using glm::uvec4;
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
 #endif
 
 // Compute passes over the image run in 8x8 tiles.
 #define VCT_TILE_SIZE 8
 #define VCT_SHADOW_MAP_SIZE 2048
 
-// Per-frame constants (uniform buffer, binding VCT_BINDING_FRAME in every pass).
+// ---- per-frame constants (uniform buffer, binding VCT_BINDING_FRAME in every pass; std140) ----
+
+// Bits of FrameUniforms::flags: the frame's switches.
+#define VCT_FLAG_GI 1u            // cone-traced indirect light (off: direct adds the constant ambient term)
+#define VCT_FLAG_TOKSVIG 2u       // Toksvig roughness from normal-map mips (docs/design.md §4.1)
+#define VCT_FLAG_SPECULAR_AA 4u   // geometric specular anti-aliasing from normal derivatives (§4.2)
+#define VCT_FLAG_TEXTURE_LOD0 8u  // sample material textures at level 0 only (supersampled references)
+#define VCT_FLAG_HISTORY 16u      // last frame's indirect light is a valid history (temporal on, no cut)
+
+// The trace scale s reaches the shaders one way: this specialization constant, in trace (s = 1 writes the
+// full-res targets, no guides) and upsample (the cell loops are unrolled for s) alike. The low-res images'
+// extent, ceil(size / s), is what their bounds checks read (imageSize, textureSize).
+#define VCT_SPEC_TRACE_SCALE 0
+
+// The lights and the shadow map (direct, inject; ambient also in the cones and the voxel view).
+struct LightingUniforms {
+    vec3 ambient;              // constant ambient radiance: GI off, light leaving the grid, the background
+    uint lightCount;           // entries of the light buffer
+    int shadowLight;           // index of the light with the shadow map, -1 when none is shadowed
+    float shadowNormalOffset;  // world units per shadow-map texel (direct's normal offset)
+    float shadowTexelSize;     // 1 / shadow-map size (uv units per texel)
+    float pad0;
+};
+
+// The voxel grid of cone tracing (lib/voxel.glsl's originSize is vec4(origin, voxelSize)).
+struct VoxelUniforms {
+    vec3 origin;      // world position of the grid's min corner
+    float voxelSize;  // edge length of one voxel, world units; 0 while there is no grid
+    uint resolution;  // N (N³ voxels)
+    uint mipCount;
+    uint pad0, pad1;
+};
+
+// Spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6): trace, upsample, resample.
+struct UpsampleUniforms {
+    ivec2 traceOffset;       // o_k: this frame's low-res sample offset in full-res pixels (jitterOffset)
+    float beta;              // β, the SG lobe weight exponent
+    float kappa;             // κ, the SG smoothing kernel sharpness (bounds every lobe's sharpness)
+    float normalVariance;    // σ_n², the normal weight's width squared
+    float diffuseSharpness;  // λ_d, the sg diffuse lobe sharpness
+    float gamma;             // γ, the history's decay per frame
+    float tau;               // τ: re-trace below this sum of weights; 0 without adaptive re-tracing
+    float maxHistoryWeight;  // A_max, the cap on the accumulated weight
+    float pad0, pad1, pad2;
+};
+
 struct FrameUniforms {
     mat4 view;
     mat4 proj;
     mat4 viewProj;
     mat4 invViewProj;
-    mat4 prevViewProj;     // last frame's, for motion vectors
-    mat4 lightViewProj;    // main (shadowed) light
-    vec4 cameraPosition;   // xyz world position, w: 1
-    vec4 imageSize;        // width, height, 1/width, 1/height
-    vec4 ambient;          // rgb: constant ambient radiance (stand-in for GI), w: exposure
-    vec4 shadowParams;     // x: normal offset (world units per shadow texel), y: 1/shadow map size,
-                           // z: number of lights, w: main light index or -1 when none is shadowed
-    vec4 voxelOrigin;      // xyz: world position of the voxel grid's min corner, w: voxel size (world units)
-    vec4 voxelParams;      // x: resolution N (N³ voxels), y: mip count, z: 1 when GI is on, w: trace scale
-    vec4 materialParams;   // x: 1 when Toksvig roughness is on, y: 1 when geometric specular AA is on,
-                           // z: 1 to sample material textures at level 0 only (supersampled references)
-    // ---- spatio-temporal upsampling (docs/design.md §6) ----
-    mat4 prevInvViewProj;  // last frame's inverse view-projection (history positions from the previous depth)
-    vec4 prevCameraPosition;  // xyz last frame's camera position (history view vectors)
-    vec4 upsampleParams;   // x: β, y: κ, z: σ_n², w: γ (history decay)
-    vec4 upsampleMode;     // x: λ_d, the sg diffuse lobe sharpness, y: 1 when the history is valid (temporal on, no cut),
-                           // z: τ (re-trace below this sum of weights; 0 = no adaptive), w: A_max
-    ivec4 traceJitter;     // xy: this frame's low-res sample offset o_k in full-res pixels, z: frame index
+    mat4 prevViewProj;        // last frame's, for motion vectors
+    mat4 prevInvViewProj;     // last frame's inverse (history positions from the previous depth)
+    mat4 lightViewProj;       // main (shadowed) light
+    vec3 cameraPosition;      // world position
+    uint flags;               // VCT_FLAG_*
+    vec3 prevCameraPosition;  // last frame's (history view vectors)
+    float exposure;           // linear scale before tone mapping
+    vec2 imageSize;           // width, height in pixels
+    vec2 texelSize;           // 1 / width, 1 / height
+    LightingUniforms lighting;
+    VoxelUniforms voxels;
+    UpsampleUniforms upsample;
 };
 
 #define VCT_WEIGHTS_BILINEAR 0
@@ -122,7 +169,6 @@ struct DrawPushConstants {
 #define VCT_TRACE_BINDING_GUIDE_POSITION 6  // rgba32f: world position, w: 1 (0: background)
 #define VCT_TRACE_BINDING_GUIDE_NORMAL 7    // rgba16f: unit normal, w: smoothed specular sharpness λ̄
 #define VCT_TRACE_BINDING_GUIDE_AXIS 8      // rgba16f: specular lobe axis
-#define VCT_TRACE_SPEC_FULL_RESOLUTION 0    // specialization constant: trace scale 1 (writes the full-res targets)
 
 // upsample (spatial joint-bilateral + temporal history; flags low-weight pixels for resample)
 #define VCT_UPSAMPLE_BINDING_INDIRECT_LOW 1      // the trace's output (lib/indirect_pack.glsl)
@@ -138,8 +184,7 @@ struct DrawPushConstants {
 #define VCT_UPSAMPLE_BINDING_GUIDE_POSITION 14   // the trace's per-sample guides (VCT_TRACE_BINDING_GUIDE_*)
 #define VCT_UPSAMPLE_BINDING_GUIDE_NORMAL 15
 #define VCT_UPSAMPLE_BINDING_GUIDE_AXIS 16
-// upsample's specialization constants (one pipeline per configuration)
-#define VCT_UPSAMPLE_SPEC_SCALE 0     // trace scale s (2 or 4)
+// upsample's specialization constants (one pipeline per configuration), after VCT_SPEC_TRACE_SCALE (2 or 4)
 #define VCT_UPSAMPLE_SPEC_WEIGHTS 1   // VCT_WEIGHTS_*
 #define VCT_UPSAMPLE_SPEC_TEMPORAL 2  // bool: reproject the history
 #define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 3  // bool: write the sum-of-weights image (views, --aux)
@@ -200,7 +245,25 @@ struct VoxelizePushConstants {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameUniforms) == 7 * 64 + 11 * 16);
+// std140 as glslang lays out the frame uniforms: every offset below is the GLSL one.
+static_assert(sizeof(LightingUniforms) == 32 && offsetof(LightingUniforms, lightCount) == 12 &&
+              offsetof(LightingUniforms, shadowLight) == 16 &&
+              offsetof(LightingUniforms, shadowTexelSize) == 24);
+static_assert(sizeof(VoxelUniforms) == 32 && offsetof(VoxelUniforms, voxelSize) == 12 &&
+              offsetof(VoxelUniforms, resolution) == 16 && offsetof(VoxelUniforms, mipCount) == 20);
+static_assert(sizeof(UpsampleUniforms) == 48 && offsetof(UpsampleUniforms, beta) == 8 &&
+              offsetof(UpsampleUniforms, normalVariance) == 16 && offsetof(UpsampleUniforms, tau) == 28 &&
+              offsetof(UpsampleUniforms, maxHistoryWeight) == 32);
+static_assert(offsetof(FrameUniforms, cameraPosition) == 7 * 64 &&
+              offsetof(FrameUniforms, flags) == 7 * 64 + 12 &&
+              offsetof(FrameUniforms, prevCameraPosition) == 7 * 64 + 16 &&
+              offsetof(FrameUniforms, exposure) == 7 * 64 + 28 &&
+              offsetof(FrameUniforms, imageSize) == 7 * 64 + 32 &&
+              offsetof(FrameUniforms, texelSize) == 7 * 64 + 40);
+static_assert(offsetof(FrameUniforms, lighting) == 7 * 64 + 48 &&
+              offsetof(FrameUniforms, voxels) == 7 * 64 + 80 &&
+              offsetof(FrameUniforms, upsample) == 7 * 64 + 112);
+static_assert(sizeof(FrameUniforms) == 7 * 64 + 160);
 static_assert(sizeof(ResampleListHeader) == 32);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuMaterial) == 64);

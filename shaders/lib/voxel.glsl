@@ -1,6 +1,7 @@
 // Voxel-grid math shared by the voxelize / inject / mips shaders and the CPU (grid fitting, tests); see
 // lib/cpp_glsl.h for the rules. The grid is a cube of N³ voxels: `originSize` packs the world position of its
-// min corner (xyz) and the edge length of one voxel (w), exactly as FrameUniforms::voxelOrigin.
+// min corner (xyz) and the edge length of one voxel (w), exactly as FrameUniforms::voxels
+// (origin, voxelSize).
 // Voxel i covers [origin + i·size, origin + (i+1)·size); its centre is origin + (i + 0.5)·size.
 #ifndef VCT_VOXEL_GLSL
 #define VCT_VOXEL_GLSL

@@ -1,0 +1,285 @@
+#include "render/setting_table.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <tuple>
+
+#include "core/error.h"
+
+namespace vct {
+
+namespace {
+
+constexpr uint32_t kTraceScales[] = {1, 2, 4};
+constexpr uint32_t kVoxelResolutions[] = {32, 64, 128, 256};
+constexpr uint32_t kAnisotropyLevels[] = {0, 2, 4, 8, 16};
+
+using A = SettingApply;
+using G = SettingGroup;
+using W = SettingWidget;
+using S = RenderSettings;
+
+// clang-format off
+const SettingSpec kTable[] = {
+    // ---- global illumination (docs/design.md §5) ----
+    {.name = "gi", .valueName = "on|off",
+     .help = "cone-traced indirect light; off: the constant ambient term instead",
+     .value = OnOffValue{&S::gi}, .apply = A::Rebuild, .group = G::Gi, .demo = true, .json = true,
+     .widget = W::Checkbox, .label = "GI (cone tracing)", .sideB = true},
+    {.name = "trace-scale", .valueName = "1|2|4",
+     .help = "trace indirect light at 1/S of the resolution per axis (1: every pixel)",
+     .value = ChoiceValue{&S::traceScale, kTraceScales}, .apply = A::Rebuild, .group = G::Gi, .demo = true,
+     .json = true, .widget = W::Combo, .label = "trace scale", .sideB = true},
+    {.name = "voxels", .valueName = "N",
+     .help = "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
+     .value = ChoiceValue{&S::voxelResolution, kVoxelResolutions, 0u}, .apply = A::Rebuild, .group = G::Gi,
+     .demo = true, .json = true, .widget = W::Combo, .label = "voxels"},
+    {.name = "voxel-cache", .valueName = "FILE.vdb",
+     .help = "load the static voxelization from FILE (written by vct voxelize) instead of computing it",
+     .value = TextValue{&S::voxelCache, "a file name"}, .apply = A::Rebuild, .group = G::Gi},
+    {.name = "recompute-every-frame", .valueName = "",
+     .help = "diagnostic: run every pass every frame, also the shadow map, voxel grid, G-buffer and direct light "
+             "when nothing moved, no light changed and the camera stood still",
+     .value = SwitchValue{&S::recomputeEveryFrame}, .apply = A::Live, .group = G::Gi},
+
+    // ---- spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6) ----
+    {.name = "weights", .valueName = "bilinear|normal|sg",
+     .help = "upsampling guide: none, depth x normal, depth x SG lobe (docs/design.md sec. 6.3)",
+     .value = NamedValue{&S::weights, kWeightsNames}, .apply = A::Live, .group = G::Upsample, .demo = true,
+     .json = true, .widget = W::Combo, .label = "weights", .sideB = true},
+    {.name = "beta", .valueName = "B", .help = "SG lobe weight exponent",
+     .value = FloatValue{&S::beta, 0.01f, 1000.0f}, .apply = A::Live, .group = G::Upsample, .demo = true,
+     .json = true, .widget = W::LogSlider, .label = "beta"},
+    {.name = "kappa", .valueName = "K", .help = "SG smoothing kernel sharpness (bounds every lobe's sharpness)",
+     .value = FloatValue{&S::kappa, 0.01f, kMaxKappa}, .apply = A::Live, .group = G::Upsample, .demo = true,
+     .json = true, .widget = W::LogSlider, .label = "kappa"},
+    {.name = "sigma-n", .valueName = "S", .help = "normal weight width sigma_n (--weights normal)",
+     .value = FloatValue{&S::sigmaN, 1e-3f, 10.0f}, .apply = A::Live, .group = G::Upsample, .demo = true,
+     .json = true, .widget = W::LogSlider, .label = "sigma_n"},
+    {.name = "diffuse-sharpness", .valueName = "L", .help = "sg diffuse lobe sharpness lambda_d (--weights sg)",
+     .value = FloatValue{&S::diffuseSharpness, 1e-3f, 1e4f}, .apply = A::Live, .group = G::Upsample,
+     .demo = true, .json = true, .widget = W::LogSlider, .label = "lambda_d"},
+    {.name = "gamma", .valueName = "G", .help = "temporal history decay per frame (0..1)",
+     .value = FloatValue{&S::gamma, 0.0f, 1.0f}, .apply = A::Live, .group = G::Upsample, .demo = true,
+     .json = true, .widget = W::Slider, .label = "gamma"},
+    {.name = "tau", .valueName = "T", .help = "re-trace pixels whose sum of upsampling weights is below T",
+     .value = FloatValue{&S::tau, 1e-6f, 1000.0f}, .apply = A::Live, .group = G::Upsample, .demo = true,
+     .json = true, .widget = W::LogSlider, .label = "tau"},
+    {.name = "history-cap", .valueName = "A",
+     .help = "cap on the accumulated history weight, in pixel-own samples (docs/design.md sec. 6.5)",
+     .value = FloatValue{&S::historyCap, 1.0f, 1000.0f}, .apply = A::Live, .group = G::Upsample, .demo = true,
+     .json = true, .widget = W::LogSlider, .label = "A_max"},
+    {.name = "temporal", .valueName = "on|off", .help = "reproject and accumulate last frame's indirect light",
+     .value = OnOffValue{&S::temporal}, .apply = A::Live, .group = G::Upsample, .demo = true, .json = true,
+     .widget = W::Checkbox, .label = "temporal", .sideB = true},
+    {.name = "adaptive", .valueName = "on|off", .help = "adaptive re-tracing of low-weight pixels at full resolution",
+     .value = OnOffValue{&S::adaptive}, .apply = A::Rebuild, .group = G::Upsample, .demo = true, .json = true,
+     .widget = W::Checkbox, .label = "adaptive", .sideB = true},
+
+    // ---- material filtering (docs/design.md §4) ----
+    {.name = "toksvig", .valueName = "on|off", .help = "Toksvig roughness from normal-map mips (docs/design.md sec. 4.1)",
+     .value = OnOffValue{&S::toksvig}, .apply = A::Live, .group = G::Material, .demo = true, .json = true,
+     .widget = W::Checkbox, .label = "Toksvig"},
+    {.name = "specular-aa", .valueName = "on|off", .help = "geometric specular anti-aliasing from normal derivatives",
+     .value = OnOffValue{&S::specularAA}, .apply = A::Live, .group = G::Material, .demo = true, .json = true,
+     .widget = W::Checkbox, .label = "specular AA"},
+    {.name = "texture-lod0", .valueName = "",
+     .help = "diagnostic: sample material textures at level 0 only (supersampled references)",
+     .value = SwitchValue{&S::textureLod0}, .apply = A::Rebuild, .group = G::Material},
+    {.name = "anisotropy", .valueName = "0|2|4|8|16",
+     .help = "anisotropic texture filtering (0: off); default 0 on a CPU device (very slow there), 8 on a GPU",
+     .value = ChoiceValue{&S::anisotropy, kAnisotropyLevels, kAnisotropyFromDevice}, .apply = A::Rebuild,
+     .group = G::Material, .demo = true, .json = true, .widget = W::Combo, .label = "anisotropy"},
+
+    // ---- the image ----
+    // 16384 is the largest 2D image any current device allows; the Renderer checks the device's own limit.
+    {.name = "size", .valueName = "WxH", .help = "image size in pixels",
+     .value = SizeValue{16384}, .apply = A::Resize, .group = G::Image},
+    {.name = "exposure", .valueName = "X", .help = "linear exposure before tone mapping",
+     .value = FloatValue{&S::exposure, 1e-4f, 1e4f}, .apply = A::Live, .group = G::Image, .demo = true,
+     .json = true, .widget = W::LogSlider, .label = "exposure"},
+
+    // ---- set by the program ----
+    {.name = "ambient", .valueName = "", .help = "constant ambient radiance (GI off) and background",
+     .value = ColorValue{&S::ambient}, .apply = A::Live, .group = G::Internal},
+    {.name = "shadow-depth-bias", .valueName = "", .help = "shadow map constant depth bias (dynamic state)",
+     .value = FloatValue{&S::shadowDepthBias, 0.0f, 1e4f}, .apply = A::Live, .group = G::Internal},
+    {.name = "shadow-slope-bias", .valueName = "", .help = "shadow map slope depth bias (dynamic state)",
+     .value = FloatValue{&S::shadowSlopeBias, 0.0f, 1e4f}, .apply = A::Live, .group = G::Internal},
+    {.name = "write-weight-sum", .valueName = "",
+     .help = "write the sum-of-weights image (--aux, the weights and resample views; a specialization constant)",
+     .value = OnOffValue{&S::writeWeightSum}, .apply = A::Live, .group = G::Internal},
+};
+// clang-format on
+
+// "a, b or c"
+template <typename T, typename Text>
+std::string alternatives(std::span<const T> values, Text text) {
+    std::string list;
+    for (size_t i = 0; i < values.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == values.size() ? " or " : ", ") + std::string(text(values[i]));
+    return list;
+}
+
+std::string numberText(float value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%g", double(value));
+    return buffer;
+}
+
+}  // namespace
+
+bool parseOnOff(const std::string& text, const std::string& spelling) {
+    if (text == "on" || text == "true" || text == "1") return true;
+    if (text == "off" || text == "false" || text == "0") return false;
+    throw UsageError(spelling + " '" + text + "': expected on or off");
+}
+
+std::span<const SettingSpec> settingTable() {
+    return kTable;
+}
+
+const SettingSpec* findSetting(std::string_view name) {
+    for (const SettingSpec& spec : kTable)
+        if (name == spec.name) return &spec;
+    return nullptr;
+}
+
+float parseNumber(const std::string& text, const std::string& spelling, float min, float max) {
+    float value = 0.0f;
+    auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value) ||
+        value < min || value > max) {
+        std::ostringstream message;
+        message << spelling << " '" << text << "': expected a number from " << min << " to " << max;
+        throw UsageError(message.str());
+    }
+    return value;
+}
+
+std::pair<uint32_t, uint32_t> parseSize(const std::string& text, const std::string& spelling,
+                                        uint32_t maxDimension) {
+    const size_t x = text.find('x');
+    uint64_t w = 0, h = 0;
+    bool ok = x != std::string::npos;
+    if (ok) {
+        auto [endW, errorW] = std::from_chars(text.data(), text.data() + x, w);
+        auto [endH, errorH] = std::from_chars(text.data() + x + 1, text.data() + text.size(), h);
+        ok = errorW == std::errc() && errorH == std::errc() && endW == text.data() + x &&
+             endH == text.data() + text.size();
+    }
+    if (!ok) throw UsageError(spelling + " '" + text + "': expected WIDTHxHEIGHT, e.g. 1280x720");
+    if (w < 1 || h < 1 || w > maxDimension || h > maxDimension)
+        throw UsageError(spelling + " " + text + ": width and height must be from 1 to " +
+                         std::to_string(maxDimension));
+    return {uint32_t(w), uint32_t(h)};
+}
+
+void parseSetting(const SettingSpec& spec, const std::string& text, const std::string& spelling,
+                  RenderSettings& s) {
+    std::visit(
+        Overloaded{
+            [&](const FloatValue& v) { s.*v.member = parseNumber(text, spelling, v.min, v.max); },
+            [&](const OnOffValue& v) { s.*v.member = parseOnOff(text, spelling); },
+            [&](const SwitchValue& v) { s.*v.member = parseOnOff(text, spelling); },
+            [&](const ChoiceValue& v) {
+                for (uint32_t choice : v.choices)
+                    if (text == std::to_string(choice)) {
+                        s.*v.member = choice;
+                        return;
+                    }
+                throw UsageError(spelling + " '" + text + "': expected " +
+                                 alternatives(v.choices, [](uint32_t c) { return std::to_string(c); }));
+            },
+            [&](const NamedValue& v) {
+                for (size_t i = 0; i < v.names.size(); ++i)
+                    if (text == v.names[i]) {
+                        s.*v.member = RenderSettings::Weights(i);
+                        return;
+                    }
+                throw UsageError(spelling + " '" + text + "': expected " +
+                                 alternatives(v.names, [](const char* n) { return n; }));
+            },
+            [&](const TextValue& v) {
+                if (text.empty()) throw UsageError(spelling + ": expected " + v.expected);
+                s.*v.member = text;
+            },
+            [&](const SizeValue& v) {
+                std::tie(s.width, s.height) = parseSize(text, spelling, v.maxDimension);
+            },
+            [&](const ColorValue&) -> void {
+                throw Error(std::string("setting '") + spec.name + "' is set by the program, not by name");
+            },
+        },
+        spec.value);
+}
+
+std::string settingText(const SettingSpec& spec, const RenderSettings& s) {
+    return std::visit(
+        Overloaded{
+            [&](const FloatValue& v) { return numberText(s.*v.member); },
+            [&](const OnOffValue& v) { return std::string(s.*v.member ? "on" : "off"); },
+            [&](const SwitchValue& v) { return std::string(s.*v.member ? "on" : "off"); },
+            [&](const ChoiceValue& v) { return std::to_string(s.*v.member); },
+            [&](const NamedValue& v) { return std::string(v.names[size_t(s.*v.member)]); },
+            [&](const TextValue& v) { return s.*v.member; },
+            [&](const SizeValue&) { return std::to_string(s.width) + "x" + std::to_string(s.height); },
+            [&](const ColorValue& v) {
+                const glm::vec3 c = s.*v.member;
+                return numberText(c.r) + "," + numberText(c.g) + "," + numberText(c.b);
+            },
+        },
+        spec.value);
+}
+
+std::string settingDefaultText(const SettingSpec& spec) {
+    const RenderSettings defaults;
+    const bool nothing =
+        std::visit(Overloaded{
+                       [](const SwitchValue&) { return true; },
+                       [&](const ChoiceValue& v) { return v.automatic == defaults.*v.member; },
+                       [&](const TextValue& v) { return (defaults.*v.member).empty(); },
+                       [](const ColorValue&) { return true; },
+                       [](const auto&) { return false; },
+                   },
+                   spec.value);
+    return nothing ? std::string() : settingText(spec, defaults);
+}
+
+std::string settingJsonKey(const SettingSpec& spec) {
+    std::string key = spec.name;
+    std::replace(key.begin(), key.end(), '-', '_');
+    return key;
+}
+
+bool sameSetting(const SettingSpec& spec, const RenderSettings& current, const RenderSettings& wanted) {
+    return std::visit(Overloaded{
+                          [&](const ChoiceValue& v) {
+                              return wanted.*v.member == current.*v.member || v.automatic == wanted.*v.member;
+                          },
+                          [&](const SizeValue&) {
+                              return wanted.width == current.width && wanted.height == current.height;
+                          },
+                          [&](const auto& v) { return wanted.*v.member == current.*v.member; },
+                      },
+                      spec.value);
+}
+
+SettingApply settingsChange(const RenderSettings& current, const RenderSettings& wanted) {
+    SettingApply needs = SettingApply::Live;
+    for (const SettingSpec& spec : kTable)
+        if (spec.apply > needs && !sameSetting(spec, current, wanted)) needs = spec.apply;
+    return needs;
+}
+
+RenderSettings withResolvedSettings(const RenderSettings& current, RenderSettings wanted) {
+    for (const SettingSpec& spec : kTable)
+        if (const auto* v = std::get_if<ChoiceValue>(&spec.value))
+            if (v->automatic == wanted.*v->member) wanted.*v->member = current.*v->member;
+    return wanted;
+}
+
+}  // namespace vct
