@@ -193,6 +193,9 @@ ResourceTable::ResourceTable(std::string owner, std::vector<ResourceRow> rows)
                                row.access == Access::ColorAttachment || row.access == Access::DepthAttachment;
         if (imageOnly && !isImage(r)) fail(row, "not an image");
         if (row.access == Access::IndirectRead && isImage(r)) fail(row, "an image is no indirect dispatch");
+        const bool attachment =
+            row.access == Access::ColorAttachment || row.access == Access::DepthAttachment;
+        if (attachment && r.kind != Resource::Kind::Target) fail(row, "render targets are frame targets");
         if (!isTracked(r)) continue;
         // The union of this table's uses of each resource, in the order they first appear.
         size_t u = 0;
