@@ -25,7 +25,6 @@ layout(set = 0, binding = 5) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 6) uniform sampler2D baseColorMetallicTexture;
 layout(set = 0, binding = 7) uniform sampler2D emissiveOcclusionTexture;
 layout(set = 0, binding = 8, rgba32ui) uniform readonly uimage2D indirectImage;  // full-res demodulated indirect light (lib/indirect_pack.glsl)
-layout(set = 0, binding = 9, rgba16f) uniform readonly image2D debugImage;  // written by trace
 layout(set = 0, binding = 10) uniform sampler2D dfgTable;  // split-sum DFG table, uv = (n·v, perceptual roughness)
 
 // Indirect light leaving the surface at `pixel` towards the camera.
@@ -55,8 +54,6 @@ void main() {
     if (any(greaterThanEqual(pixel, ivec2(frame.imageSize.xy)))) return;
     vec3 hdr = imageLoad(directImage, pixel).rgb;
     if (frame.voxelParams.z > 0.5) hdr += indirect(pixel);
-    // Read, not shown: trace writes alpha 1 (GI off: a 1×1 stand-in, not read).
-    if (frame.voxelParams.z > 0.5 && imageLoad(debugImage, pixel).a < 0.0) hdr = imageLoad(debugImage, pixel).rgb;
     imageStore(hdrImage, pixel, vec4(hdr, 1.0));
     imageStore(ldrImage, pixel, vec4(linearToSrgb(toneMapAces(hdr, frame.ambient.w)), 1.0));
 }

@@ -31,8 +31,6 @@ layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D guidePositionIma
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D guideNormalImage;      // unit normal, w: smoothed specular sharpness λ̄
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D guideAxisImage;        // specular lobe axis
 
-layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D debugImage;  // the traced pixels' normals
-
 #include "lib/cone_trace.glsl"
 
 void main() {
@@ -50,7 +48,6 @@ void main() {
         return;
     }
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
-    imageStore(debugImage, pixel, vec4(normalRoughness.xyz * 0.5 + 0.5, 1.0));
     // The sample's guide for the upsample weights, computed once here rather than by every pixel it serves.
     const Guide g = guideFromGBuffer(normalRoughness, worldFromDepth(frame.invViewProj, uv, depth),
                                      frame.cameraPosition.xyz, frame.upsampleParams.y);

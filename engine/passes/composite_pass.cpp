@@ -16,7 +16,6 @@ CompositePass::CompositePass(const vk::Context& context)
                   {7, Target::emissiveOcclusion, Access::Sampled},
                   // A 1×1 stand-in with GI off: one pipeline for both modes, the shader skips it.
                   {8, Target::indirect, Access::Read},
-                  {9, Target::debug, Access::Read},
                   {10, Resource::image("dfg", dfg_.image(), dfg_.sampler()), Access::Sampled}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "composite.comp", resources_.bindings(), 0);
 }

@@ -13,8 +13,7 @@ TracePass::TracePass(const vk::Context& context, uint32_t traceScale, const Voxe
                            // 1×1 stand-ins at trace scale 1 (the pipeline declares them, never writes them).
                            {6, Target::guidePosition, Access::Write},
                            {7, Target::guideNormal, Access::Write},
-                           {8, Target::guideAxis, Access::Write},
-                           {9, Target::debug, Access::Write}}) {
+                           {8, Target::guideAxis, Access::Write}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "trace.comp", resources_.bindings(), 0,
                                       {output_ == Target::indirect ? 1u : 0u});
 }

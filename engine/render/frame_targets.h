@@ -48,7 +48,6 @@ enum class HistorySwap : uint8_t { None, EveryFrame, WithGBuffer };
 // guideAxis          specular lobe axis
 // weightSum          upsample: sum of weights, r diffuse, g specular; b: 1 where re-traced
 // hdr, ldr           the final linear HDR (final.exr) and tone-mapped sRGB (final.png, the window)
-// debug              written by trace at the pixels it traces (their normal), read by composite
 // the H rows         last frame's upsample output and G-buffer: the temporal history
 #define VCT_FRAME_TARGETS(T, H)                                                            \
     T(shadowMap,         VK_FORMAT_D32_SFLOAT,          Shadow, Depth,   Always)           \
@@ -66,7 +65,6 @@ enum class HistorySwap : uint8_t { None, EveryFrame, WithGBuffer };
     T(weightSum,         VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Storage, WithGi)           \
     T(hdr,               VK_FORMAT_R32G32B32A32_SFLOAT, Frame,  Storage, Always)           \
     T(ldr,               VK_FORMAT_R8G8B8A8_UNORM,      Frame,  Storage, Always)           \
-    T(debug,             VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Storage, StandInWithoutGi) \
     H(indirectHistory,     indirect,        WithGi, EveryFrame)                            \
     H(prevDepth,           depth,           WithGi, WithGBuffer)                           \
     H(prevNormalRoughness, normalRoughness, WithGi, WithGBuffer)
