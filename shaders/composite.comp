@@ -14,16 +14,18 @@
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
+// Resources: bound by engine/passes/composite_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_DIRECT, rgba16f) uniform readonly image2D directImage;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_HDR, rgba32f) uniform writeonly image2D hdrImage;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_LDR, rgba8) uniform writeonly image2D ldrImage;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_DEPTH) uniform sampler2D depthTexture;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC) uniform sampler2D baseColorMetallicTexture;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION) uniform sampler2D emissiveOcclusionTexture;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_INDIRECT, rgba32ui) uniform readonly uimage2D indirectImage;
-layout(set = 0, binding = VCT_COMPOSITE_BINDING_DFG) uniform sampler2D dfgTable;
+layout(set = 0, binding = 1, rgba16f) uniform readonly image2D directImage;
+layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D hdrImage;
+layout(set = 0, binding = 3, rgba8) uniform writeonly image2D ldrImage;
+layout(set = 0, binding = 4) uniform sampler2D depthTexture;
+layout(set = 0, binding = 5) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = 6) uniform sampler2D baseColorMetallicTexture;
+layout(set = 0, binding = 7) uniform sampler2D emissiveOcclusionTexture;
+layout(set = 0, binding = 8, rgba32ui) uniform readonly uimage2D indirectImage;  // full-res demodulated indirect light (lib/indirect_pack.glsl)
+layout(set = 0, binding = 10) uniform sampler2D dfgTable;  // split-sum DFG table, uv = (n·v, perceptual roughness)
 
 // Indirect light leaving the surface at `pixel` towards the camera.
 vec3 indirect(ivec2 pixel) {

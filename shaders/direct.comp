@@ -9,14 +9,16 @@
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
+// Resources: bound by engine/passes/direct_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_DIRECT_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
-layout(set = 0, binding = VCT_DIRECT_BINDING_DEPTH) uniform sampler2D depthTexture;
-layout(set = 0, binding = VCT_DIRECT_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
-layout(set = 0, binding = VCT_DIRECT_BINDING_BASE_COLOR_METALLIC) uniform sampler2D baseColorMetallicTexture;
-layout(set = 0, binding = VCT_DIRECT_BINDING_EMISSIVE_OCCLUSION) uniform sampler2D emissiveOcclusionTexture;
-layout(set = 0, binding = VCT_DIRECT_BINDING_SHADOW_MAP) uniform sampler2DShadow shadowMap;
-layout(set = 0, binding = VCT_DIRECT_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 0, binding = 1) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = 2) uniform sampler2D depthTexture;
+layout(set = 0, binding = 3) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = 4) uniform sampler2D baseColorMetallicTexture;
+layout(set = 0, binding = 5) uniform sampler2D emissiveOcclusionTexture;
+layout(set = 0, binding = 6) uniform sampler2DShadow shadowMap;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D outputImage;
 
 // 3x3 PCF on the main light's shadow map; the position is pushed along the normal by a texel or so,
 // which removes acne on surfaces at grazing light angles without detaching shadows.

@@ -12,12 +12,14 @@
 // about 0.998 to 1.001. Lengths within this much of 1 are read as 1, so unfiltered texels add no roughness.
 const float NORMAL_LENGTH_TOLERANCE = 0.003;
 
-layout(set = 0, binding = VCT_DRAW_BINDING_MATERIALS) readonly buffer Materials { GpuMaterial materials[]; };
-layout(set = 0, binding = VCT_DRAW_BINDING_BASE_COLOR) uniform sampler2D baseColorTexture;
-layout(set = 0, binding = VCT_DRAW_BINDING_METALLIC_ROUGHNESS) uniform sampler2D metallicRoughnessTexture;
-layout(set = 0, binding = VCT_DRAW_BINDING_NORMAL) uniform sampler2D normalTexture;
-layout(set = 0, binding = VCT_DRAW_BINDING_EMISSIVE) uniform sampler2D emissiveTexture;
-layout(set = 0, binding = VCT_DRAW_BINDING_OCCLUSION) uniform sampler2D occlusionTexture;
+// Resources: bound by engine/passes/../render/scene_draw.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
+layout(set = 0, binding = 2) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = 0, binding = 3) uniform sampler2D baseColorTexture;
+layout(set = 0, binding = 4) uniform sampler2D metallicRoughnessTexture;
+layout(set = 0, binding = 5) uniform sampler2D normalTexture;
+layout(set = 0, binding = 6) uniform sampler2D emissiveTexture;
+layout(set = 0, binding = 7) uniform sampler2D occlusionTexture;
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(push_constant) uniform Push { DrawPushConstants draw; };
 

@@ -10,13 +10,15 @@
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
 
+// Resources: bound by engine/passes/inject_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_INJECT_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
-layout(set = 0, binding = VCT_INJECT_BINDING_ALBEDO, rgba8) uniform readonly image3D albedoImage;
-layout(set = 0, binding = VCT_INJECT_BINDING_NORMAL, rgba16f) uniform readonly image3D normalImage;
-layout(set = 0, binding = VCT_INJECT_BINDING_EMISSION, rgba16f) uniform readonly image3D emissionImage;
-layout(set = 0, binding = VCT_INJECT_BINDING_SHADOW_MAP) uniform sampler2DShadow shadowMap;
-layout(set = 0, binding = VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform writeonly image3D radianceImage;
+layout(set = 0, binding = 1) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = 2, rgba8) uniform readonly image3D albedoImage;
+layout(set = 0, binding = 3, rgba16f) uniform readonly image3D normalImage;
+layout(set = 0, binding = 4, rgba16f) uniform readonly image3D emissionImage;
+layout(set = 0, binding = 5) uniform sampler2DShadow shadowMap;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image3D radianceImage;  // mip 0 of the radiance texture
 
 // The main light's shadow map at p (same lightViewProj as the direct pass). One bilinear comparison tap:
 // a voxel spans many shadow texels, so a wider PCF kernel would cost much and change little.

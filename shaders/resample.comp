@@ -14,12 +14,14 @@
 
 layout(local_size_x = VCT_RESAMPLE_GROUP_SIZE) in;
 
+// Resources: bound by engine/passes/resample_pass.cpp (checked against these bindings when the pipeline is
+// made); 1–4 are the trace's numbers, for the shared cone-tracing code.
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_TRACE_BINDING_DEPTH) uniform sampler2D depthTexture;
-layout(set = 0, binding = VCT_TRACE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
-layout(set = 0, binding = VCT_TRACE_BINDING_VOXELS) uniform sampler3D voxels;
-layout(set = 0, binding = VCT_RESAMPLE_BINDING_INDIRECT, rgba32ui) uniform writeonly uimage2D indirectImage;
-layout(set = 0, binding = VCT_RESAMPLE_BINDING_LIST, std430) readonly buffer ResampleList {
+layout(set = 0, binding = 1) uniform sampler2D depthTexture;
+layout(set = 0, binding = 2) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = 3) uniform sampler3D voxels;
+layout(set = 0, binding = 4, rgba32ui) uniform writeonly uimage2D indirectImage;  // the upsample output, overwritten at the listed pixels
+layout(set = 0, binding = 6, std430) readonly buffer ResampleList {
     ResampleListHeader header;
     uint pixels[];
 } resampleList;

@@ -21,14 +21,17 @@ layout(constant_id = VCT_SPEC_TRACE_SCALE) const int SCALE = 4;
 // one fresh sample; no upsample pass runs, so no guides are written (their images are 1×1 stand-ins).
 const bool FULL_RESOLUTION = SCALE == 1;
 
+// Resources: bound by engine/passes/trace_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_TRACE_BINDING_DEPTH) uniform sampler2D depthTexture;
-layout(set = 0, binding = VCT_TRACE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
-layout(set = 0, binding = VCT_TRACE_BINDING_VOXELS) uniform sampler3D voxels;
-layout(set = 0, binding = VCT_TRACE_BINDING_INDIRECT, rgba32ui) uniform writeonly uimage2D indirectImage;
-layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_POSITION, rgba32f) uniform writeonly image2D guidePositionImage;
-layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_NORMAL, rgba16f) uniform writeonly image2D guideNormalImage;
-layout(set = 0, binding = VCT_TRACE_BINDING_GUIDE_AXIS, rgba16f) uniform writeonly image2D guideAxisImage;
+layout(set = 0, binding = 1) uniform sampler2D depthTexture;
+layout(set = 0, binding = 2) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = 3) uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, with mips
+layout(set = 0, binding = 4, rgba32ui) uniform writeonly uimage2D indirectImage;  // packed (lib/indirect_pack.glsl); low res (full res at scale 1)
+// What the upsample weights compare, per low-res sample (lib/upsample_guide.glsl).
+layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D guidePositionImage;  // world position, w: 1 (0: background)
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D guideNormalImage;      // unit normal, w: smoothed specular sharpness λ̄
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D guideAxisImage;        // specular lobe axis
 
 #include "lib/cone_trace.glsl"
 

@@ -47,20 +47,24 @@ layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHTS) const int WEIGHTS = VCT_WEIGHTS_
 layout(constant_id = VCT_UPSAMPLE_SPEC_TEMPORAL) const bool TEMPORAL = true;  // --temporal
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;  // write weightSumImage
 
+// Resources: bound by engine/passes/upsample_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_INDIRECT_LOW) uniform usampler2D indirectLow;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_DEPTH) uniform sampler2D depthTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS) uniform sampler2D normalRoughnessTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_MOTION) uniform sampler2D motionTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_PREV_DEPTH) uniform sampler2D prevDepthTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS) uniform sampler2D prevNormalRoughnessTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_GUIDE_POSITION) uniform sampler2D guidePositionTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_GUIDE_NORMAL) uniform sampler2D guideNormalTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_GUIDE_AXIS) uniform sampler2D guideAxisTexture;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_INDIRECT_HISTORY) uniform usampler2D indirectHistory;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_INDIRECT, rgba32ui) uniform writeonly uimage2D indirectImage;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_WEIGHT_SUM, rgba16f) uniform writeonly image2D weightSumImage;
-layout(set = 0, binding = VCT_UPSAMPLE_BINDING_RESAMPLE_LIST, std430) buffer ResampleList {
+layout(set = 0, binding = 1) uniform usampler2D indirectLow;  // the trace's output (lib/indirect_pack.glsl)
+layout(set = 0, binding = 5) uniform sampler2D depthTexture;
+layout(set = 0, binding = 6) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = 7) uniform sampler2D motionTexture;
+layout(set = 0, binding = 8) uniform sampler2D prevDepthTexture;
+layout(set = 0, binding = 9) uniform sampler2D prevNormalRoughnessTexture;
+// The trace's per-sample guides.
+layout(set = 0, binding = 14) uniform sampler2D guidePositionTexture;
+layout(set = 0, binding = 15) uniform sampler2D guideNormalTexture;
+layout(set = 0, binding = 16) uniform sampler2D guideAxisTexture;
+layout(set = 0, binding = 10) uniform usampler2D indirectHistory;  // last frame's output
+layout(set = 0, binding = 3, rgba32ui) uniform writeonly uimage2D indirectImage;  // diffuse, specular + accumulated weights A
+layout(set = 0, binding = 12, rgba16f) uniform writeonly image2D weightSumImage;  // r: sum of weights (diffuse), g: (specular), b: 1 re-traced
+// The pixels to re-trace (count, the resample pass's indirect dispatch, pixels).
+layout(set = 0, binding = 13, std430) buffer ResampleList {
     ResampleListHeader header;
     uint pixels[];
 } resampleList;
@@ -81,7 +85,7 @@ const int WINDOW = 2 * RADIUS;  // samples per axis around a cell
 // once passed by value); only the first WINDOW² entries are used.
 const int MAX_SAMPLES = 16;
 
-// A low-res sample as the trace left it (VCT_TRACE_BINDING_GUIDE_*), with its kernel validity.
+// A low-res sample as the trace left it (trace.comp's guide images), with its kernel validity.
 struct Sample {
     vec3 p;
     float valid;  // 1, or 0 outside the image and on the background

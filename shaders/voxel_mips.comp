@@ -8,8 +8,10 @@
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
 
-layout(set = 0, binding = VCT_MIPS_BINDING_SOURCE, rgba16f) uniform readonly image3D source;
-layout(set = 0, binding = VCT_MIPS_BINDING_DEST, rgba16f) uniform writeonly image3D dest;
+// Resources: bound by engine/passes/voxel_mips_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
+layout(set = 0, binding = 1, rgba16f) uniform readonly image3D source;
+layout(set = 0, binding = 2, rgba16f) uniform writeonly image3D dest;
 
 void main() {
     const ivec3 voxel = ivec3(gl_GlobalInvocationID);

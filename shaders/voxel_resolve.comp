@@ -8,12 +8,14 @@
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
 
+// Resources: bound by engine/passes/voxelize_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_RESOLVE_BINDING_STATIC) readonly buffer Static { uint staticAccum[]; };
-layout(set = 0, binding = VCT_RESOLVE_BINDING_DYNAMIC) readonly buffer Dynamic { uint dynamicAccum[]; };
-layout(set = 0, binding = VCT_RESOLVE_BINDING_ALBEDO, rgba8) uniform writeonly image3D albedoImage;
-layout(set = 0, binding = VCT_RESOLVE_BINDING_NORMAL, rgba16f) uniform writeonly image3D normalImage;
-layout(set = 0, binding = VCT_RESOLVE_BINDING_EMISSION, rgba16f) uniform writeonly image3D emissionImage;
+layout(set = 0, binding = 1) readonly buffer Static { uint staticAccum[]; };
+layout(set = 0, binding = 2) readonly buffer Dynamic { uint dynamicAccum[]; };
+layout(set = 0, binding = 3, rgba8) uniform writeonly image3D albedoImage;     // albedo, opacity
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D normalImage;   // averaged normal (not renormalised), w unused
+layout(set = 0, binding = 5, rgba16f) uniform writeonly image3D emissionImage; // emitted radiance
 
 layout(push_constant) uniform Push { VoxelizePushConstants push; };
 

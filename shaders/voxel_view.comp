@@ -17,9 +17,11 @@
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
+// Resources: bound by engine/passes/voxel_view_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_VOXEL_VIEW_BINDING_VOXELS) uniform sampler3D voxels;
-layout(set = 0, binding = VCT_VOXEL_VIEW_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 0, binding = 1) uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, with mips
+layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D outputImage;  // radiance seen through the grid, full res
 layout(push_constant) uniform Push { VoxelViewPushConstants push; };
 
 const float VOXEL_VIEW_MAX_OPACITY = 0.99;

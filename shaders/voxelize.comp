@@ -10,15 +10,17 @@
 
 layout(local_size_x = VCT_VOXEL_GROUP_SIZE) in;
 
+// Resources: bound by engine/passes/voxelize_pass.cpp (its resource table gives these binding numbers and is checked
+// against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = VCT_VOXELIZE_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
-layout(set = 0, binding = VCT_VOXELIZE_BINDING_MATERIALS) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
+layout(set = 0, binding = 2) readonly buffer Materials { GpuMaterial materials[]; };
 // The Vertex struct (48 bytes: position, normal, uv, tangent) read as floats: std430 would pad its vec3s.
-layout(set = 0, binding = VCT_VOXELIZE_BINDING_VERTICES) readonly buffer Vertices { float vertexData[]; };
-layout(set = 0, binding = VCT_VOXELIZE_BINDING_INDICES) readonly buffer Indices { uint indices[]; };
-layout(set = 0, binding = VCT_VOXELIZE_BINDING_BASE_COLOR) uniform sampler2D baseColorTexture;
-layout(set = 0, binding = VCT_VOXELIZE_BINDING_EMISSIVE) uniform sampler2D emissiveTexture;
-layout(set = 0, binding = VCT_VOXELIZE_BINDING_ACCUM) buffer Accum { uint accum[]; };
+layout(set = 0, binding = 3) readonly buffer Vertices { float vertexData[]; };
+layout(set = 0, binding = 4) readonly buffer Indices { uint indices[]; };
+layout(set = 0, binding = 5) uniform sampler2D baseColorTexture;
+layout(set = 0, binding = 6) uniform sampler2D emissiveTexture;
+layout(set = 0, binding = 7) buffer Accum { uint accum[]; };
 
 layout(push_constant) uniform Push { VoxelizePushConstants push; };
 

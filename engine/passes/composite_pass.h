@@ -13,12 +13,12 @@ class CompositePass : public Pass {
 public:
     explicit CompositePass(const vk::Context& context);
     const char* name() const override { return "composite"; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 
 private:
+    DfgLut dfg_;  // before resources_, which names its image
+    ResourceTable resources_;
     vk::Pipeline pipeline_;
-    DfgLut dfg_;
 };
 
 }  // namespace vct

@@ -2,43 +2,31 @@
 
 namespace vct {
 
-DirectPass::DirectPass(const vk::Context& context) {
-    constexpr VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    pipeline_ = vk::Pipeline::compute(context, "direct.comp",
-                                      {{VCT_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                                       {VCT_DIRECT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-                                       {VCT_DIRECT_BINDING_DEPTH, sampled, cs},
-                                       {VCT_DIRECT_BINDING_NORMAL_ROUGHNESS, sampled, cs},
-                                       {VCT_DIRECT_BINDING_BASE_COLOR_METALLIC, sampled, cs},
-                                       {VCT_DIRECT_BINDING_EMISSIVE_OCCLUSION, sampled, cs},
-                                       {VCT_DIRECT_BINDING_SHADOW_MAP, sampled, cs},
-                                       {VCT_DIRECT_BINDING_OUTPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}},
-                                      0);
+namespace {
+
+// Binding numbers: shaders/direct.comp's.
+ResourceTable directResources() {
+    return {"direct",
+            {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+             {1, Resource::scene(SceneBuffer::Lights), Access::Read},
+             {2, Target::depth, Access::Sampled},
+             {3, Target::normalRoughness, Access::Sampled},
+             {4, Target::baseColorMetallic, Access::Sampled},
+             {5, Target::emissiveOcclusion, Access::Sampled},
+             {6, Target::shadowMap, Access::SampledCompare},
+             {7, Target::direct, Access::Write}}};
 }
 
-std::vector<ImageUse> DirectPass::uses(FrameTargets& t) {
-    return {{&t.depth, vk::ImageAccess::Sampled},           {&t.normalRoughness, vk::ImageAccess::Sampled},
-            {&t.baseColorMetallic, vk::ImageAccess::Sampled}, {&t.emissiveOcclusion, vk::ImageAccess::Sampled},
-            {&t.shadowMap, vk::ImageAccess::Sampled},       {&t.direct, vk::ImageAccess::StorageWrite}};
+}  // namespace
+
+DirectPass::DirectPass(const vk::Context& context) : resources_(directResources()) {
+    pipeline_ = vk::Pipeline::compute(context, name(), "direct.comp", resources_.bindings(), 0);
 }
 
 void DirectPass::execute(const FrameContext& frame) {
-    FrameTargets& t = frame.targets;
-    const Samplers& s = frame.samplers;
-    constexpr VkImageLayout depthRead = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
     pipeline_.bind(frame.cmd);
-    vk::DescriptorWriter()
-        .uniform(VCT_BINDING_FRAME, frame.frameUniforms)
-        .storageBuffer(VCT_DIRECT_BINDING_LIGHTS, frame.scene.lightBuffer())
-        .sampled(VCT_DIRECT_BINDING_DEPTH, t.depth.view(), s.nearestClamp, depthRead)
-        .sampled(VCT_DIRECT_BINDING_NORMAL_ROUGHNESS, t.normalRoughness.view(), s.nearestClamp)
-        .sampled(VCT_DIRECT_BINDING_BASE_COLOR_METALLIC, t.baseColorMetallic.view(), s.nearestClamp)
-        .sampled(VCT_DIRECT_BINDING_EMISSIVE_OCCLUSION, t.emissiveOcclusion.view(), s.nearestClamp)
-        .sampled(VCT_DIRECT_BINDING_SHADOW_MAP, t.shadowMap.view(), s.shadowCompare, depthRead)
-        .storage(VCT_DIRECT_BINDING_OUTPUT, t.direct.view())
-        .push(frame.context, frame.cmd, pipeline_);
-    vkCmdDispatch(frame.cmd, tileCount(t.width), tileCount(t.height), 1);
+    resources_.bind(frame, pipeline_);
+    vkCmdDispatch(frame.cmd, tileCount(frame.targets.width), tileCount(frame.targets.height), 1);
 }
 
 }  // namespace vct

@@ -4,40 +4,47 @@
 
 namespace vct {
 
-GBufferPass::GBufferPass(const vk::Context& context) {
+namespace {
+
+ResourceTable gbufferResources() {
+    std::vector<ResourceRow> rows = sceneDrawRows();
+    // The colour attachments in the order of gbuffer.frag's outputs (location 0, 1, …), then the depth.
+    for (Target target :
+         {Target::normalRoughness, Target::baseColorMetallic, Target::emissiveOcclusion, Target::motion})
+        rows.push_back({kNoBinding, target, Access::ColorAttachment});
+    rows.push_back({kNoBinding, Target::depth, Access::DepthAttachment});
+    return {"gbuffer", std::move(rows)};
+}
+
+}  // namespace
+
+GBufferPass::GBufferPass(const vk::Context& context) : resources_(gbufferResources()) {
     vk::Pipeline::GraphicsDesc desc;
+    desc.owner = name();
     desc.vertexShader = "gbuffer.vert";
     desc.fragmentShader = "gbuffer.frag";
-    desc.colorFormats = {FrameTargets::kNormalRoughnessFormat, FrameTargets::kBaseColorMetallicFormat,
-                         FrameTargets::kEmissiveOcclusionFormat, FrameTargets::kMotionFormat};
-    desc.depthFormat = FrameTargets::kDepthFormat;
-    desc.bindings = sceneDrawBindings();
+    desc.colorFormats = resources_.colorFormats();
+    desc.depthFormat = resources_.depthFormat();
+    desc.bindings = resources_.bindings();
     desc.pushConstantSize = sizeof(gpu::DrawPushConstants);
     pipeline_ = vk::Pipeline::graphics(context, desc);
 }
 
-std::vector<ImageUse> GBufferPass::uses(FrameTargets& t) {
-    return {{&t.depth, vk::ImageAccess::DepthAttachment},
-            {&t.normalRoughness, vk::ImageAccess::ColorAttachment},
-            {&t.baseColorMetallic, vk::ImageAccess::ColorAttachment},
-            {&t.emissiveOcclusion, vk::ImageAccess::ColorAttachment},
-            {&t.motion, vk::ImageAccess::ColorAttachment}};
-}
-
 void GBufferPass::execute(const FrameContext& frame) {
     FrameTargets& t = frame.targets;
-    VkRenderingAttachmentInfo colors[4];
-    vk::Image* images[4] = {&t.normalRoughness, &t.baseColorMetallic, &t.emissiveOcclusion, &t.motion};
-    for (int i = 0; i < 4; ++i) {
-        colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        colors[i].imageView = images[i]->view();
-        colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        colors[i].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    resources_.barriers(frame);
+    std::vector<VkRenderingAttachmentInfo> colors;
+    for (const vk::Image* image : resources_.colorAttachments(t)) {
+        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        color.imageView = image->view();
+        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        colors.push_back(color);
     }
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = t.depth.view();
+    depth.imageView = resources_.depthAttachment(t)->view();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -45,15 +52,15 @@ void GBufferPass::execute(const FrameContext& frame) {
     VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
     rendering.renderArea = {{0, 0}, {t.width, t.height}};
     rendering.layerCount = 1;
-    rendering.colorAttachmentCount = 4;
-    rendering.pColorAttachments = colors;
+    rendering.colorAttachmentCount = uint32_t(colors.size());
+    rendering.pColorAttachments = colors.data();
     rendering.pDepthAttachment = &depth;
     vkCmdBeginRendering(frame.cmd, &rendering);
     VkViewport viewport{0, 0, float(t.width), float(t.height), 0.0f, 1.0f};
     VkRect2D scissor{{0, 0}, {t.width, t.height}};
     vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
     vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
-    drawScene(frame, pipeline_);
+    drawScene(frame, pipeline_, resources_);
     vkCmdEndRendering(frame.cmd);
 }
 

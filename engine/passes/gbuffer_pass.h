@@ -12,10 +12,10 @@ public:
     explicit GBufferPass(const vk::Context& context);
     const char* name() const override { return "gbuffer"; }
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 
 private:
+    ResourceTable resources_;
     vk::Pipeline pipeline_;
 };
 

@@ -13,12 +13,11 @@ class ResamplePass : public Pass {
 public:
     ResamplePass(const vk::Context& context, const VoxelSource& voxels);
     const char* name() const override { return "resample"; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 
 private:
+    ResourceTable resources_;
     vk::Pipeline pipeline_;
-    VoxelSource voxels_;
 };
 
 }  // namespace vct

@@ -4,23 +4,31 @@
 
 namespace vct {
 
-ShadowPass::ShadowPass(const vk::Context& context) {
+namespace {
+
+ResourceTable shadowResources() {
+    std::vector<ResourceRow> rows = sceneDrawRows();
+    rows.push_back({kNoBinding, Target::shadowMap, Access::DepthAttachment});
+    return {"shadow", std::move(rows)};
+}
+
+}  // namespace
+
+ShadowPass::ShadowPass(const vk::Context& context) : resources_(shadowResources()) {
     vk::Pipeline::GraphicsDesc desc;
+    desc.owner = name();
     desc.vertexShader = "shadow.vert";
-    desc.depthFormat = FrameTargets::kDepthFormat;
-    desc.bindings = sceneDrawBindings();
+    desc.depthFormat = resources_.depthFormat();
+    desc.bindings = resources_.bindings();
     desc.pushConstantSize = sizeof(gpu::DrawPushConstants);
     desc.depthBias = true;
     desc.positionOnly = true;
     pipeline_ = vk::Pipeline::graphics(context, desc);
 }
 
-std::vector<ImageUse> ShadowPass::uses(FrameTargets& targets) {
-    return {{&targets.shadowMap, vk::ImageAccess::DepthAttachment}};
-}
-
 void ShadowPass::execute(const FrameContext& frame) {
-    const vk::Image& shadowMap = frame.targets.shadowMap;
+    resources_.barriers(frame);
+    const vk::Image& shadowMap = *resources_.depthAttachment(frame.targets);
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = shadowMap.view();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -39,7 +47,7 @@ void ShadowPass::execute(const FrameContext& frame) {
         vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
         vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
         vkCmdSetDepthBias(frame.cmd, frame.settings.shadowDepthBias, 0.0f, frame.settings.shadowSlopeBias);
-        drawScene(frame, pipeline_);
+        drawScene(frame, pipeline_, resources_);
     }
     vkCmdEndRendering(frame.cmd);
 }

@@ -11,10 +11,10 @@ public:
     explicit ShadowPass(const vk::Context& context);
     const char* name() const override { return "shadow"; }
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 
 private:
+    ResourceTable resources_;
     vk::Pipeline pipeline_;
 };
 

@@ -18,26 +18,15 @@ struct VoxelSource {
 class TracePass : public Pass {
 public:
     // Trace scale 1 writes the full-res indirect targets directly (no upsample pass follows).
-    TracePass(const vk::Context& context, uint32_t traceScale);
-    ~TracePass() override;
+    TracePass(const vk::Context& context, uint32_t traceScale, const VoxelSource& voxels);
     const char* name() const override { return "trace"; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 
-    // The grid to trace; until one is set, an empty 2³ grid (no indirect light but the environment's).
-    void setVoxels(const VoxelSource& source) { source_ = source; }
-
 private:
-    VoxelSource voxels() { return source_.radiance ? source_ : VoxelSource{&emptyGrid_, emptySampler_}; }
-
-    vk::Image& output(FrameTargets& targets) const;
-
-    VkDevice device_ = VK_NULL_HANDLE;
-    bool fullResolution_ = false;
+    // Trace scale 1: the full-res result itself (no upsample pass runs); else the low-res one.
+    Target output_;
+    ResourceTable resources_;
     vk::Pipeline pipeline_;
-    VoxelSource source_;
-    vk::Image emptyGrid_;
-    VkSampler emptySampler_ = VK_NULL_HANDLE;
 };
 
 }  // namespace vct

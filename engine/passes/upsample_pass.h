@@ -14,7 +14,6 @@ class UpsamplePass : public Pass {
 public:
     explicit UpsamplePass(const vk::Context& context);
     const char* name() const override { return "upsample"; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 
 private:
@@ -23,6 +22,7 @@ private:
     const vk::Pipeline& pipelineFor(const RenderSettings& settings);
 
     const vk::Context& context_;
+    ResourceTable resources_;  // one table for every specialization
     std::map<uint32_t, vk::Pipeline> pipelines_;
 };
 

@@ -12,12 +12,12 @@ class VoxelMipsPass : public Pass {
 public:
     VoxelMipsPass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "mips"; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
 private:
     VoxelGrid& grid_;
+    ResourceTable resources_;
     vk::Pipeline pipeline_;
 };
 

@@ -4,40 +4,44 @@
 
 namespace vct {
 
-VoxelViewPass::VoxelViewPass(const vk::Context& context, VoxelGrid& grid) : context_(context), grid_(grid) {
-    constexpr VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    pipeline_ = vk::Pipeline::compute(context, "voxel_view.comp",
-                                      {{VCT_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                                       {VCT_VOXEL_VIEW_BINDING_VOXELS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs},
-                                       {VCT_VOXEL_VIEW_BINDING_OUTPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs}},
+namespace {
+
+vk::Image makeOutput(const vk::Context& context, uint32_t width, uint32_t height) {
+    vk::ImageDesc desc;
+    desc.width = width;
+    desc.height = height;
+    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    return vk::Image(context, desc);
+}
+
+}  // namespace
+
+VoxelViewPass::VoxelViewPass(const vk::Context& context, VoxelGrid& grid)
+    : context_(context),
+      grid_(grid),
+      // 1×1 until prepare() sizes it; made here so that the pipeline's check sees its format.
+      output_(makeOutput(context, 1, 1)),
+      // Binding numbers: shaders/voxel_view.comp's.
+      resources_("voxel_view",
+                 {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+                  {1, Resource::image("voxels", grid.radiance(), grid.sampler()), Access::Sampled},
+                  {2, Resource::image("output", output_), Access::Write}}) {
+    pipeline_ = vk::Pipeline::compute(context, name(), "voxel_view.comp", resources_.bindings(),
                                       sizeof(gpu::VoxelViewPushConstants));
 }
 
 void VoxelViewPass::prepare(uint32_t mip, uint32_t width, uint32_t height) {
     if (mip >= grid_.mipCount())
-        throw Error("voxel view: mip " + std::to_string(mip) + " is not in 0.." + std::to_string(grid_.mipCount() - 1));
+        throw Error("voxel view: mip " + std::to_string(mip) + " is not in 0.." +
+                    std::to_string(grid_.mipCount() - 1));
     mip_ = mip;
-    if (!output_.valid() || output_.width() != width || output_.height() != height) {
-        vk::ImageDesc desc;
-        desc.width = width;
-        desc.height = height;
-        desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-        output_ = vk::Image(context_, desc);
-    }
-}
-
-std::vector<ImageUse> VoxelViewPass::uses(FrameTargets&) {
-    return {{&grid_.radiance(), vk::ImageAccess::Sampled}, {&output_, vk::ImageAccess::StorageWrite}};
+    if (output_.width() != width || output_.height() != height) output_ = makeOutput(context_, width, height);
 }
 
 void VoxelViewPass::execute(const FrameContext& frame) {
     pipeline_.bind(frame.cmd);
-    vk::DescriptorWriter()
-        .uniform(VCT_BINDING_FRAME, frame.frameUniforms)
-        .sampled(VCT_VOXEL_VIEW_BINDING_VOXELS, grid_.radiance().view(), grid_.sampler())
-        .storage(VCT_VOXEL_VIEW_BINDING_OUTPUT, output_.view())
-        .push(frame.context, frame.cmd, pipeline_);
+    resources_.bind(frame, pipeline_);
     gpu::VoxelViewPushConstants push{};
     push.params.x = mip_;
     pipeline_.pushConstants(frame.cmd, &push, sizeof(push));

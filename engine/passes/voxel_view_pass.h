@@ -14,11 +14,10 @@ class VoxelViewPass : public Pass {
 public:
     VoxelViewPass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "voxel_view"; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
 
     // The mip level to march (0 .. grid.mipCount() − 1) and the output's size (the frame's); call before
-    // uses() and execute().
+    // execute().
     void prepare(uint32_t mip, uint32_t width, uint32_t height);
     // Radiance seen through the grid, RGBA16F (rgb; a = 1), at the size given to prepare().
     vk::Image& output() { return output_; }
@@ -26,8 +25,9 @@ public:
 private:
     const vk::Context& context_;
     VoxelGrid& grid_;
+    vk::Image output_;  // before resources_, which names it
+    ResourceTable resources_;
     vk::Pipeline pipeline_;
-    vk::Image output_;
     uint32_t mip_ = 0;
 };
 

@@ -1,55 +1,49 @@
 #include "passes/voxelize_pass.h"
 
-#include "vk/barrier.h"
-
 namespace vct {
 
 namespace {
 
-// The accumulators are plain buffers, outside the image-use tracking: global barriers order them.
-using vk::memoryBarrier;
+// Binding numbers: shaders/voxelize.comp's (the per-draw ones are written in voxelizeInstances).
+constexpr uint32_t kBaseColor = 5, kEmissive = 6, kAccumulator = 7;
 
-constexpr VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-constexpr VkAccessFlags2 kStorageRW = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-// Clearing the accumulators, and the copy of a voxel cache into the static one.
-constexpr VkPipelineStageFlags2 kTransfer = VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
-constexpr VkAccessFlags2 kTransferWrite = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+// Binding numbers: shaders/voxel_resolve.comp's.
+ResourceTable resolveResources(VoxelGrid& grid) {
+    // Without moving instances the static accumulator stands in for the dynamic one (the shader does not read
+    // it twice).
+    vk::Buffer& dynamic = grid.hasMovingInstances() ? grid.dynamicAccumulator() : grid.staticAccumulator();
+    // The volumes read-write rather than write: frames that skip the resolve (static scenes) keep them.
+    return {"voxelize",
+            {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+             {1, Resource::buffer("staticAccumulator", grid.staticAccumulator()), Access::Read},
+             {2, Resource::buffer("dynamicAccumulator", dynamic), Access::Read},
+             {3, Resource::image("albedo", grid.albedo()), Access::ReadWrite},
+             {4, Resource::image("normal", grid.normal()), Access::ReadWrite},
+             {5, Resource::image("emission", grid.emission()), Access::ReadWrite}}};
+}
 
 }  // namespace
 
-VoxelizePass::VoxelizePass(const vk::Context& context, VoxelGrid& grid) : grid_(grid) {
-    constexpr VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    constexpr VkDescriptorType ssbo = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    constexpr VkDescriptorType texture = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    constexpr VkDescriptorType image = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    voxelize_ = vk::Pipeline::compute(context, "voxelize.comp",
-                                      {{VCT_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                                       {VCT_VOXELIZE_BINDING_INSTANCES, ssbo, cs},
-                                       {VCT_VOXELIZE_BINDING_MATERIALS, ssbo, cs},
-                                       {VCT_VOXELIZE_BINDING_VERTICES, ssbo, cs},
-                                       {VCT_VOXELIZE_BINDING_INDICES, ssbo, cs},
-                                       {VCT_VOXELIZE_BINDING_BASE_COLOR, texture, cs},
-                                       {VCT_VOXELIZE_BINDING_EMISSIVE, texture, cs},
-                                       {VCT_VOXELIZE_BINDING_ACCUM, ssbo, cs}},
+VoxelizePass::VoxelizePass(const vk::Context& context, VoxelGrid& grid)
+    : grid_(grid),
+      voxelizeResources_("voxelize",
+                         {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+                          {1, Resource::scene(SceneBuffer::Instances), Access::Read},
+                          {2, Resource::scene(SceneBuffer::Materials), Access::Read},
+                          {3, Resource::scene(SceneBuffer::Vertices), Access::Read},  // read as floats
+                          {4, Resource::scene(SceneBuffer::Indices), Access::Read},
+                          // The material's textures, and the accumulator of the instances being voxelized.
+                          {kBaseColor, Resource::perDraw("baseColorTexture"), Access::Sampled},
+                          {kEmissive, Resource::perDraw("emissiveTexture"), Access::Sampled},
+                          {kAccumulator, Resource::perDraw("accumulator", true), Access::ReadWrite}}),
+      resolveResources_(resolveResources(grid)) {
+    voxelize_ = vk::Pipeline::compute(context, name(), "voxelize.comp", voxelizeResources_.bindings(),
                                       sizeof(gpu::VoxelizePushConstants));
-    resolve_ = vk::Pipeline::compute(context, "voxel_resolve.comp",
-                                     {{VCT_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
-                                      {VCT_RESOLVE_BINDING_STATIC, ssbo, cs},
-                                      {VCT_RESOLVE_BINDING_DYNAMIC, ssbo, cs},
-                                      {VCT_RESOLVE_BINDING_ALBEDO, image, cs},
-                                      {VCT_RESOLVE_BINDING_NORMAL, image, cs},
-                                      {VCT_RESOLVE_BINDING_EMISSION, image, cs}},
+    resolve_ = vk::Pipeline::compute(context, name(), "voxel_resolve.comp", resolveResources_.bindings(),
                                      sizeof(gpu::VoxelizePushConstants));
 }
 
-// Read-write rather than write: frames that skip the resolve (static scenes) must keep the contents.
-std::vector<ImageUse> VoxelizePass::uses(FrameTargets&) {
-    return {{&grid_.albedo(), vk::ImageAccess::StorageReadWrite},
-            {&grid_.normal(), vk::ImageAccess::StorageReadWrite},
-            {&grid_.emission(), vk::ImageAccess::StorageReadWrite}};
-}
-
-void VoxelizePass::voxelizeInstances(const FrameContext& frame, bool moving, VkBuffer accumulator) {
+void VoxelizePass::voxelizeInstances(const FrameContext& frame, bool moving, const vk::Buffer& accumulator) {
     const GpuScene& gpuScene = frame.scene;
     const Scene& scene = gpuScene.scene();
     VkCommandBuffer cmd = frame.cmd;
@@ -66,17 +60,12 @@ void VoxelizePass::voxelizeInstances(const FrameContext& frame, bool moving, VkB
             if (int(primitive.material) != boundMaterial) {
                 const Material& material = scene.materials[primitive.material];
                 using Slot = GpuScene::Slot;
-                vk::DescriptorWriter()
-                    .uniform(VCT_BINDING_FRAME, frame.frameUniforms)
-                    .storageBuffer(VCT_VOXELIZE_BINDING_INSTANCES, gpuScene.instanceBuffer())
-                    .storageBuffer(VCT_VOXELIZE_BINDING_MATERIALS, gpuScene.materialBuffer())
-                    .storageBuffer(VCT_VOXELIZE_BINDING_VERTICES, gpuScene.vertexBuffer())
-                    .storageBuffer(VCT_VOXELIZE_BINDING_INDICES, gpuScene.indexBuffer())
-                    .sampled(VCT_VOXELIZE_BINDING_BASE_COLOR, gpuScene.textureView(material, Slot::BaseColor),
+                voxelizeResources_.writer(frame)
+                    .sampled(kBaseColor, gpuScene.textureView(material, Slot::BaseColor),
                              gpuScene.textureSampler(material, Slot::BaseColor))
-                    .sampled(VCT_VOXELIZE_BINDING_EMISSIVE, gpuScene.textureView(material, Slot::Emissive),
+                    .sampled(kEmissive, gpuScene.textureView(material, Slot::Emissive),
                              gpuScene.textureSampler(material, Slot::Emissive))
-                    .storageBuffer(VCT_VOXELIZE_BINDING_ACCUM, accumulator)
+                    .storageBuffer(kAccumulator, accumulator.handle())
                     .push(frame.context, cmd, voxelize_);
                 boundMaterial = int(primitive.material);
             }
@@ -102,34 +91,37 @@ void VoxelizePass::execute(const FrameContext& frame) {
     if (!voxelizeStatic && !moving && resolved_ && !frame.settings.recomputeEveryFrame) return;
     resolved_ = true;
     if (voxelizeStatic || moving) {
-        // The last frame's resolve may still read the accumulator being cleared.
-        memoryBarrier(cmd, kCompute, kStorageRW, kTransfer, kTransferWrite);
-        if (voxelizeStatic) vkCmdFillBuffer(cmd, grid_.staticAccumulator(), 0, VK_WHOLE_SIZE, 0);
-        if (moving) vkCmdFillBuffer(cmd, grid_.dynamicAccumulator(), 0, VK_WHOLE_SIZE, 0);
+        // Each accumulator is cleared (the static one then maybe filled from the cache) and accumulated into
+        // by the voxelize shader's atomics: every step's barrier follows from the buffer's tracked use.
+        vk::Buffer& staticAccumulator = grid_.staticAccumulator();
+        vk::Buffer& dynamicAccumulator = grid_.dynamicAccumulator();
+        if (voxelizeStatic) {
+            staticAccumulator.use(cmd, vk::BufferAccess::TransferWrite);
+            vkCmdFillBuffer(cmd, staticAccumulator.handle(), 0, VK_WHOLE_SIZE, 0);
+        }
+        if (moving) {
+            dynamicAccumulator.use(cmd, vk::BufferAccess::TransferWrite);
+            vkCmdFillBuffer(cmd, dynamicAccumulator.handle(), 0, VK_WHOLE_SIZE, 0);
+        }
         if (fromCache) {
             // The cached voxels over the cleared buffer (write after write); the empty ones stay zero.
-            memoryBarrier(cmd, kTransfer, kTransferWrite, kTransfer, kTransferWrite);
+            staticAccumulator.use(cmd, vk::BufferAccess::TransferWrite);
             grid_.recordStaticCacheUpload(cmd);
         }
-        memoryBarrier(cmd, kTransfer, kTransferWrite, kCompute, kStorageRW);
+        constexpr vk::BufferAccess atomics = vk::BufferAccess::ShaderRead | vk::BufferAccess::ShaderWrite;
         if (voxelizeStatic) {
-            if (!fromCache) voxelizeInstances(frame, false, grid_.staticAccumulator());
+            staticAccumulator.use(cmd, atomics);
+            if (!fromCache) voxelizeInstances(frame, false, staticAccumulator);
             grid_.markStaticVoxelized();
         }
-        if (moving) voxelizeInstances(frame, true, grid_.dynamicAccumulator());
-        memoryBarrier(cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kCompute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        if (moving) {
+            dynamicAccumulator.use(cmd, atomics);
+            voxelizeInstances(frame, true, dynamicAccumulator);
+        }
     }
 
     resolve_.bind(cmd);
-    vk::DescriptorWriter()
-        .uniform(VCT_BINDING_FRAME, frame.frameUniforms)
-        .storageBuffer(VCT_RESOLVE_BINDING_STATIC, grid_.staticAccumulator())
-        // Without moving instances the static buffer stands in (the shader does not read it twice).
-        .storageBuffer(VCT_RESOLVE_BINDING_DYNAMIC, moving ? grid_.dynamicAccumulator() : grid_.staticAccumulator())
-        .storage(VCT_RESOLVE_BINDING_ALBEDO, grid_.albedo().view())
-        .storage(VCT_RESOLVE_BINDING_NORMAL, grid_.normal().view())
-        .storage(VCT_RESOLVE_BINDING_EMISSION, grid_.emission().view())
-        .push(frame.context, cmd, resolve_);
+    resolveResources_.bind(frame, resolve_);
     gpu::VoxelizePushConstants push{};
     push.params = glm::uvec4(0, moving ? 1u : 0u, 0, 0);
     resolve_.pushConstants(cmd, &push, sizeof(push));

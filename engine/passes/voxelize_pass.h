@@ -16,15 +16,15 @@ class VoxelizePass : public Pass {
 public:
     VoxelizePass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "voxelize"; }
-    std::vector<ImageUse> uses(FrameTargets& targets) override;
     void execute(const FrameContext& frame) override;
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
 private:
     // Dispatches the triangles of every instance whose `moving` flag equals `moving` into `accumulator`.
-    void voxelizeInstances(const FrameContext& frame, bool moving, VkBuffer accumulator);
+    void voxelizeInstances(const FrameContext& frame, bool moving, const vk::Buffer& accumulator);
 
     VoxelGrid& grid_;
+    ResourceTable voxelizeResources_, resolveResources_;
     vk::Pipeline voxelize_, resolve_;
     bool resolved_ = false;  // the volumes hold the current accumulators
 };

@@ -1,5 +1,12 @@
-// The images one frame renders into, sized from the output size (and the shadow map's own size).
+// The images one frame renders into, declared once in a table (VCT_FRAME_TARGETS below): each row gives the
+// image's name, format, size, usage and when it exists; a history row names the image whose last-frame copy
+// it is. Creation, usage flags and the history swap follow from the table; the passes name these images by
+// `Target` in their resource tables (render/pass_resources.h), which take the formats from here and check
+// them against the shaders' declarations (docs/design.md §2.2).
 #pragma once
+
+#include <array>
+#include <cstdint>
 
 #include "vk/buffer.h"
 #include "vk/context.h"
@@ -7,56 +14,127 @@
 
 namespace vct {
 
-struct FrameTargets {
-    static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-    static constexpr VkFormat kNormalRoughnessFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-    static constexpr VkFormat kBaseColorMetallicFormat = VK_FORMAT_R8G8B8A8_UNORM;
-    static constexpr VkFormat kEmissiveOcclusionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-    static constexpr VkFormat kMotionFormat = VK_FORMAT_R16G16_SFLOAT;
-    static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-    static constexpr VkFormat kIndirectFormat = VK_FORMAT_R32G32B32A32_UINT;  // lib/indirect_pack.glsl
-    static constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-    static constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
+// Sizes: Frame = the output size W×H; Trace = the low-res trace size ⌈W/s⌉×⌈H/s⌉ (a 1×1 stand-in at trace
+// scale 1, where nothing is traced at low resolution but the trace's pipeline still binds them); Shadow = the
+// shadow map's own square size.
+enum class TargetSize : uint8_t { Frame, Trace, Shadow };
+// Usage: Depth = depth attachment, Color = colour attachment, Storage = storage image; every target can also
+// be sampled and copied to the host (aux images, tests).
+enum class TargetUsage : uint8_t { Depth, Color, Storage };
+// Exists: Always; WithGi = only with GI (fixed for a renderer's life); StandInWithoutGi = 1×1 without GI
+// (a pass that runs in both modes binds it, its shader skips it).
+enum class TargetExists : uint8_t { Always, WithGi, StandInWithoutGi };
+// When a history pair swaps at the start of a frame (FrameTargets::swapHistory): every frame, or only when
+// the G-buffer is redrawn (a frame that reuses it keeps both copies, render/renderer.cpp).
+enum class HistorySwap : uint8_t { None, EveryFrame, WithGBuffer };
 
-    vk::Image shadowMap;          // light-space depth of the main light
-    vk::Image depth;              // camera depth (0 near, 1 far / background)
-    vk::Image normalRoughness;    // world shading normal (xyz), perceptual roughness (w)
-    vk::Image baseColorMetallic;  // base colour (rgb), metallic (a)
-    vk::Image emissiveOcclusion;  // emitted radiance (rgb), ambient occlusion (a)
-    vk::Image motion;             // screen-space motion in UV units: uv_previous = uv - motion
-    vk::Image direct;             // direct light + emission (linear HDR)
-    // Demodulated indirect light (lib/cone.glsl): diffuse = cosine-weighted mean incoming radiance (× albedo
-    // in composite), specular = incoming radiance along the specular cone (× DFG in composite); both packed in
-    // one texel with their weights (lib/indirect_pack.glsl).
-    vk::Image indirectLow;          // trace output, ceil(w/s) × ceil(h/s) for trace scale s > 1
-    // Per low-res sample, what the upsample weights compare (written by trace, lib/upsample_guide.glsl).
-    vk::Image guidePosition;        // RGBA32F world position, w: 1 (0 background)
-    vk::Image guideNormal;          // RGBA16F unit normal, w: smoothed specular lobe sharpness
-    vk::Image guideAxis;            // RGBA16F specular lobe axis
-    vk::Image indirect;             // upsample output, full res; weights: accumulated A (docs/design.md §6.5)
-    // Last frame's upsample output and G-buffer, for the temporal history (swapped in by swapHistory()).
-    vk::Image indirectHistory;
-    vk::Image prevDepth;
-    vk::Image prevNormalRoughness;
-    vk::Image weightSum;          // upsample: sum of weights, r diffuse, g specular; b: 1 where re-traced
+// clang-format off
+// T(name, format, size, usage, exists)   one image
+// H(name, of, exists, swap)               last frame's `of`: same format, size and usage, swapped with it
+//
+// shadowMap          light-space depth of the main light
+// depth              camera depth (0 near, 1 far / background)
+// normalRoughness    world shading normal (xyz), effective perceptual roughness (w)
+// baseColorMetallic  base colour (rgb), metallic (a)
+// emissiveOcclusion  emitted radiance (rgb), ambient occlusion (a)
+// motion             screen-space motion in UV units: uv_previous = uv - motion
+// direct             direct light + emission (linear HDR)
+// indirectLow        demodulated indirect light, diffuse and specular packed in one texel with their weights
+//                    (lib/cone.glsl, lib/indirect_pack.glsl): the trace's low-res output
+// indirect           the same at full resolution: the upsample output (weights: accumulated A, design §6.5)
+// guidePosition      per low-res sample, what the upsample weights compare (lib/upsample_guide.glsl):
+//                    world position, w: 1 (0 background)
+// guideNormal        unit normal, w: smoothed specular lobe sharpness
+// guideAxis          specular lobe axis
+// weightSum          upsample: sum of weights, r diffuse, g specular; b: 1 where re-traced
+// hdr, ldr           the final linear HDR (final.exr) and tone-mapped sRGB (final.png, the window)
+// the H rows         last frame's upsample output and G-buffer: the temporal history
+#define VCT_FRAME_TARGETS(T, H)                                                            \
+    T(shadowMap,         VK_FORMAT_D32_SFLOAT,          Shadow, Depth,   Always)           \
+    T(depth,             VK_FORMAT_D32_SFLOAT,          Frame,  Depth,   Always)           \
+    T(normalRoughness,   VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Color,   Always)           \
+    T(baseColorMetallic, VK_FORMAT_R8G8B8A8_UNORM,      Frame,  Color,   Always)           \
+    T(emissiveOcclusion, VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Color,   Always)           \
+    T(motion,            VK_FORMAT_R16G16_SFLOAT,       Frame,  Color,   Always)           \
+    T(direct,            VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Storage, Always)           \
+    T(indirectLow,       VK_FORMAT_R32G32B32A32_UINT,   Trace,  Storage, WithGi)           \
+    T(indirect,          VK_FORMAT_R32G32B32A32_UINT,   Frame,  Storage, StandInWithoutGi) \
+    T(guidePosition,     VK_FORMAT_R32G32B32A32_SFLOAT, Trace,  Storage, WithGi)           \
+    T(guideNormal,       VK_FORMAT_R16G16B16A16_SFLOAT, Trace,  Storage, WithGi)           \
+    T(guideAxis,         VK_FORMAT_R16G16B16A16_SFLOAT, Trace,  Storage, WithGi)           \
+    T(weightSum,         VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Storage, WithGi)           \
+    T(hdr,               VK_FORMAT_R32G32B32A32_SFLOAT, Frame,  Storage, Always)           \
+    T(ldr,               VK_FORMAT_R8G8B8A8_UNORM,      Frame,  Storage, Always)           \
+    H(indirectHistory,     indirect,        WithGi, EveryFrame)                            \
+    H(prevDepth,           depth,           WithGi, WithGBuffer)                           \
+    H(prevNormalRoughness, normalRoughness, WithGi, WithGBuffer)
+// clang-format on
+
+#define VCT_TARGET_ENUMERATOR(name, ...) name,
+enum class Target : uint8_t { VCT_FRAME_TARGETS(VCT_TARGET_ENUMERATOR, VCT_TARGET_ENUMERATOR) count };
+#undef VCT_TARGET_ENUMERATOR
+constexpr size_t kTargetCount = size_t(Target::count);
+
+struct TargetDesc {
+    const char* name;
+    VkFormat format;
+    TargetSize size;
+    TargetUsage usage;
+    TargetExists exists;
+    Target historyOf = Target::count;  // count: not a history
+    HistorySwap swap = HistorySwap::None;
+};
+
+// The table's rows, indexed by Target; a history row carries its partner's format, size and usage.
+inline constexpr std::array<TargetDesc, kTargetCount> kTargets = [] {
+#define VCT_TARGET_ROW(name, format, size, usage, exists) \
+    TargetDesc{#name, format, TargetSize::size, TargetUsage::usage, TargetExists::exists},
+#define VCT_HISTORY_ROW(name, of, exists, swap)                                                         \
+    TargetDesc{                                                                                         \
+        #name,      VK_FORMAT_UNDEFINED, TargetSize::Frame, TargetUsage::Storage, TargetExists::exists, \
+        Target::of, HistorySwap::swap},
+    std::array<TargetDesc, kTargetCount> rows = {VCT_FRAME_TARGETS(VCT_TARGET_ROW, VCT_HISTORY_ROW)};
+#undef VCT_TARGET_ROW
+#undef VCT_HISTORY_ROW
+    for (TargetDesc& row : rows) {
+        if (row.historyOf == Target::count) continue;
+        const TargetDesc& of = rows[size_t(row.historyOf)];
+        row.format = of.format;
+        row.size = of.size;
+        row.usage = of.usage;
+    }
+    return rows;
+}();
+
+constexpr const TargetDesc& targetDesc(Target target) {
+    return kTargets[size_t(target)];
+}
+
+struct FrameTargets {
+#define VCT_TARGET_MEMBER(name, ...) vk::Image name;
+    VCT_FRAME_TARGETS(VCT_TARGET_MEMBER, VCT_TARGET_MEMBER)
+#undef VCT_TARGET_MEMBER
+
     // Pixels to re-trace (lib/shared.h ResampleListHeader + one packed pixel per entry), written by upsample,
     // read by resample's indirect dispatch; and the entry count of the last frame, copied back to the host.
+    // With GI only.
     vk::Buffer resampleList;
     vk::Buffer resampleCount;
-    vk::Image hdr;                // final linear HDR (what final.exr holds)
-    vk::Image ldr;                // final tone-mapped sRGB (what final.png holds and the window shows)
 
     uint32_t width = 0, height = 0;
     uint32_t traceScale = 1;
-    // Whether the indirect-light targets exist: with GI off, indirectLow through resampleCount above are not
-    // allocated (empty handles; readers check this flag), except a 1×1 `indirect` for composite's binding.
+    // Whether the indirect-light targets exist (the table's WithGi rows and the buffers above; readers check
+    // this flag).
     bool gi = true;
+
+    vk::Image& image(Target target);
+    const vk::Image& image(Target target) const;
 
     void create(const vk::Context& context, uint32_t width, uint32_t height, uint32_t shadowMapSize,
                 uint32_t traceScale = 1, bool gi = true);
-    // Start of a frame: this frame's outputs and G-buffer become last frame's (no copies, the images swap).
-    // Without GI there is no history: nothing to swap.
-    // gbuffer false: the G-buffer is kept (a frame that reuses it, render/renderer.cpp), both copies hold it.
+    // Start of a frame: this frame's outputs and G-buffer become last frame's (no copies, the images swap),
+    // for every history pair that exists (none without GI). gbuffer false: the G-buffer is kept (a frame that
+    // reuses it, render/renderer.cpp), both copies hold it.
     void swapHistory(bool gbuffer = true);
 };
 

@@ -1,11 +1,13 @@
-// What every pass sees: a Pass declares the images it reads and writes (the runner turns those into barriers)
-// and records its work in execute(). The runner (Renderer) times each pass with a GPU timestamp scope.
+// What every pass sees: a Pass declares its resources once, in a table (render/pass_resources.h) from which
+// its pipeline layout, barriers and descriptor writes follow, and records its work in execute(). The runner
+// (Renderer) times each pass with a GPU timestamp scope.
 #pragma once
 
 #include <vector>
 
 #include "render/frame_targets.h"
 #include "render/gpu_scene.h"
+#include "render/pass_resources.h"
 #include "render/settings.h"
 #include "vk/context.h"
 #include "vk/image.h"
@@ -29,11 +31,6 @@ struct FrameContext {
     const Samplers& samplers;
 };
 
-struct ImageUse {
-    vk::Image* image;
-    vk::ImageAccess access;
-};
-
 enum class PassReuse {
     Never,                 // runs every frame (the jittered trace and what follows it)
     WhileSceneUnchanged,   // depends only on the scene's geometry and lights (shadow map, voxel grid)
@@ -44,8 +41,7 @@ class Pass {
 public:
     virtual ~Pass() = default;
     virtual const char* name() const = 0;
-    // The images this pass reads and writes this frame, and how.
-    virtual std::vector<ImageUse> uses(FrameTargets& targets) = 0;
+    // Records the pass's work, its resource table's barriers first (ResourceTable::bind or barriers).
     virtual void execute(const FrameContext& frame) = 0;
     // What the pass's output depends on, so that the runner can skip it in frames where that did not change
     // (its output persists from the frame that made it): "a pass that has nothing to do" does not run.

@@ -64,10 +64,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
         const VoxelSource voxels{&voxelGrid_->radiance(), voxelGrid_->sampler()};
-        auto trace = std::make_unique<TracePass>(context, settings.traceScale);
-        tracePass_ = trace.get();
-        tracePass_->setVoxels(voxels);
-        passes_.push_back(std::move(trace));
+        passes_.push_back(std::make_unique<TracePass>(context, settings.traceScale, voxels));
         // Upsampling and adaptive re-tracing only where something is traced at low resolution: at scale 1 the
         // trace writes the full-res targets itself.
         if (settings.traceScale > 1) {
@@ -228,8 +225,7 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
             continue;
         }
         timer_.beginScope(cmd_, pass->name());
-        for (const ImageUse& use : pass->uses(targets_)) use.image->use(cmd_, use.access);
-        pass->execute(frame);
+        pass->execute(frame);  // its barriers first, from its resource table
         timer_.endScope(cmd_);
     }
     if (submit.afterPasses) submit.afterPasses(cmd_);
@@ -360,7 +356,6 @@ vk::Image& Renderer::renderVoxelView(uint32_t mip) {
     // The frame uniforms still hold the last frame's camera and grid placement.
     context_.submitAndWait([&](VkCommandBuffer cmd) {
         FrameContext frame{context_, cmd, gpuScene_, targets_, frameUniforms_.handle(), settings_, samplers_};
-        for (const ImageUse& use : voxelView_->uses(targets_)) use.image->use(cmd, use.access);
         voxelView_->execute(frame);
     });
     return voxelView_->output();

@@ -1,5 +1,5 @@
 // Runs one frame: updates the scene's per-frame data, then runs the passes in order, each inside a GPU
-// timestamp scope and after the barriers its declared image uses call for.
+// timestamp scope (each pass emits the barriers its resource table calls for).
 #pragma once
 
 #include <array>
@@ -41,7 +41,6 @@ struct FrameSubmit {
     VkSemaphore signal = VK_NULL_HANDLE;
 };
 
-class TracePass;
 class VoxelViewPass;
 
 class Renderer {
@@ -103,7 +102,6 @@ private:
     vk::GpuTimer timer_;
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
-    TracePass* tracePass_ = nullptr;  // in passes_ when GI is on; reads the voxel grid
     std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;

@@ -2,22 +2,28 @@
 
 namespace vct {
 
-std::vector<vk::Binding> sceneDrawBindings() {
-    constexpr VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    constexpr VkDescriptorType texture = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+namespace {
+
+// The material's textures, written per draw.
+enum TextureBinding : uint32_t { kBaseColor = 3, kMetallicRoughness, kNormal, kEmissive, kOcclusion };
+
+}  // namespace
+
+std::vector<ResourceRow> sceneDrawRows() {
+    constexpr VkShaderStageFlags vertex = VK_SHADER_STAGE_VERTEX_BIT, fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
     return {
-        {VCT_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, both},
-        {VCT_DRAW_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT},
-        {VCT_DRAW_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
-        {VCT_DRAW_BINDING_BASE_COLOR, texture, VK_SHADER_STAGE_FRAGMENT_BIT},
-        {VCT_DRAW_BINDING_METALLIC_ROUGHNESS, texture, VK_SHADER_STAGE_FRAGMENT_BIT},
-        {VCT_DRAW_BINDING_NORMAL, texture, VK_SHADER_STAGE_FRAGMENT_BIT},
-        {VCT_DRAW_BINDING_EMISSIVE, texture, VK_SHADER_STAGE_FRAGMENT_BIT},
-        {VCT_DRAW_BINDING_OCCLUSION, texture, VK_SHADER_STAGE_FRAGMENT_BIT},
+        {VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform, vertex | fragment},
+        {1, Resource::scene(SceneBuffer::Instances), Access::Read, vertex},
+        {2, Resource::scene(SceneBuffer::Materials), Access::Read, fragment},
+        {kBaseColor, Resource::perDraw("baseColorTexture"), Access::Sampled, fragment},
+        {kMetallicRoughness, Resource::perDraw("metallicRoughnessTexture"), Access::Sampled, fragment},
+        {kNormal, Resource::perDraw("normalTexture"), Access::Sampled, fragment},
+        {kEmissive, Resource::perDraw("emissiveTexture"), Access::Sampled, fragment},
+        {kOcclusion, Resource::perDraw("occlusionTexture"), Access::Sampled, fragment},
     };
 }
 
-void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline) {
+void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources) {
     const GpuScene& gpuScene = frame.scene;
     const Scene& scene = gpuScene.scene();
     VkCommandBuffer cmd = frame.cmd;
@@ -44,15 +50,12 @@ void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline) {
                 auto [normalView, normalSampler] = texture(Slot::Normal);
                 auto [emissiveView, emissiveSampler] = texture(Slot::Emissive);
                 auto [aoView, aoSampler] = texture(Slot::Occlusion);
-                vk::DescriptorWriter()
-                    .uniform(VCT_BINDING_FRAME, frame.frameUniforms)
-                    .storageBuffer(VCT_DRAW_BINDING_INSTANCES, gpuScene.instanceBuffer())
-                    .storageBuffer(VCT_DRAW_BINDING_MATERIALS, gpuScene.materialBuffer())
-                    .sampled(VCT_DRAW_BINDING_BASE_COLOR, baseView, baseSampler)
-                    .sampled(VCT_DRAW_BINDING_METALLIC_ROUGHNESS, mrView, mrSampler)
-                    .sampled(VCT_DRAW_BINDING_NORMAL, normalView, normalSampler)
-                    .sampled(VCT_DRAW_BINDING_EMISSIVE, emissiveView, emissiveSampler)
-                    .sampled(VCT_DRAW_BINDING_OCCLUSION, aoView, aoSampler)
+                resources.writer(frame)
+                    .sampled(kBaseColor, baseView, baseSampler)
+                    .sampled(kMetallicRoughness, mrView, mrSampler)
+                    .sampled(kNormal, normalView, normalSampler)
+                    .sampled(kEmissive, emissiveView, emissiveSampler)
+                    .sampled(kOcclusion, aoView, aoSampler)
                     .push(frame.context, cmd, pipeline);
                 vkCmdSetCullMode(cmd, material.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
                 boundMaterial = int(primitive.material);

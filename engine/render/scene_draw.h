@@ -7,9 +7,12 @@
 
 namespace vct {
 
-// The descriptor bindings every scene-drawing pipeline declares (see VCT_DRAW_BINDING_* in lib/shared.h).
-std::vector<vk::Binding> sceneDrawBindings();
+// The resource rows every scene-drawing pass's table starts with: the frame, the scene's instances and
+// materials, and the material's five textures (written per draw by drawScene). Binding numbers: those of
+// shaders/gbuffer.vert, gbuffer.frag and shadow.vert.
+std::vector<ResourceRow> sceneDrawRows();
 
-void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline);
+// `resources`: the pass's table, which starts with sceneDrawRows().
+void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources);
 
 }  // namespace vct

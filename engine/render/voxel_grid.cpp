@@ -11,7 +11,6 @@
 #include "core/error.h"
 #include "lib/shared.h"
 #include "scene/input_limits.h"
-#include "vk/barrier.h"
 #include "vk/check.h"
 
 namespace vct {
@@ -202,10 +201,10 @@ std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
         region.imageExtent = {size, size, size};
+        staging.use(cmd, vk::BufferAccess::TransferWrite);
         vkCmdCopyImageToBuffer(cmd, volume.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(),
                                1, &region);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        staging.use(cmd, vk::BufferAccess::HostRead);
         if (previous != vk::ImageAccess::Undefined) volume.use(cmd, previous);
     });
     std::vector<glm::vec4> texelsOut(texels);
@@ -235,13 +234,11 @@ std::vector<StaticAccumVoxel> VoxelGrid::readStaticAccumulator() {
     for (uint64_t z0 = 0; z0 < n; z0 += slicesPerSlab) {
         const uint64_t slices = std::min(slicesPerSlab, n - z0);
         context_.submitAndWait([&](VkCommandBuffer cmd) {
-            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                              VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                              VK_ACCESS_2_TRANSFER_READ_BIT);
+            staticAccum_.use(cmd, vk::BufferAccess::TransferRead);
+            staging.use(cmd, vk::BufferAccess::TransferWrite);
             VkBufferCopy region{z0 * sliceBytes, 0, slices * sliceBytes};
             vkCmdCopyBuffer(cmd, staticAccum_.handle(), staging.handle(), 1, &region);
-            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                              VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+            staging.use(cmd, vk::BufferAccess::HostRead);
         });
         const auto* src = static_cast<const uint32_t*>(staging.mapped());
         for (uint64_t i = 0; i < slices * n * n; ++i) {

@@ -70,8 +70,8 @@ class VoxelGrid {
 
     // Fixed-point accumulators (VCT_VOXEL_ACCUM_STRIDE uints per voxel): static geometry, written once, and
     // moving instances, cleared and rewritten every frame (absent when the scene has none).
-    VkBuffer staticAccumulator() const { return staticAccum_.handle(); }
-    VkBuffer dynamicAccumulator() const { return dynamicAccum_.handle(); }
+    vk::Buffer& staticAccumulator() { return staticAccum_; }
+    vk::Buffer& dynamicAccumulator() { return dynamicAccum_; }
     bool hasMovingInstances() const { return dynamicAccum_.handle() != VK_NULL_HANDLE; }
     VkDeviceSize accumulatorSize() const { return staticAccum_.size(); }
 

@@ -49,6 +49,8 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
         memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
         size_ = std::exchange(other.size_, 0);
         mapped_ = std::exchange(other.mapped_, nullptr);
+        write_ = std::exchange(other.write_, BufferAccess::None);
+        readers_ = std::exchange(other.readers_, BufferAccess::None);
     }
     return *this;
 }
@@ -61,6 +63,7 @@ void Buffer::reset() {
     memory_ = VK_NULL_HANDLE;
     mapped_ = nullptr;
     device_ = VK_NULL_HANDLE;
+    write_ = readers_ = BufferAccess::None;
 }
 
 Buffer Buffer::withData(const Context& context, const void* data, VkDeviceSize size,
@@ -74,6 +77,64 @@ Buffer Buffer::withData(const Context& context, const void* data, VkDeviceSize s
         vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
     });
     return buffer;
+}
+
+namespace {
+
+struct StageAccess {
+    VkPipelineStageFlags2 stages = VK_PIPELINE_STAGE_2_NONE;
+    VkAccessFlags2 access = VK_ACCESS_2_NONE;
+};
+
+StageAccess stageAccess(BufferAccess use) {
+    StageAccess s;
+    auto add = [&](BufferAccess bit, VkPipelineStageFlags2 stages, VkAccessFlags2 access) {
+        if (!any(use & bit)) return;
+        s.stages |= stages;
+        s.access |= access;
+    };
+    add(BufferAccess::ShaderRead, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    add(BufferAccess::ShaderWrite, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    add(BufferAccess::IndirectRead, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    add(BufferAccess::TransferRead, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    add(BufferAccess::TransferWrite, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    add(BufferAccess::HostRead, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    return s;
+}
+
+}  // namespace
+
+void Buffer::use(VkCommandBuffer cmd, BufferAccess next) {
+    BufferAccess waitFor = BufferAccess::None;
+    if (any(next & kBufferWrites)) {
+        waitFor = write_ | readers_;  // write after write, write after read
+        write_ = next;
+        readers_ = BufferAccess::None;
+    } else {
+        // Read after write, for the kinds of read not yet ordered after the last write.
+        if (any(next & BufferAccess(~uint32_t(readers_)))) waitFor = write_;
+        readers_ = readers_ | next;
+    }
+    // None on a buffer's first use (host writes before a submission are visible to it) or when nothing is due.
+    if (!any(waitFor)) return;
+    const StageAccess from = stageAccess(waitFor), to = stageAccess(next);
+    VkBufferMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+    barrier.srcStageMask = from.stages;
+    barrier.srcAccessMask = from.access;
+    barrier.dstStageMask = to.stages;
+    barrier.dstAccessMask = to.access;
+    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.buffer = buffer_;
+    barrier.offset = 0;
+    barrier.size = VK_WHOLE_SIZE;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.bufferMemoryBarrierCount = 1;
+    dependency.pBufferMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
 }  // namespace vct::vk

@@ -5,11 +5,12 @@
 #include <utility>
 
 #include "scene/scene.h"
+#include "vk/binding_check.h"
 #include "vk/check.h"
 
 namespace vct::vk {
 
-VkShaderModule loadShaderModule(const Context& context, const std::string& name) {
+std::vector<uint32_t> readSpirv(const std::string& name) {
     const char* overrideDir = std::getenv("VCT_SHADER_DIR");
     const std::string dir = overrideDir ? overrideDir : VCT_SHADER_DIR;
     const std::string path = dir + "/" + name + ".spv";
@@ -20,12 +21,37 @@ VkShaderModule loadShaderModule(const Context& context, const std::string& name)
     std::vector<uint32_t> code(size / 4);
     file.seekg(0);
     file.read(reinterpret_cast<char*>(code.data()), std::streamsize(size));
+    return code;
+}
+
+namespace {
+
+VkShaderModule createModule(const Context& context, const std::vector<uint32_t>& code) {
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = size;
+    info.codeSize = code.size() * sizeof(uint32_t);
     info.pCode = code.data();
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(context.device(), &info, nullptr, &module));
     return module;
+}
+
+// Reads a shader's SPIR-V and adds what it declares to `interfaces`, for checkBindings.
+std::vector<uint32_t> readWithInterface(const std::string& owner, const std::string& shader,
+                                        VkShaderStageFlagBits stage,
+                                        std::vector<ShaderInterface>& interfaces) {
+    std::vector<uint32_t> code = readSpirv(shader);
+    try {
+        interfaces.push_back({stage, shader, reflectBindings(code)});
+    } catch (const Error& e) {
+        throw Error(owner + ": " + shader + ": " + e.what());
+    }
+    return code;
+}
+
+}  // namespace
+
+VkShaderModule loadShaderModule(const Context& context, const std::string& name) {
+    return createModule(context, readSpirv(name));
 }
 
 Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
@@ -73,8 +99,13 @@ void Pipeline::createLayout(const Context& context, const std::vector<Binding>& 
     VK_CHECK(vkCreatePipelineLayout(device_, &layoutInfo, nullptr, &layout_));
 }
 
-Pipeline Pipeline::compute(const Context& context, const std::string& shader, const std::vector<Binding>& bindings,
-                           uint32_t pushConstantSize, const std::vector<uint32_t>& specialization) {
+Pipeline Pipeline::compute(const Context& context, const std::string& owner, const std::string& shader,
+                           const std::vector<Binding>& bindings, uint32_t pushConstantSize,
+                           const std::vector<uint32_t>& specialization) {
+    std::vector<ShaderInterface> interfaces;
+    const std::vector<uint32_t> code =
+        readWithInterface(owner, shader, VK_SHADER_STAGE_COMPUTE_BIT, interfaces);
+    checkBindings(owner, bindings, interfaces);
     Pipeline pipeline;
     pipeline.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
     std::vector<VkSpecializationMapEntry> entries;
@@ -83,7 +114,7 @@ Pipeline Pipeline::compute(const Context& context, const std::string& shader, co
     const VkSpecializationInfo specializationInfo{uint32_t(entries.size()), entries.data(),
                                                   specialization.size() * sizeof(uint32_t), specialization.data()};
     pipeline.createLayout(context, bindings, pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT);
-    VkShaderModule module = loadShaderModule(context, shader);
+    VkShaderModule module = createModule(context, code);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -98,6 +129,14 @@ Pipeline Pipeline::compute(const Context& context, const std::string& shader, co
 }
 
 Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
+    std::vector<ShaderInterface> interfaces;
+    std::vector<std::vector<uint32_t>> codes;
+    codes.push_back(readWithInterface(desc.owner, desc.vertexShader, VK_SHADER_STAGE_VERTEX_BIT, interfaces));
+    if (!desc.fragmentShader.empty())
+        codes.push_back(
+            readWithInterface(desc.owner, desc.fragmentShader, VK_SHADER_STAGE_FRAGMENT_BIT, interfaces));
+    checkBindings(desc.owner, desc.bindings, interfaces);
+
     Pipeline pipeline;
     pipeline.bindPoint_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
     pipeline.createLayout(context, desc.bindings, desc.pushConstantSize,
@@ -105,16 +144,16 @@ Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
 
     std::vector<VkShaderModule> modules;
     std::vector<VkPipelineShaderStageCreateInfo> stages;
-    auto addStage = [&](VkShaderStageFlagBits stage, const std::string& name) {
-        modules.push_back(loadShaderModule(context, name));
+    auto addStage = [&](VkShaderStageFlagBits stage, const std::vector<uint32_t>& code) {
+        modules.push_back(createModule(context, code));
         VkPipelineShaderStageCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
         info.stage = stage;
         info.module = modules.back();
         info.pName = "main";
         stages.push_back(info);
     };
-    addStage(VK_SHADER_STAGE_VERTEX_BIT, desc.vertexShader);
-    if (!desc.fragmentShader.empty()) addStage(VK_SHADER_STAGE_FRAGMENT_BIT, desc.fragmentShader);
+    addStage(VK_SHADER_STAGE_VERTEX_BIT, codes[0]);
+    if (!desc.fragmentShader.empty()) addStage(VK_SHADER_STAGE_FRAGMENT_BIT, codes[1]);
 
     VkVertexInputBindingDescription vertexBinding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
     VkVertexInputAttributeDescription attributes[] = {
@@ -184,8 +223,9 @@ Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
     return pipeline;
 }
 
-VkWriteDescriptorSet& DescriptorWriter::next(uint32_t binding, VkDescriptorType type) {
+VkWriteDescriptorSet& DescriptorWriter::next(uint32_t binding, VkDescriptorType type, size_t info) {
     if (writeCount_ == kMax) throw Error("DescriptorWriter: too many bindings");
+    info_[writeCount_] = uint8_t(info);
     VkWriteDescriptorSet& write = writes_[writeCount_++];
     write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstBinding = binding;
@@ -196,30 +236,36 @@ VkWriteDescriptorSet& DescriptorWriter::next(uint32_t binding, VkDescriptorType 
 
 DescriptorWriter& DescriptorWriter::sampled(uint32_t binding, VkImageView view, VkSampler sampler,
                                             VkImageLayout layout) {
-    images_[imageCount_] = {sampler, view, layout};
-    next(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER).pImageInfo = &images_[imageCount_++];
+    next(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, imageCount_);
+    images_[imageCount_++] = {sampler, view, layout};
     return *this;
 }
 
 DescriptorWriter& DescriptorWriter::storage(uint32_t binding, VkImageView view) {
-    images_[imageCount_] = {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
-    next(binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &images_[imageCount_++];
+    next(binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, imageCount_);
+    images_[imageCount_++] = {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
     return *this;
 }
 
 DescriptorWriter& DescriptorWriter::uniform(uint32_t binding, VkBuffer buffer, VkDeviceSize size) {
-    buffers_[bufferCount_] = {buffer, 0, size};
-    next(binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER).pBufferInfo = &buffers_[bufferCount_++];
+    next(binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, bufferCount_);
+    buffers_[bufferCount_++] = {buffer, 0, size};
     return *this;
 }
 
 DescriptorWriter& DescriptorWriter::storageBuffer(uint32_t binding, VkBuffer buffer, VkDeviceSize size) {
-    buffers_[bufferCount_] = {buffer, 0, size};
-    next(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER).pBufferInfo = &buffers_[bufferCount_++];
+    next(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bufferCount_);
+    buffers_[bufferCount_++] = {buffer, 0, size};
     return *this;
 }
 
 void DescriptorWriter::push(const Context& context, VkCommandBuffer cmd, const Pipeline& pipeline) {
+    for (size_t i = 0; i < writeCount_; ++i) {
+        const bool buffer = writes_[i].descriptorType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ||
+                            writes_[i].descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes_[i].pImageInfo = buffer ? nullptr : &images_[info_[i]];
+        writes_[i].pBufferInfo = buffer ? &buffers_[info_[i]] : nullptr;
+    }
     context.cmdPushDescriptorSet(cmd, pipeline.bindPoint(), pipeline.layout(), 0, uint32_t(writeCount_), writes_);
 }
 

@@ -1,5 +1,7 @@
-// Shader modules, pipelines and push descriptors: a pass declares its bindings once and binds its resources
-// with one line each (DescriptorWriter), with no descriptor pools or sets to manage.
+// Shader modules, pipelines and push descriptors. The bindings a pipeline is made with come from its pass's
+// resource table (render/pass_resources.h) and are checked against the shaders' own SPIR-V when the pipeline
+// is created (vk/binding_check.h); resources are bound with push descriptors (DescriptorWriter), with no
+// descriptor pools or sets to manage.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -12,12 +14,18 @@
 namespace vct::vk {
 
 // Reads build/shaders/NAME.spv (or $VCT_SHADER_DIR/NAME.spv); a clear error when it is missing.
+std::vector<uint32_t> readSpirv(const std::string& name);
 VkShaderModule loadShaderModule(const Context& context, const std::string& name);
 
 struct Binding {
     uint32_t binding;
     VkDescriptorType type;
     VkShaderStageFlags stages;
+    // What else the shader must declare there, checked against its SPIR-V (vk/binding_check.h):
+    std::string name;                       // the resource, for messages
+    VkFormat format = VK_FORMAT_UNDEFINED;  // the image's (undefined: not an image, or unknown)
+    VkImageViewType dimension = VK_IMAGE_VIEW_TYPE_MAX_ENUM;  // 2D or 3D (max enum: not checked)
+    bool depthCompare = false;                                // sampled through a depth-comparison sampler
 };
 
 // A pipeline and its layout (one push-descriptor set + optional push constants). Destroys both.
@@ -37,10 +45,13 @@ public:
     void reset();
 
     // `specialization[i]` is the value of the shader's `layout(constant_id = i)` (32-bit: int, uint or bool).
-    static Pipeline compute(const Context& context, const std::string& shader, const std::vector<Binding>& bindings,
-                            uint32_t pushConstantSize, const std::vector<uint32_t>& specialization = {});
+    // `owner` names the pass in errors (a binding that does not match the shader's).
+    static Pipeline compute(const Context& context, const std::string& owner, const std::string& shader,
+                            const std::vector<Binding>& bindings, uint32_t pushConstantSize,
+                            const std::vector<uint32_t>& specialization = {});
 
     struct GraphicsDesc {
+        std::string owner;
         std::string vertexShader;
         std::string fragmentShader;  // empty: depth only
         std::vector<VkFormat> colorFormats;
@@ -71,7 +82,8 @@ private:
     VkShaderStageFlags pushStages_ = 0;
 };
 
-// Collects the resources of one dispatch or draw and pushes them as set 0.
+// Collects the resources of one dispatch or draw and pushes them as set 0. A value: it may be copied (the
+// write records point into its own arrays only when pushed).
 class DescriptorWriter {
 public:
     DescriptorWriter& sampled(uint32_t binding, VkImageView view, VkSampler sampler,
@@ -81,14 +93,14 @@ public:
     DescriptorWriter& storageBuffer(uint32_t binding, VkBuffer buffer, VkDeviceSize size = VK_WHOLE_SIZE);
     void push(const Context& context, VkCommandBuffer cmd, const Pipeline& pipeline);
 
-private:
-    // Fixed capacity so that pointers into the info arrays stay valid while writes are collected.
+  private:
     static constexpr size_t kMax = 24;
     VkDescriptorImageInfo images_[kMax]{};
     VkDescriptorBufferInfo buffers_[kMax]{};
     VkWriteDescriptorSet writes_[kMax]{};
+    uint8_t info_[kMax]{};  // writes_[i]'s entry in images_ or buffers_ (by its descriptor type)
     size_t imageCount_ = 0, bufferCount_ = 0, writeCount_ = 0;
-    VkWriteDescriptorSet& next(uint32_t binding, VkDescriptorType type);
+    VkWriteDescriptorSet& next(uint32_t binding, VkDescriptorType type, size_t info);
 };
 
 }  // namespace vct::vk

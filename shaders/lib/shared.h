@@ -126,72 +126,18 @@ struct DrawPushConstants {
     uvec4 indices;  // x: instance, y: material
 };
 
-// ---- binding numbers, one block per pass ----
+// ---- binding numbers ----
+// Each pass declares its resources, with their binding numbers, once in its resource table
+// (engine/passes/NAME_pass.cpp, render/pass_resources.h); its shader declares the same numbers, and the
+// pipeline's creation checks the two against each other (vk/binding_check.h). Only the frame's is common:
 #define VCT_BINDING_FRAME 0  // FrameUniforms, in every pass that needs it
 
-// shadow + gbuffer (scene drawing)
-#define VCT_DRAW_BINDING_INSTANCES 1
-#define VCT_DRAW_BINDING_MATERIALS 2
-#define VCT_DRAW_BINDING_BASE_COLOR 3
-#define VCT_DRAW_BINDING_METALLIC_ROUGHNESS 4
-#define VCT_DRAW_BINDING_NORMAL 5
-#define VCT_DRAW_BINDING_EMISSIVE 6
-#define VCT_DRAW_BINDING_OCCLUSION 7
-
-// direct
-#define VCT_DIRECT_BINDING_LIGHTS 1
-#define VCT_DIRECT_BINDING_DEPTH 2
-#define VCT_DIRECT_BINDING_NORMAL_ROUGHNESS 3
-#define VCT_DIRECT_BINDING_BASE_COLOR_METALLIC 4
-#define VCT_DIRECT_BINDING_EMISSIVE_OCCLUSION 5
-#define VCT_DIRECT_BINDING_SHADOW_MAP 6
-#define VCT_DIRECT_BINDING_OUTPUT 7
-
-// composite
-#define VCT_COMPOSITE_BINDING_DIRECT 1
-#define VCT_COMPOSITE_BINDING_HDR 2
-#define VCT_COMPOSITE_BINDING_LDR 3
-#define VCT_COMPOSITE_BINDING_DEPTH 4
-#define VCT_COMPOSITE_BINDING_NORMAL_ROUGHNESS 5
-#define VCT_COMPOSITE_BINDING_BASE_COLOR_METALLIC 6
-#define VCT_COMPOSITE_BINDING_EMISSIVE_OCCLUSION 7
-#define VCT_COMPOSITE_BINDING_INDIRECT 8  // full-res demodulated indirect light (lib/indirect_pack.glsl)
-#define VCT_COMPOSITE_BINDING_DFG 10      // split-sum DFG table, uv = (n·v, perceptual roughness)
-
-// trace (cone tracing at 1/traceScale resolution)
-#define VCT_TRACE_BINDING_DEPTH 1
-#define VCT_TRACE_BINDING_NORMAL_ROUGHNESS 2
-#define VCT_TRACE_BINDING_VOXELS 3    // radiance (premultiplied rgb) + opacity, 3D with mips
-// out: cosine-weighted incoming radiance and incoming radiance along the specular cone, packed
-// (lib/indirect_pack.glsl), low res (full res at trace scale 1)
-#define VCT_TRACE_BINDING_INDIRECT 4
-// out: what the upsample weights compare, per low-res sample (lib/upsample_guide.glsl)
-#define VCT_TRACE_BINDING_GUIDE_POSITION 6  // rgba32f: world position, w: 1 (0: background)
-#define VCT_TRACE_BINDING_GUIDE_NORMAL 7    // rgba16f: unit normal, w: smoothed specular sharpness λ̄
-#define VCT_TRACE_BINDING_GUIDE_AXIS 8      // rgba16f: specular lobe axis
-
-// upsample (spatial joint-bilateral + temporal history; flags low-weight pixels for resample)
-#define VCT_UPSAMPLE_BINDING_INDIRECT_LOW 1      // the trace's output (lib/indirect_pack.glsl)
-#define VCT_UPSAMPLE_BINDING_INDIRECT 3          // out: diffuse, specular radiance + accumulated weights A
-#define VCT_UPSAMPLE_BINDING_DEPTH 5
-#define VCT_UPSAMPLE_BINDING_NORMAL_ROUGHNESS 6
-#define VCT_UPSAMPLE_BINDING_MOTION 7
-#define VCT_UPSAMPLE_BINDING_PREV_DEPTH 8
-#define VCT_UPSAMPLE_BINDING_PREV_NORMAL_ROUGHNESS 9
-#define VCT_UPSAMPLE_BINDING_INDIRECT_HISTORY 10  // last frame's output
-#define VCT_UPSAMPLE_BINDING_WEIGHT_SUM 12       // out: r sum of weights (diffuse), g (specular), b: 1 re-traced
-#define VCT_UPSAMPLE_BINDING_RESAMPLE_LIST 13    // out: ResampleList (count, indirect dispatch, pixels)
-#define VCT_UPSAMPLE_BINDING_GUIDE_POSITION 14   // the trace's per-sample guides (VCT_TRACE_BINDING_GUIDE_*)
-#define VCT_UPSAMPLE_BINDING_GUIDE_NORMAL 15
-#define VCT_UPSAMPLE_BINDING_GUIDE_AXIS 16
 // upsample's specialization constants (one pipeline per configuration), after VCT_SPEC_TRACE_SCALE (2 or 4)
 #define VCT_UPSAMPLE_SPEC_WEIGHTS 1   // VCT_WEIGHTS_*
 #define VCT_UPSAMPLE_SPEC_TEMPORAL 2  // bool: reproject the history
 #define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 3  // bool: write the sum-of-weights image (views, --aux)
 
-// resample (full-res cone tracing of the listed pixels; same trace bindings 1–3)
-#define VCT_RESAMPLE_BINDING_LIST 6
-#define VCT_RESAMPLE_BINDING_INDIRECT 4          // in/out: the upsample output (the trace binding's number)
+// resample (full-res cone tracing of the listed pixels)
 #define VCT_RESAMPLE_GROUP_SIZE 64
 
 // The compacted list of pixels to re-trace: header, then one packed pixel (x | y << 16) per entry. The
@@ -205,32 +151,8 @@ struct ResampleListHeader {
 #define VCT_VOXEL_GROUP_SIZE 64        // voxelize: triangles per workgroup
 #define VCT_VOXEL_TILE 4               // resolve / inject / mips: 4×4×4 voxels per workgroup
 #define VCT_VOXEL_ACCUM_STRIDE 10      // uints per voxel: albedo rgb, normal xyz, emission rgb, count
-#define VCT_VOXELIZE_BINDING_INSTANCES 1
-#define VCT_VOXELIZE_BINDING_MATERIALS 2
-#define VCT_VOXELIZE_BINDING_VERTICES 3  // the scene's vertex buffer read as floats (12 per vertex)
-#define VCT_VOXELIZE_BINDING_INDICES 4
-#define VCT_VOXELIZE_BINDING_BASE_COLOR 5
-#define VCT_VOXELIZE_BINDING_EMISSIVE 6
-#define VCT_VOXELIZE_BINDING_ACCUM 7
-#define VCT_RESOLVE_BINDING_STATIC 1
-#define VCT_RESOLVE_BINDING_DYNAMIC 2
-#define VCT_RESOLVE_BINDING_ALBEDO 3     // rgba8: albedo, opacity
-#define VCT_RESOLVE_BINDING_NORMAL 4     // rgba16f: averaged normal (not renormalised), w unused
-#define VCT_RESOLVE_BINDING_EMISSION 5   // rgba16f: emitted radiance
-// inject
-#define VCT_INJECT_BINDING_LIGHTS 1
-#define VCT_INJECT_BINDING_ALBEDO 2
-#define VCT_INJECT_BINDING_NORMAL 3
-#define VCT_INJECT_BINDING_EMISSION 4
-#define VCT_INJECT_BINDING_SHADOW_MAP 5
-#define VCT_INJECT_BINDING_RADIANCE 6    // out: mip 0 of the radiance texture
-// mips
-#define VCT_MIPS_BINDING_SOURCE 1
-#define VCT_MIPS_BINDING_DEST 2
 
 // voxel view (`vct render --view voxels`: the grid ray-marched at one mip, on demand after the frame)
-#define VCT_VOXEL_VIEW_BINDING_VOXELS 1  // radiance (premultiplied rgb) + opacity, 3D with mips
-#define VCT_VOXEL_VIEW_BINDING_OUTPUT 2  // out: rgba16f radiance seen through the grid, full res
 struct VoxelViewPushConstants {
     uvec4 params;  // x: mip level marched
 };

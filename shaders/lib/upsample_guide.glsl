@@ -1,6 +1,6 @@
 // What the upsample weights compare at one pixel (docs/design.md §6.2–6.4): its position, camera distance, normal
 // and the specular lobe (axis ξ, κ-smoothed sharpness λ̄). The diffuse lobe is the normal with a fixed sharpness.
-// trace.comp computes it once per low-res sample and stores it (VCT_TRACE_BINDING_GUIDE_*); upsample.comp
+// trace.comp computes it once per low-res sample and stores it (its guide images); upsample.comp
 // computes it for its own pixel and for the history's texels from the G-buffers. GLSL only; expects
 // lib/brdf.glsl, lib/gbuffer_read.glsl and lib/upsample_weights.glsl.
 #ifndef VCT_UPSAMPLE_GUIDE_GLSL
