@@ -67,6 +67,21 @@ vct::Material diffuseMaterial(float albedo, float emission) {
     return m;
 }
 
+// Adds a light of `type` and `intensity` on a new root node and returns that node (to place or turn it).
+vct::Node& addLight(vct::Scene& scene, const std::string& name, vct::LightType type, float intensity) {
+    vct::Light light;
+    light.name = name;
+    light.type = type;
+    light.intensity = intensity;
+    scene.lights.push_back(light);
+    vct::Node node;
+    node.name = name;
+    node.light = int(scene.lights.size() - 1);
+    scene.nodes.push_back(node);
+    scene.roots.push_back(int(scene.nodes.size() - 1));
+    return scene.nodes.back();
+}
+
 // A closed cube [−1, 1]³ seen from inside: every face's front side faces inwards.
 vct::Scene furnaceRoom(float albedo, float emission) {
     vct::Scene scene = emptyScene("furnace", diffuseMaterial(albedo, emission));
@@ -204,16 +219,8 @@ TEST(Reference, OpenFloorUnderUniformSkyGetsItsAnalyticIrradiance) {
 // A lit plane alone receives no indirect light but the environment's: with a black sky, exactly none.
 TEST(Reference, LitPlaneAloneGetsNoIndirectLight) {
     vct::Scene scene = openFloor();
-    vct::Light sun;
-    sun.type = vct::LightType::Directional;
-    sun.intensity = 3.0f;
-    scene.lights.push_back(sun);
-    vct::Node sunNode;
-    sunNode.name = "sun";
-    sunNode.light = 0;
-    sunNode.rotation = glm::angleAxis(glm::radians(-60.0f), glm::vec3(1, 0, 0));  // -Z tilted down
-    scene.nodes.push_back(sunNode);
-    scene.roots.push_back(1);
+    vct::Node& sun = addLight(scene, "sun", vct::LightType::Directional, 3.0f);
+    sun.rotation = glm::angleAxis(glm::radians(-60.0f), glm::vec3(1, 0, 0));  // -Z tilted down
     const vct::CameraView camera = lookAt(glm::vec3(0.0f, 2.0f, 3.0f), glm::vec3(0.0f, 0.0f, -2.0f));
     for (float sky : {0.0f, 0.2f}) {
         ReferenceSettings settings = smallSettings(vct::reference::kUnlimitedBounces);
@@ -254,16 +261,7 @@ vct::CameraView cornellCamera(const vct::Scene& scene) {
 // moderate variance (rough walls, no highlights), so that sample statistics converge quickly.
 vct::Scene litRoom() {
     vct::Scene scene = furnaceRoom(0.6f, 0.0f);
-    vct::Light bulb;
-    bulb.type = vct::LightType::Point;
-    bulb.intensity = 2.0f;
-    scene.lights.push_back(bulb);
-    vct::Node bulbNode;
-    bulbNode.name = "bulb";
-    bulbNode.light = 0;
-    bulbNode.translation = glm::vec3(0.2f, 0.8f, -0.3f);
-    scene.nodes.push_back(bulbNode);
-    scene.roots.push_back(1);
+    addLight(scene, "bulb", vct::LightType::Point, 2.0f).translation = glm::vec3(0.2f, 0.8f, -0.3f);
     return scene;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "app/progress_line.h"
 #include "core/error.h"
 #include "io/safe_write.h"
 #include "io/settings_json.h"
@@ -36,10 +37,10 @@ void renderInterleaved(std::vector<BenchmarkRun>& runs, uint32_t frames, uint32_
                 // A bar, the share done and the time left at the rate so far.
                 const int percent = int(100 * done / std::max<uint64_t>(total, 1));
                 const double left = done ? seconds * double(total - done) / double(done) : 0.0;
-                const std::string bar =
-                    std::string(size_t(percent / 5), '#') + std::string(size_t(20 - percent / 5), '.');
-                std::fprintf(stderr, "\rbenchmark [%s] %3d%% of %llu frames, %.0f s, ~%.0f s left ",
-                             bar.c_str(), percent, static_cast<unsigned long long>(total), seconds, left);
+                char detail[96];
+                std::snprintf(detail, sizeof(detail), "of %llu frames, %.0f s, ~%.0f s left ",
+                              static_cast<unsigned long long>(total), seconds, left);
+                printProgressLine("benchmark", percent, detail);
                 progress = true;
             }
         }

@@ -10,6 +10,7 @@
 
 #include "app/cli.h"
 #include "app/commands.h"
+#include "app/progress_line.h"
 #include "core/error.h"
 #include "io/safe_write.h"
 #include "reference/path_tracer.h"
@@ -68,20 +69,15 @@ int parseBounces(const std::string& text) {
     return int(value);
 }
 
-// A one-line progress bar on a terminal; nothing when stderr is a file or pipe (logs stay one line per
-// event).
+// The progress line on a terminal only: when stderr is a file or pipe, logs stay one line per event.
 class ProgressBar {
   public:
     explicit ProgressBar(bool enabled) : enabled_(enabled) {}
     void update(float fraction) {
-        if (!enabled_) return;
         const int percent = int(fraction * 100.0f);
-        if (percent == last_) return;
+        if (!enabled_ || percent == last_) return;
         last_ = percent;
-        const int filled = percent * 40 / 100;
-        std::fprintf(stderr, "\rreference [%.*s%*s] %3d%%", filled,
-                     "########################################", 40 - filled, "", percent);
-        std::fflush(stderr);
+        printProgressLine("reference", percent, "");
     }
     void finish() {
         if (enabled_) std::fputs("\n", stderr);

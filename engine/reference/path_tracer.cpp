@@ -61,19 +61,9 @@ constexpr int kRouletteDepth = 3;
 // practice.
 constexpr int kMaxDepth = 1024;
 
-// Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
-void basis(vec3 n, vec3& tangent, vec3& bitangent) {
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float b = n.x * n.y * a;
-    tangent = vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    bitangent = vec3(b, sign + n.y * n.y * a, -n.y);
-}
-
+// From the frame around unit n that the diffuse cones use (lib/cone.glsl, Duff et al. 2017) to world space.
 vec3 toWorld(vec3 local, vec3 n) {
-    vec3 t, b;
-    basis(n, t, b);
-    return t * local.x + b * local.y + n * local.z;
+    return glsl::coneTangent(n) * local.x + glsl::coneBitangent(n) * local.y + n * local.z;
 }
 
 // Cosine-distributed direction around n: pdf = (n·l)/π (Malley's method).
@@ -296,9 +286,7 @@ struct PathTracer::Impl {
             if (glm::dot(n, v) < glsl::MIN_N_DOT_V) {
                 vec3 side = v - n * glm::dot(n, v);
                 const float sideLength = glm::length(side);
-                vec3 t, b;
-                basis(n, t, b);
-                side = sideLength > 1e-6f ? side / sideLength : t;
+                side = sideLength > 1e-6f ? side / sideLength : glsl::coneTangent(n);
                 v = side * std::sqrt(1.0f - NoV * NoV) + n * NoV;
             }
             const vec2 dfg = dfgLookup(NoV, s.perceptualRoughness);

@@ -37,6 +37,13 @@ void reportEmbreeError(void*, RTCError code, const char* message) {
     (void)message;
 }
 
+// The triangle's unnormalised normal by its winding: the counter-clockwise (front) side faces along it, as
+// the raster decides facing from the world-space vertices.
+glm::vec3 windingNormal(const RayGeometry& g, uint32_t triangle) {
+    const uint32_t* tri = &g.indices[size_t(triangle) * 3];
+    return glm::cross(g.positions[tri[1]] - g.positions[tri[0]], g.positions[tri[2]] - g.positions[tri[0]]);
+}
+
 std::string nodeName(const Scene& scene, int node) {
     const Node& n = scene.nodes[size_t(node)];
     if (!n.name.empty()) return n.name;
@@ -192,10 +199,8 @@ bool RayScene::rejects(uint32_t geometry, uint32_t triangle, float u, float v, g
                        bool cameraRay) const {
     const RayGeometry& g = geometries_[geometry];
     if (cameraRay && g.cullBackFacesForCamera) {
-        const uint32_t* tri = &g.indices[size_t(triangle) * 3];
-        const glm::vec3 winding =
-            glm::cross(g.positions[tri[1]] - g.positions[tri[0]], g.positions[tri[2]] - g.positions[tri[0]]);
-        if (glm::dot(winding, direction) >= 0.0f) return true;  // the back (clockwise) side
+        if (glm::dot(windingNormal(g, triangle), direction) >= 0.0f)
+            return true;  // the back (clockwise) side
     }
     return g.alphaMask && materials_.discards(g.material, uvAt(geometry, triangle, u, v));
 }
@@ -207,8 +212,7 @@ SurfaceGeometry RayScene::geometryAt(const RayHit& hit, glm::vec3 rayDirection) 
     const float w = 1.0f - hit.u - hit.v;
     SurfaceGeometry s;
     s.position = w * g.positions[tri[0]] + hit.u * g.positions[tri[1]] + hit.v * g.positions[tri[2]];
-    const glm::vec3 winding =
-        glm::cross(g.positions[tri[1]] - g.positions[tri[0]], g.positions[tri[2]] - g.positions[tri[0]]);
+    const glm::vec3 winding = windingNormal(g, hit.triangle);
     s.frontFacing = glm::dot(winding, rayDirection) < 0.0f;
     const float length = glm::length(winding);
     // A degenerate triangle has no plane: face the ray.
