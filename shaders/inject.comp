@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // inject: direct light into the voxels. For each occupied voxel: Σ lights E·albedo/π·cos (the main light
 // shadow-mapped at the voxel centre, the others unshadowed) + emission, written premultiplied by opacity into
-// mip 0 of the radiance texture (rgb = radiance × opacity, a = opacity). One thread per voxel.
+// mip 0 of the radiance texture's six direction slabs (rgb = radiance × facing × opacity, a = opacity;
+// lib/voxel.glsl). One thread per voxel.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
@@ -18,7 +19,11 @@ layout(set = 0, binding = 2, rgba8) uniform readonly image3D albedoImage;
 layout(set = 0, binding = 3, rgba16f) uniform readonly image3D normalImage;
 layout(set = 0, binding = 4, rgba16f) uniform readonly image3D emissionImage;
 layout(set = 0, binding = 5) uniform sampler2DShadow shadowMap;
-layout(set = 0, binding = 6, rgba16f) uniform writeonly image3D radianceImage;  // mip 0 of the radiance texture
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image3D radianceImage;  // mip 0 of the radiance texture (6 slabs)
+// The light the voxels gathered from the grid (voxel_bounce.comp): cosine-weighted mean incoming radiance.
+layout(set = 0, binding = 7, rgba16f) uniform readonly image3D bounceImage;
+
+layout(push_constant) uniform Push { InjectPushConstants push; };
 
 // The main light's shadow map at p (same lightViewProj as the direct pass). One bilinear comparison tap:
 // a voxel spans many shadow texels, so a wider PCF kernel would cost much and change little.
@@ -31,13 +36,16 @@ float shadowVisibility(vec3 p) {
     return texture(shadowMap, vec3(uv, ndc.z));
 }
 
+// Voxel `voxel` of slab `slab` in the 6N-wide radiance texture (lib/voxel.glsl, directional radiance).
+ivec3 slabTexel(ivec3 voxel, int slab, int n) { return ivec3(voxel.x + slab * n, voxel.yz); }
+
 void main() {
     const ivec3 voxel = ivec3(gl_GlobalInvocationID);
     const int n = int(frame.voxels.resolution);
     if (any(greaterThanEqual(voxel, ivec3(n)))) return;
     const vec4 albedoOpacity = imageLoad(albedoImage, voxel);
     if (albedoOpacity.a <= 0.0) {
-        imageStore(radianceImage, voxel, vec4(0.0));
+        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) imageStore(radianceImage, slabTexel(voxel, slab, n), vec4(0.0));
         return;
     }
     const vec3 nbar = imageLoad(normalImage, voxel).xyz;
@@ -46,6 +54,9 @@ void main() {
     const vec3 center = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
 
     vec3 radiance = emission;
+    // Light that has bounced before (multiple bounces): a Lambertian voxel sends albedo × the cosine-weighted
+    // mean radiance it receives, albedo/π · E.
+    if (push.params.x != 0u) radiance += albedoOpacity.rgb * imageLoad(bounceImage, voxel).rgb;
     const int lightCount = int(frame.lighting.lightCount);
     const int shadowLight = frame.lighting.shadowLight;
     for (int i = 0; i < lightCount; ++i) {
@@ -64,5 +75,10 @@ void main() {
         }
         radiance += incident * albedoOpacity.rgb * INV_PI * cosine * visibility;
     }
-    imageStore(radianceImage, voxel, vec4(radiance * albedoOpacity.a, albedoOpacity.a));
+    // Each slab sees the light that leaves towards the cones reading it, i.e. against its direction.
+    for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
+        const float facing = voxelFacing(nbar, -voxelSlabDirection(slab));
+        imageStore(radianceImage, slabTexel(voxel, slab, n),
+                   vec4(radiance * (facing * albedoOpacity.a), albedoOpacity.a));
+    }
 }

@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// mips: one level of the radiance + opacity chain from the level above (2×2×2 premultiplied average, so
-// empty voxels lower both colour and opacity and the colour stays un-fringed). One thread per voxel.
+// mips: one level of the radiance + opacity chain from the level above, per direction slab (lib/voxel.glsl):
+// the two children along the slab's direction composited front to back, the four pairs averaged
+// (premultiplied, so empty voxels lower both colour and opacity and the colour stays un-fringed). One thread
+// per texel of the 6n × n × n level.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
@@ -14,12 +16,25 @@ layout(set = 0, binding = 1, rgba16f) uniform readonly image3D source;
 layout(set = 0, binding = 2, rgba16f) uniform writeonly image3D dest;
 
 void main() {
-    const ivec3 voxel = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(voxel, imageSize(dest)))) return;
-    const ivec3 s = voxel * 2;
-    imageStore(dest, voxel,
-               voxelAverage8(imageLoad(source, s), imageLoad(source, s + ivec3(1, 0, 0)),
-                             imageLoad(source, s + ivec3(0, 1, 0)), imageLoad(source, s + ivec3(1, 1, 0)),
-                             imageLoad(source, s + ivec3(0, 0, 1)), imageLoad(source, s + ivec3(1, 0, 1)),
-                             imageLoad(source, s + ivec3(0, 1, 1)), imageLoad(source, s + ivec3(1, 1, 1))));
+    const ivec3 texel = ivec3(gl_GlobalInvocationID);
+    const ivec3 size = imageSize(dest);  // (6·n, n, n): six slabs of n³ side by side
+    if (any(greaterThanEqual(texel, size))) return;
+    const int n = size.y;
+    const int slab = texel.x / n;
+    const int axis = slab / 2;
+    // The children: 2×2×2 voxels of the same slab one level up (n·2 texels per slab there).
+    const ivec3 s = ivec3(slab * 2 * n + 2 * (texel.x - slab * n), 2 * texel.yz);
+    // Along the slab's axis, the child the cone meets first is in front: the lower one for +axis.
+    ivec3 along = ivec3(0), across1 = ivec3(0), across2 = ivec3(0);
+    along[axis] = 1;
+    across1[(axis + 1) % 3] = 1;
+    across2[(axis + 2) % 3] = 1;
+    const bool positive = (slab % 2) == 0;
+    vec4 pairs[4];
+    for (int i = 0; i < 4; ++i) {
+        const ivec3 c = s + (i & 1) * across1 + (i >> 1) * across2;
+        const vec4 lower = imageLoad(source, c), upper = imageLoad(source, c + along);
+        pairs[i] = positive ? voxelOver(lower, upper) : voxelOver(upper, lower);
+    }
+    imageStore(dest, texel, voxelAverage4(pairs[0], pairs[1], pairs[2], pairs[3]));
 }

@@ -14,6 +14,7 @@
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/gbuffer_read.glsl"
+#include "lib/voxel.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
@@ -102,7 +103,11 @@ void main() {
             // Texel lengths of ray inside this texel (none of it before tSkip).
             const float len = min(tNext, tExit) - max(t, tSkip);
             if (len > 0.0) {
-                const vec4 s = texelFetch(voxels, cell, mip);
+                // The three direction slabs facing the ray (lib/voxel.glsl), weighted as the cones weigh them.
+                vec4 s = vec4(0.0);
+                const vec3 w = voxelSlabWeights(dir);
+                for (int k = 0; k < 3; ++k)
+                    s += w[k] * texelFetch(voxels, ivec3(cell.x + voxelSlabFor(dir, k) * cells, cell.yz), mip);
                 const float a = saturate(s.a);
                 // Opacity a is for one texel length; over `len`: 1 − (1 − a)^len, colour scaled alike.
                 const float aLen = 1.0 - pow(1.0 - min(a, 0.999999), len);

@@ -68,7 +68,9 @@ std::vector<VoxelSample> readFrameVoxels(VoxelGrid& grid) {
     };
     fill(grid.normal(), &VoxelSample::normal);
     fill(grid.emission(), &VoxelSample::emission);
-    fill(grid.radiance(), &VoxelSample::radiance);  // mip 0: premultiplied, = radiance as opacity is 0 or 1
+    // Mip 0 premultiplied (= radiance, as opacity is 0 or 1), the brightest of the six directions.
+    const std::vector<glm::vec4> radiance = grid.readRadiance();
+    for (size_t k = 0; k < voxels.size(); ++k) voxels[k].radiance = glm::vec3(radiance[linear[k]]);
     return voxels;
 }
 

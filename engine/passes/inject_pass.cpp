@@ -11,13 +11,19 @@ InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid)
                             {3, Resource::image("normal", grid.normal()), Access::Read},
                             {4, Resource::image("emission", grid.emission()), Access::Read},
                             {5, Target::shadowMap, Access::SampledCompare},
-                            {6, Resource::image("radiance", grid.radiance()).atLevel(0), Access::Write}}) {
-    pipeline_ = vk::Pipeline::compute(context, name(), "inject.comp", resources_.bindings(), 0);
+                            {6, Resource::image("radiance", grid.radiance()).atLevel(0), Access::Write},
+                            {7, Resource::image("bounce", grid.bounce()), Access::Read}}) {
+    pipeline_ = vk::Pipeline::compute(context, name(), "inject.comp", resources_.bindings(),
+                                      sizeof(gpu::InjectPushConstants));
 }
 
-void InjectPass::execute(const FrameContext& frame) {
+void InjectPass::execute(const FrameContext& frame) { inject(frame, false); }
+
+void InjectPass::inject(const FrameContext& frame, bool addBounce) {
     pipeline_.bind(frame.cmd);
     resources_.bind(frame, pipeline_);
+    const gpu::InjectPushConstants push{glm::uvec4(addBounce ? 1u : 0u, 0u, 0u, 0u)};
+    pipeline_.pushConstants(frame.cmd, &push, sizeof(push));
     const uint32_t groups = (grid_.resolution() + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
     vkCmdDispatch(frame.cmd, groups, groups, groups);
 }

@@ -1,5 +1,6 @@
 // inject: direct light (main light shadow-mapped, other lights unshadowed) and emission into the occupied
-// voxels → mip 0 of the grid's premultiplied radiance + opacity texture (docs/design.md §5.2).
+// voxels → mip 0 of the grid's premultiplied radiance + opacity texture (docs/design.md §5.2); the bounce pass
+// runs it again with the gathered light added (multiple bounces, §5.6).
 #pragma once
 
 #include "render/pass.h"
@@ -13,6 +14,8 @@ public:
     InjectPass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "inject"; }
     void execute(const FrameContext& frame) override;
+    // The direct light, plus with `addBounce` albedo × the light the voxels gathered (the bounce pass).
+    void inject(const FrameContext& frame, bool addBounce);
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
 private:

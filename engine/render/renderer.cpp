@@ -12,6 +12,7 @@
 #include "passes/shadow_pass.h"
 #include "passes/trace_pass.h"
 #include "passes/upsample_pass.h"
+#include "passes/voxel_bounce_pass.h"
 #include "passes/voxel_mips_pass.h"
 #include "passes/voxel_view_pass.h"
 #include "passes/voxelize_pass.h"
@@ -56,8 +57,15 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         // The static voxelization from a file (vct voxelize) instead of computing it; validated here.
         if (!settings.voxelCache.empty()) voxelGrid_->loadStaticCache(settings.voxelCache);
         passes_.push_back(std::make_unique<VoxelizePass>(context, *voxelGrid_));
-        passes_.push_back(std::make_unique<InjectPass>(context, *voxelGrid_));
-        passes_.push_back(std::make_unique<VoxelMipsPass>(context, *voxelGrid_));
+        auto inject = std::make_unique<InjectPass>(context, *voxelGrid_);
+        auto mips = std::make_unique<VoxelMipsPass>(context, *voxelGrid_);
+        // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.6).
+        std::unique_ptr<Pass> bounce;
+        if (settings.bounces > 1)
+            bounce = std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces);
+        passes_.push_back(std::move(inject));
+        passes_.push_back(std::move(mips));
+        if (bounce) passes_.push_back(std::move(bounce));
     }
     passes_.push_back(std::make_unique<GBufferPass>(context));
     passes_.push_back(std::make_unique<DirectPass>(context));

@@ -15,6 +15,7 @@ namespace {
 
 constexpr uint32_t kTraceScales[] = {1, 2, 4};
 constexpr uint32_t kVoxelResolutions[] = {32, 64, 128, 256};
+constexpr uint32_t kBounceCounts[] = {1, 2, 3, 4, 5, 6, 7, 8};
 constexpr uint32_t kAnisotropyLevels[] = {0, 2, 4, 8, 16};
 
 using A = SettingApply;
@@ -33,6 +34,11 @@ const SettingSpec kTable[] = {
      .help = "trace indirect light at 1/S of the resolution per axis (1: every pixel)",
      .value = ChoiceValue{&S::traceScale, kTraceScales}, .apply = A::Rebuild, .group = G::Gi, .demo = true,
      .json = true, .widget = W::Combo, .label = "trace scale", .sideB = true},
+    {.name = "bounces", .valueName = "1..8",
+     .help = "bounces of indirect light: 1 = light from directly lit surfaces; N: the voxels also pass on "
+             "light that has already bounced (N - 1 gathers in the grid when it is rebuilt)",
+     .value = ChoiceValue{&S::bounces, kBounceCounts}, .apply = A::Rebuild, .group = G::Gi, .demo = true,
+     .json = true, .widget = W::Combo, .label = "bounces"},
     {.name = "voxels", .valueName = "N",
      .help = "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
      .value = ChoiceValue{&S::voxelResolution, kVoxelResolutions, 0u}, .apply = A::Rebuild, .group = G::Gi,

@@ -74,9 +74,10 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     if (bounds.empty()) bounds = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
     originSize_ = glsl::voxelGridFit(bounds.min, bounds.max, float(resolution));
 
-    auto volume = [&](VkFormat format, uint32_t mips, VkImageUsageFlags usage) {
+    auto volume = [&](VkFormat format, uint32_t mips, VkImageUsageFlags usage, uint32_t slabs = 1) {
         vk::ImageDesc desc;
-        desc.width = desc.height = desc.depth = resolution;
+        desc.width = resolution * slabs;
+        desc.height = desc.depth = resolution;
         desc.mipLevels = mips;
         desc.format = format;
         desc.usage = usage;
@@ -84,10 +85,12 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     };
     // TRANSFER_SRC so that later tools (OpenVDB export, tests) can read them back.
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    radiance_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, mipCount_, storage | VK_IMAGE_USAGE_SAMPLED_BIT);
+    radiance_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, mipCount_, storage | VK_IMAGE_USAGE_SAMPLED_BIT,
+                       uint32_t(glsl::VOXEL_SLAB_COUNT));
     albedo_ = volume(VK_FORMAT_R8G8B8A8_UNORM, 1, storage);
     normal_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
     emission_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
+    bounce_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
 
     const VkDeviceSize accumBytes =
         VkDeviceSize(resolution) * resolution * resolution * VCT_VOXEL_ACCUM_STRIDE * 4;
@@ -105,8 +108,11 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     info.magFilter = VK_FILTER_LINEAR;
     info.minFilter = VK_FILTER_LINEAR;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
-    info.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;  // outside the grid: empty, no light
+    // Clamped to the edge, not to a transparent border: at coarse mips the outermost texels hold the walls of a
+    // room fitted to the grid (the one voxel of padding is a fraction of them), and a border would fade them by
+    // up to half, more the coarser the mip. Cones stop where their axis leaves the grid (cone_trace.glsl); the
+    // slabs' u is kept inside each slab (lib/voxel.glsl's voxelSlabU), so edge clamping never mixes two.
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     info.minLod = 0.0f;
     info.maxLod = float(mipCount_ - 1);
     sampler_ = vk::Sampler(context, info);
@@ -185,7 +191,8 @@ void VoxelGrid::releaseStaticCache() {
 
 std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
     const uint32_t size = std::max(1u, resolution_ >> mip);
-    const size_t texels = size_t(size) * size * size;
+    const uint32_t width = size * (volume.width() / resolution_);  // the radiance's six slabs side by side
+    const size_t texels = size_t(width) * size * size;
     const VkFormat format = volume.format();
     if (format != VK_FORMAT_R8G8B8A8_UNORM && format != VK_FORMAT_R16G16B16A16_SFLOAT)
         throw Error("readVolume: only RGBA8 and RGBA16F volumes are supported");
@@ -200,7 +207,7 @@ std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
         volume.use(cmd, vk::ImageAccess::TransferSrc);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
-        region.imageExtent = {size, size, size};
+        region.imageExtent = {width, size, size};
         staging.use(cmd, vk::BufferAccess::TransferWrite);
         vkCmdCopyImageToBuffer(cmd, volume.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(),
                                1, &region);
@@ -252,6 +259,18 @@ std::vector<StaticAccumVoxel> VoxelGrid::readStaticAccumulator() {
         }
     }
     return voxels;
+}
+
+std::vector<glm::vec4> VoxelGrid::readRadiance(uint32_t mip) {
+    const std::vector<glm::vec4> slabs = readVolume(radiance_, mip);
+    const size_t size = std::max(1u, resolution_ >> mip);
+    std::vector<glm::vec4> out(size * size * size, glm::vec4(0.0f));
+    for (size_t i = 0; i < out.size(); ++i) {
+        const size_t x = i % size, yz = i / size;
+        for (size_t slab = 0; slab < size_t(glsl::VOXEL_SLAB_COUNT); ++slab)
+            out[i] = glm::max(out[i], slabs[yz * size * glsl::VOXEL_SLAB_COUNT + slab * size + x]);
+    }
+    return out;
 }
 
 }  // namespace vct

@@ -58,7 +58,8 @@ class VoxelGrid {
     uint32_t resolution() const { return resolution_; }
     uint32_t mipCount() const { return mipCount_; }
 
-    // Premultiplied radiance + opacity, 3D RGBA16F with the full mip chain (SAMPLED | STORAGE).
+    // Premultiplied radiance + opacity, 3D RGBA16F with the full mip chain (SAMPLED | STORAGE): six direction
+    // slabs of N³ side by side along x (6N × N × N; lib/voxel.glsl, directional radiance).
     vk::Image& radiance() { return radiance_; }
     VkSampler sampler() const { return sampler_.handle(); }
 
@@ -67,6 +68,9 @@ class VoxelGrid {
     vk::Image& albedo() { return albedo_; }
     vk::Image& normal() { return normal_; }
     vk::Image& emission() { return emission_; }
+    // The light each occupied voxel gathers from the grid for the next bounce (RGBA16F rgb, mip 0, STORAGE):
+    // cosine-weighted mean incoming radiance about its normal (voxel_bounce.comp).
+    vk::Image& bounce() { return bounce_; }
 
     // Fixed-point accumulators (VCT_VOXEL_ACCUM_STRIDE uints per voxel): static geometry, written once, and
     // moving instances, cleared and rewritten every frame (absent when the scene has none).
@@ -94,8 +98,12 @@ class VoxelGrid {
 
     // ---- readback (host copies; call between frames) ----
     // Level `mip` of a volume (albedo, normal, emission or radiance) as RGBA floats, x fastest then y then z
-    // (voxelLinearIndex order), max(1, N >> mip)³ of them. RGBA8 reads as value / 255.
+    // (voxelLinearIndex order), max(1, N >> mip)³ of them (6× for the radiance's slabs, x running across all
+    // six). RGBA8 reads as value / 255.
     std::vector<glm::vec4> readVolume(vk::Image& volume, uint32_t mip = 0);
+    // Level `mip` of the radiance per voxel, N³ (not 6N·N²): the largest of its six slabs, channel by
+    // channel (the radiance leaving towards the side its surfaces face, and the opacity).
+    std::vector<glm::vec4> readRadiance(uint32_t mip = 0);
     // The static accumulator's voxels with at least one sample, in linear-index order.
     std::vector<StaticAccumVoxel> readStaticAccumulator();
 
@@ -105,7 +113,7 @@ class VoxelGrid {
     uint32_t resolution_ = 0;
     uint32_t mipCount_ = 1;
     glm::vec4 originSize_{0.0f};
-    vk::Image radiance_, albedo_, normal_, emission_;
+    vk::Image radiance_, albedo_, normal_, emission_, bounce_;
     vk::Buffer staticAccum_, dynamicAccum_;
     vk::Sampler sampler_;
     bool staticVoxelized_ = false;

@@ -37,6 +37,8 @@ const float CONE_MAX_OPACITY = 0.95f;
 // Starting 2 voxels out along n would cut the self-occlusion to −3.5 % but put the origin inside such occluders.
 const float CONE_START_OFFSET = 1.0f;
 const float CONE_START_DISTANCE = 1.0f;
+// coneSurfaceFootprint: how wide a footprint may be for its height above the surface the cone left.
+const float CONE_SURFACE_CLEARANCE = 0.5f;
 // Widest specular cone: half-angle 45°. Wider lobes are as blurry as the diffuse cones, and a wider cone
 // would reach coarse mips within a voxel or two (leaking through walls).
 const float SPECULAR_CONE_MAX_TAN_HALF = 1.0f;
@@ -44,6 +46,15 @@ const float SPECULAR_CONE_MAX_TAN_HALF = 1.0f;
 // Cone diameter at distance t: d = max(v0, 2·tan(θ/2)·t). Never below one voxel (mip 0 cannot be finer).
 VCT_INLINE float coneDiameter(float tanHalfAngle, float t, float voxelSize) {
     return max(voxelSize, 2.0f * tanHalfAngle * max(t, 0.0f));
+}
+
+// The footprint a cone leaving a surface samples at: its diameter, but no wider than the sample's height above
+// the surface (times CONE_SURFACE_CLEARANCE) and never below one voxel. A side cone's footprint reaches down to
+// the surface it leaves (its edge runs along the tangent plane), and there the surface's own voxels, lit and
+// opaque, would light or shadow it: a lit floor lighting itself, a wall shadowing its own side cones. Sampling a
+// finer mip until the cone has risen clear of the surface keeps them out.
+VCT_INLINE float coneSurfaceFootprint(float diameter, float height, float voxelSize) {
+    return max(voxelSize, min(diameter, CONE_SURFACE_CLEARANCE * height));
 }
 
 // Mip whose voxels match the footprint: log2(d / v0) ≥ 0 (fractional: trilinear between mips).

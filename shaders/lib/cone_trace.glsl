@@ -1,13 +1,32 @@
 // Cone tracing of one full-res pixel through the voxel grid (docs/design.md §5.3–5.5): shared by trace.comp (one
 // low-res sample per thread) and resample.comp (the listed full-res pixels). GLSL only: it marches a sampler3D.
-// Expects before inclusion: `frame` (FrameUniforms), lib/constants, brdf, cone and gbuffer_read.
+// Expects before inclusion: `frame` (FrameUniforms), lib/constants, brdf, cone, voxel and gbuffer_read.
 #ifndef VCT_CONE_TRACE_GLSL
 #define VCT_CONE_TRACE_GLSL
+
+#include "lib/voxel.glsl"
+
+// The grid as a cone travelling along unit `dir` sees it at `uvw` and (fractional) `mip`: the three direction
+// slabs facing it (lib/voxel.glsl), weighted by dir² per axis. Slabs with no weight are not sampled (an
+// axis-aligned cone reads one).
+vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
+    const vec3 w = voxelSlabWeights(dir);
+    // Texels per slab at the coarser of the two mips the sample blends.
+    const float texels = float(max(int(frame.voxels.resolution) >> int(ceil(mip)), 1));
+    vec4 s = vec4(0.0);
+    for (int axis = 0; axis < 3; ++axis) {
+        if (w[axis] <= 0.0) continue;
+        const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
+        s += w[axis] * textureLod(voxels, slabUvw, mip);
+    }
+    return s;
+}
 
 // Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
 // Light that leaves the grid unoccluded sees the environment, the constant ambient radiance (the background
 // shows the same value, so the two agree).
-vec4 traceCone(sampler3D voxels, vec3 origin, vec3 dir, float tanHalfAngle) {
+// The cone leaves the surface at p with unit normal n (coneSurfaceFootprint keeps that surface out of it).
+vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle) {
     const vec3 gridOrigin = frame.voxels.origin;
     const float v0 = frame.voxels.voxelSize;
     const float gridSize = float(frame.voxels.resolution) * v0;
@@ -18,14 +37,16 @@ vec4 traceCone(sampler3D voxels, vec3 origin, vec3 dir, float tanHalfAngle) {
     // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
     const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
-        const float d = coneDiameter(tanHalfAngle, t, v0);
-        const vec3 uvw = (origin + dir * t - gridOrigin) / gridSize;
+        const vec3 x = origin + dir * t;
+        const float coneD = coneDiameter(tanHalfAngle, t, v0);
+        const float d = coneSurfaceFootprint(coneD, dot(x - p, n), v0);
+        const vec3 uvw = (x - gridOrigin) / gridSize;
         // The axis leaves the grid: the grid is padded around the scene bounds, so nothing lies beyond. (No
         // margin that grows with d: wide cones would then never leave, and t would overflow.)
         if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
         const float mip = min(coneMip(d, v0), maxMip);
-        const vec4 s = textureLod(voxels, uvw, mip);
-        const float dt = coneStep(d);
+        const vec4 s = sampleVoxels(voxels, uvw, dir, mip);
+        const float dt = coneStep(coneD);
         // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
         acc = coneComposite(acc, s, dt, v0 * exp2(mip));
         t += dt;
@@ -42,16 +63,23 @@ struct IndirectSample {
     vec3 specular;
 };
 
+// The 6 diffuse cones from surface point p with unit normal n: cosine-weighted mean incoming radiance.
+vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
+    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
+    vec3 diffuse = vec3(0.0);
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+        diffuse += diffuseConeWeight(i) *
+                   traceCone(voxels, p, n, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
+    return diffuse;
+}
+
 // Both cone sets from surface point p with unit normal n, seen along unit v (towards the camera).
 IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness) {
-    IndirectSample result = IndirectSample(vec3(0.0), vec3(0.0));
     const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
-    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        result.diffuse += diffuseConeWeight(i) *
-                          traceCone(voxels, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
     const float alpha = alphaFromPerceptual(perceptualRoughness);
-    result.specular = traceCone(voxels, origin, specularConeDirection(n, v), specularConeTanHalf(alpha)).rgb;
-    return result;
+    return IndirectSample(
+        traceDiffuse(voxels, p, n),
+        traceCone(voxels, p, n, origin, specularConeDirection(n, v), specularConeTanHalf(alpha)).rgb);
 }
 
 IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D normalRoughnessTexture, ivec2 pixel) {

@@ -166,6 +166,12 @@ struct VoxelizePushConstants {
     uvec4 params;  // x: vertex offset (int32 bits); resolve: y = 1 when the dynamic accumulator is bound
 };
 
+// Push constants of inject: params.x = 1 adds the gathered bounce (albedo × the voxel_bounce image) to the
+// direct light; 0 (the first inject of a frame) injects direct light and emission only.
+struct InjectPushConstants {
+    uvec4 params;
+};
+
 #ifdef __cplusplus
 // std140 as glslang lays out the frame uniforms: every offset below is the GLSL one.
 static_assert(sizeof(LightingUniforms) == 32 && offsetof(LightingUniforms, lightCount) == 12 &&
@@ -192,6 +198,7 @@ static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(GpuInstance) == 192);
 static_assert(sizeof(DrawPushConstants) == 16);
 static_assert(sizeof(VoxelizePushConstants) == 32);
+static_assert(sizeof(InjectPushConstants) == 16);
 }  // namespace vct::gpu
 #endif
 

@@ -92,6 +92,9 @@ VCT_INLINE vec3 closestPointBarycentric(vec3 p, vec3 a, vec3 b, vec3 c) {
     return vec3(1.0f - v - w, v, w);
 }
 
+// voxelFacing: cosines above this count as facing (0: exactly sideways, as a floor towards ±x, does not).
+const float VOXEL_FACING_MIN_COSINE = -1e-3f;
+
 // ---- fixed-point accumulation (atomicAdd on uint buffers) ----
 // Per voxel VCT_VOXEL_ACCUM_STRIDE uints: albedo rgb, normal xyz (two's complement), emission rgb, count.
 // Scales: albedo in [0,1] × 1023 and normals × 1023 overflow only beyond ~4M / ~2M samples in one voxel;
@@ -128,6 +131,55 @@ VCT_INLINE float voxelCosine(vec3 nbar, vec3 l) {
     float ndl = dot(nbar, l) / r;
     return mix(abs(ndl), max(ndl, 0.0f), min(r, 1.0f));
 }
+
+// ---- directional radiance: six slabs (docs/design.md §5.2) ----
+// A voxel seen along different directions is not the same: a one-voxel floor blocks a vertical ray fully and a
+// horizontal one only within its layer, and it sends light up, not down or sideways. Averaged isotropically its
+// coarse mips fade (opacity 2^-m at mip m: thin walls turn transparent as voxels get finer) and its own light
+// reaches the cones that leave it. So the radiance texture holds six volumes of N³ side by side along x (width
+// 6N, each with its own mip chain in the same image), one per direction a cone travels (Crassin et al. 2011's
+// anisotropic voxels): slab s holds, premultiplied, the radiance that leaves each voxel towards the viewer of a
+// cone travelling along voxelSlabDirection(s) (that is, towards −direction), and the voxel's opacity along it.
+const int VOXEL_SLAB_COUNT = 6;
+
+// Slab 2a travels along +axis a, slab 2a + 1 along −axis a.
+VCT_INLINE vec3 voxelSlabDirection(int slab) {
+    vec3 d = vec3(0.0f);
+    d[slab / 2] = (slab % 2) == 0 ? 1.0f : -1.0f;
+    return d;
+}
+
+// The slab a cone travelling along `dir` reads on `axis` (the face it sees of each voxel).
+VCT_INLINE int voxelSlabFor(vec3 dir, int axis) { return 2 * axis + (dir[axis] < 0.0f ? 1 : 0); }
+
+// How much of the three slabs along `dir` a sample takes: dir² per axis (sums to 1 for a unit dir), the share
+// of each face in what a cone along dir sees.
+VCT_INLINE vec3 voxelSlabWeights(vec3 dir) { return dir * dir; }
+
+// The u coordinate (0..1 across the whole 6N width) of point u (0..1 across one volume) in `slab`, at a mip of
+// `texels` texels per slab: kept half a texel inside the slab, so that filtering never reads the slab beside
+// it (the outermost half texel is the grid's empty padding).
+VCT_INLINE float voxelSlabU(float u, int slab, float texels) {
+    float inside = clamp(u, 0.5f / texels, 1.0f - 0.5f / texels);
+    return (float(slab) + inside) / float(VOXEL_SLAB_COUNT);
+}
+
+// Share of a voxel's outgoing radiance that leaves towards unit `towards`: 1 on the side its surfaces face, 0
+// behind and beside them (a lit floor sends nothing sideways into its own cones, nor down), blending to 1 (two
+// sided) as the averaged normal nbar shortens (|nbar| < 1: surfaces in the voxel disagree, e.g. both sides of
+// a thin wall), as voxelCosine does for the light arriving.
+VCT_INLINE float voxelFacing(vec3 nbar, vec3 towards) {
+    float r = length(nbar);
+    if (r < 1e-3f) return 1.0f;
+    float facing = dot(nbar, towards) / r > VOXEL_FACING_MIN_COSINE ? 1.0f : 0.0f;
+    return mix(1.0f, facing, min(r, 1.0f));
+}
+
+// One mip texel of a slab from two voxels one behind the other along its direction: the front one (met
+// first by the cone) over the back one, premultiplied. Four such pairs are averaged (voxelAverage4): a wall
+// across the direction stays opaque at every mip, one along it covers its share of the footprint.
+VCT_INLINE vec4 voxelOver(vec4 front, vec4 back) { return front + (1.0f - saturate(front.a)) * back; }
+VCT_INLINE vec4 voxelAverage4(vec4 a, vec4 b, vec4 c, vec4 d) { return 0.25f * ((a + b) + (c + d)); }
 
 // Premultiplied 2×2×2 average of eight RGBA samples (rgb = radiance × opacity, a = opacity).
 VCT_INLINE vec4 voxelAverage8(vec4 a, vec4 b, vec4 c, vec4 d, vec4 e, vec4 f, vec4 g, vec4 h) {

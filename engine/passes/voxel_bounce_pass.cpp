@@ -1,0 +1,34 @@
+#include "passes/voxel_bounce_pass.h"
+
+namespace vct {
+
+VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject,
+                                 VoxelMipsPass& mips, uint32_t bounces)
+    : grid_(grid),
+      inject_(inject),
+      mips_(mips),
+      iterations_(bounces > 1 ? bounces - 1 : 0),
+      // Binding numbers: shaders/voxel_bounce.comp's.
+      resources_("bounce",
+                 {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+                  {1, Resource::image("albedo", grid.albedo()), Access::Read},
+                  {2, Resource::image("normal", grid.normal()), Access::Read},
+                  {3, Resource::image("radiance", grid.radiance(), grid.sampler()), Access::Sampled},
+                  {4, Resource::image("bounce", grid.bounce()), Access::Write}}) {
+    pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(), 0);
+}
+
+void VoxelBouncePass::execute(const FrameContext& frame) {
+    const uint32_t groups = (grid_.resolution() + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
+    for (uint32_t i = 0; i < iterations_; ++i) {
+        // Gather from the grid as it stands (its mips included)...
+        pipeline_.bind(frame.cmd);
+        resources_.bind(frame, pipeline_);
+        vkCmdDispatch(frame.cmd, groups, groups, groups);
+        // ...and send it on: direct light + albedo × gathered, and the mips of that.
+        inject_.inject(frame, true);
+        mips_.execute(frame);
+    }
+}
+
+}  // namespace vct

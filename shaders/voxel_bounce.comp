@@ -1,0 +1,45 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// bounce: the light each occupied voxel receives through the grid (docs/design.md §5.6), for the next inject to
+// send on as albedo × it. The 6 diffuse cones of a surface pixel (lib/cone_trace.glsl's traceDiffuse), from the
+// voxel's centre about its averaged normal: the cosine-weighted mean incoming radiance, the Lambertian bounce's
+// albedo/π · E. Voxels whose surfaces disagree on a side (|n̄| short: both faces of a thin wall) gather about
+// n̄'s side only when it is clear, and over both sides (the mean of ±n̂) when it is not. One thread per voxel.
+#include "lib/shared.h"
+#include "lib/constants.glsl"
+#include "lib/brdf.glsl"
+#include "lib/cone.glsl"
+#include "lib/gbuffer_read.glsl"
+
+layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
+
+// Resources: bound by engine/passes/voxel_bounce_pass.cpp (its resource table gives these binding numbers and is
+// checked against them when the pipeline is made).
+layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1, rgba8) uniform readonly image3D albedoImage;
+layout(set = 0, binding = 2, rgba16f) uniform readonly image3D normalImage;
+layout(set = 0, binding = 3) uniform sampler3D voxels;  // radiance slabs with mips (lib/voxel.glsl)
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D bounceImage;
+
+#include "lib/cone_trace.glsl"
+
+// Below this |n̄| a voxel's surfaces face both ways about equally: gather both hemispheres.
+const float BOUNCE_ONE_SIDED = 0.5;
+
+void main() {
+    const ivec3 voxel = ivec3(gl_GlobalInvocationID);
+    const int n = int(frame.voxels.resolution);
+    if (any(greaterThanEqual(voxel, ivec3(n)))) return;
+    if (imageLoad(albedoImage, voxel).a <= 0.0) {
+        imageStore(bounceImage, voxel, vec4(0.0));
+        return;
+    }
+    const vec3 nbar = imageLoad(normalImage, voxel).xyz;
+    const float r = length(nbar);
+    const vec3 p = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
+    // No direction at all (rare: opposite faces in one voxel cancelling exactly): +y's two sides.
+    const vec3 axis = r > 1e-3 ? nbar / r : vec3(0.0, 1.0, 0.0);
+    vec3 gathered = traceDiffuse(voxels, p, axis);
+    if (r < BOUNCE_ONE_SIDED) gathered = 0.5 * (gathered + traceDiffuse(voxels, p, -axis));
+    imageStore(bounceImage, voxel, vec4(gathered, 0.0));
+}
