@@ -1,4 +1,4 @@
-// `vct benchmark --mode scenes|scaling` (app/benchmark_scenes.cpp, app/benchmark_scaling.cpp): one entry per
+// `vct benchmark --mode scenes|scaling` (app/bench/benchmark_scenes.cpp, app/bench/benchmark_scaling.cpp): one entry per
 // scene or point with finite per-pass medians, frame ratios that add up, the report files, and bad modes.
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 #include <set>
 
 #include "io/image_io.h"
-#include "io/image_metrics.h"
+#include "report/image_metrics.h"
 #include "scene/camera_path.h"
 #include "test_util.h"
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "io/image_io.h"
-#include "io/image_metrics.h"
+#include "report/image_metrics.h"
 #include "render/shader_math.h"
 #include "test_util.h"
 

@@ -1,10 +1,11 @@
 #include "vk/pipeline.h"
 
 #include <cstdlib>
+#include <cstddef>
 #include <fstream>
 #include <utility>
 
-#include "scene/scene.h"
+#include "core/vertex.h"
 #include "vk/binding_check.h"
 #include "vk/check.h"
 

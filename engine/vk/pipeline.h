@@ -58,7 +58,7 @@ public:
         VkFormat depthFormat = VK_FORMAT_UNDEFINED;
         std::vector<Binding> bindings;
         uint32_t pushConstantSize = 0;
-        bool vertexInput = true;   // the scene's Vertex layout in binding 0
+        bool vertexInput = true;   // core/vertex.h's Vertex layout in binding 0
         bool positionOnly = false; // only its position attribute (depth-only passes)
         bool depthBias = false;    // dynamic depth bias (shadow maps)
     };

@@ -19,7 +19,7 @@ const float SG_DEFAULT_KAPPA = 100.0f;
 // The largest κ: the trace stores each sample's λ̄ (≤ κ) in a 16-bit float (trace.comp's guide normal image),
 // whose largest finite value is 65504. A larger κ stored +inf for the mirror-like lobes (cornell's floor stripe
 // of roughness 0.05 reaches λ̄ ≈ 1.4e5 at κ = 1e6), and inf − inf in the weight below. The command line rejects
-// a larger --kappa (engine/app/session.cpp); smoothedSharpness clamps whatever κ arrives to it.
+// a larger --kappa (engine/app/cli/session.cpp); smoothedSharpness clamps whatever κ arrives to it.
 const float SG_MAX_KAPPA = 65504.0f;
 // The normal-aware baseline: σ_n² = 0.01.
 const float NORMAL_WEIGHT_DEFAULT_SIGMA2 = 0.01f;
