@@ -5,9 +5,9 @@
 //   configurations (bilinear / normal / SG weights, with and without adaptive re-tracing). After the last
 //   frame each configuration's diffuse, specular and final images are compared with the reference's (linear
 //   HDR). Writes DIR/benchmark.json and DIR/benchmark.md.
-// scenes: the default configuration on several scenes (app/benchmark_scenes.cpp).
-// scaling: per-pass cost against pixel count and voxel resolution (app/benchmark_scaling.cpp).
-// In every mode the renderers take turns in blocks of frames (app/benchmark_run.h), so all of them see the
+// scenes: the default configuration on several scenes (app/bench/benchmark_scenes.cpp).
+// scaling: per-pass cost against pixel count and voxel resolution (app/bench/benchmark_scaling.cpp).
+// In every mode the renderers take turns in blocks of frames (app/bench/benchmark_run.h), so all of them see the
 // same machine load, which is what makes ratios between them meaningful on a shared CPU device.
 #include <cstdio>
 #include <filesystem>
@@ -62,6 +62,110 @@ ImageRgba32f readImage(Renderer& renderer, vk::Image& image) {
     return {image.width(), image.height(), renderer.readFloatImage(image)};
 }
 
+// Build: the configurations (makeConfigs), each with its renderer.
+std::vector<BenchmarkRun> buildUpsamplingRuns(vk::Context& context, const Scene& scene,
+                                              const RenderSettings& settings, uint32_t scale) {
+    std::vector<BenchmarkRun> configs = makeConfigs(scene, settings, scale);
+    for (BenchmarkRun& config : configs)
+        config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
+    printAnisotropy(settings.anisotropy, configs.front().renderer->settings().anisotropy);
+    return configs;
+}
+
+// Run: every configuration renders the same frames, interleaved in blocks, along --camera-path if given.
+void runUpsampling(std::vector<BenchmarkRun>& configs, const ParsedArgs& args, const BenchmarkFrames& timing) {
+    const std::optional<CameraPath> path =
+        args.has("camera-path") ? std::optional<CameraPath>(loadCameraPath(args.get("camera-path")))
+                                : std::nullopt;
+    FrameHooks hooks;
+    if (path)
+        hooks.frameInput = [&](const BenchmarkRun& run, uint32_t frame, uint32_t warmup) {
+            return fixedStepFrame(*run.scene, frame, warmup, &*path);
+        };
+    renderInterleaved(configs, timing.frames, timing.warmup, timing.block, hooks);
+}
+
+// Report: each configuration's pass medians and its errors against the reference (the first) into
+// report["configs"] and a table row, then the acceptance ratios.
+void reportUpsampling(std::vector<BenchmarkRun>& configs, uint32_t w, uint32_t h, nlohmann::json& report,
+                      std::string& table) {
+    Renderer& reference = *configs.front().renderer;
+    const Renderer::IndirectLight refLight = reference.readIndirect();
+    const ImageRgba32f refDiffuse{w, h, refLight.diffuse};
+    const ImageRgba32f refSpecular{w, h, refLight.specular};
+    const ImageRgba32f refFinal = readImage(reference, reference.targets().hdr);
+    // The indirect light's cost: what tracing fewer pixels is meant to save (trace + upsample +
+    // re-trace).
+    auto indirectMs = [](const Renderer& r) {
+        return passMedian(r, "trace") + passMedian(r, "upsample") + passMedian(r, "resample");
+    };
+    const double referenceIndirect = indirectMs(reference);
+    char line[512];
+    std::snprintf(
+        line, sizeof(line),
+        "| %-20s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %10s | %10s | %10s | %8s |\n",
+        "configuration", "trace", "upsample", "resample", "indirect", "ind/ref", "ups/trc", "frame",
+        "re-traced", "MSE diff.", "MSE spec.", "MSE final", "PSNR fin");
+    table += line;
+    table += "|" + std::string(22, '-');
+    for (int column = 0; column < 8; ++column) table += "|" + std::string(10, '-');
+    for (int column = 0; column < 3; ++column) table += "|" + std::string(12, '-');
+    table += "|" + std::string(10, '-') + "|\n";
+    for (BenchmarkRun& config : configs) {
+        Renderer& r = *config.renderer;
+        Renderer::IndirectLight light = r.readIndirect();
+        const ImageError diffuse = compareImages(refDiffuse, {w, h, std::move(light.diffuse)});
+        const ImageError specular = compareImages(refSpecular, {w, h, std::move(light.specular)});
+        const ImageError final = compareImages(refFinal, readImage(r, r.targets().hdr));
+        auto errorJson = [](const ImageError& e) {
+            return nlohmann::json{{"mse", e.mse},
+                                  {"rel_mse", e.relMse},
+                                  {"psnr", e.psnr},
+                                  {"max", e.maxAbs},
+                                  {"non_finite", e.nonFinite}};
+        };
+        const double indirect = indirectMs(r), trace = passMedian(r, "trace");
+        const double indirectRatio = referenceIndirect > 0.0 ? indirect / referenceIndirect : 0.0;
+        const double upsampleRatio = trace > 0.0 ? passMedian(r, "upsample") / trace : 0.0;
+        nlohmann::json entry = timingJson(r);
+        entry["name"] = config.name;
+        entry["trace_scale"] = config.settings.traceScale;
+        entry["anisotropy"] = r.settings().anisotropy;
+        entry["indirect_ms"] = indirect;
+        entry["indirect_over_reference"] = indirectRatio;
+        entry["upsample_over_trace"] = upsampleRatio;
+        entry["resampled_fraction"] = r.resampledFraction();
+        entry["error"] = {{"diffuse", errorJson(diffuse)},
+                          {"specular", errorJson(specular)},
+                          {"final", errorJson(final)}};
+        report["configs"].push_back(entry);
+        std::snprintf(
+            line, sizeof(line),
+            "| %-20s | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %7.2f%% | %10.4g | "
+            "%10.4g | %10.4g | %8.2f |\n",
+            config.name.c_str(), trace, passMedian(r, "upsample"), passMedian(r, "resample"), indirect,
+            indirectRatio, upsampleRatio, r.timer().frameStats().medianMs, 100.0 * r.resampledFraction(),
+            diffuse.mse, specular.mse, final.mse, final.psnr);
+        table += line;
+    }
+    // The acceptance ratios (issue 8), same run: sg's upsample against normal's (both without
+    // re-tracing), and for the default configuration (sg + adaptive) upsample against trace, indirect
+    // against reference.
+    const double normalUpsample = passMedian(*configs[2].renderer, "upsample");
+    const double sgUpsample = passMedian(*configs[3].renderer, "upsample");
+    const nlohmann::json& method = report["configs"].back();
+    report["upsample_ratio_sg_over_normal"] = normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0;
+    report["upsample_over_trace"] = method["upsample_over_trace"];
+    report["indirect_over_reference"] = method["indirect_over_reference"];
+    std::snprintf(
+        line, sizeof(line),
+        "\nsg+adaptive: upsample / trace %.3f, indirect / reference indirect %.3f; upsample sg / "
+        "normal %.3f (medians, same run)\n",
+        method["upsample_over_trace"].get<double>(), method["indirect_over_reference"].get<double>(),
+        normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0);
+    table += line;
+}
+
 // The upsampling mode: the reference and the five low-res configurations, errors against the reference.
 int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session,
                            const BenchmarkFrames& timing, const std::filesystem::path& outDir) {
@@ -76,33 +180,9 @@ int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session
         const Scene scene = loadScene(session.scene);
         vk::Context context(session.context);
         std::printf("device: %s\n", context.deviceName().c_str());
-        std::vector<BenchmarkRun> configs = makeConfigs(scene, session.settings, scale);
-        for (BenchmarkRun& config : configs)
-            config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
-        printAnisotropy(session.settings.anisotropy, configs.front().renderer->settings().anisotropy);
-        const std::optional<CameraPath> path =
-            args.has("camera-path") ? std::optional<CameraPath>(loadCameraPath(args.get("camera-path")))
-                                    : std::nullopt;
-        FrameHooks hooks;
-        if (path)
-            hooks.frameInput = [&](const BenchmarkRun& run, uint32_t frame, uint32_t warmup) {
-                return fixedStepFrame(*run.scene, frame, warmup, &*path);
-            };
-        renderInterleaved(configs, timing.frames, timing.warmup, timing.block, hooks);
-
-        Renderer& reference = *configs.front().renderer;
+        std::vector<BenchmarkRun> configs = buildUpsamplingRuns(context, scene, session.settings, scale);
+        runUpsampling(configs, args, timing);
         const uint32_t w = session.settings.width, h = session.settings.height;
-        const Renderer::IndirectLight refLight = reference.readIndirect();
-        const ImageRgba32f refDiffuse{w, h, refLight.diffuse};
-        const ImageRgba32f refSpecular{w, h, refLight.specular};
-        const ImageRgba32f refFinal = readImage(reference, reference.targets().hdr);
-        // The indirect light's cost: what tracing fewer pixels is meant to save (trace + upsample +
-        // re-trace).
-        auto indirectMs = [](const Renderer& r) {
-            return passMedian(r, "trace") + passMedian(r, "upsample") + passMedian(r, "resample");
-        };
-        const double referenceIndirect = indirectMs(reference);
-
         report = {{"device", context.deviceName()},
                   {"scene", session.scene},
                   {"width", w},
@@ -112,70 +192,7 @@ int runUpsamplingBenchmark(const ParsedArgs& args, const SessionOptions& session
                   {"block", timing.block},
                   {"trace_scale", scale},
                   {"configs", nlohmann::json::array()}};
-        char line[512];
-        std::snprintf(
-            line, sizeof(line),
-            "| %-20s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %10s | %10s | %10s | %8s |\n",
-            "configuration", "trace", "upsample", "resample", "indirect", "ind/ref", "ups/trc", "frame",
-            "re-traced", "MSE diff.", "MSE spec.", "MSE final", "PSNR fin");
-        table += line;
-        table += "|" + std::string(22, '-');
-        for (int column = 0; column < 8; ++column) table += "|" + std::string(10, '-');
-        for (int column = 0; column < 3; ++column) table += "|" + std::string(12, '-');
-        table += "|" + std::string(10, '-') + "|\n";
-        for (BenchmarkRun& config : configs) {
-            Renderer& r = *config.renderer;
-            Renderer::IndirectLight light = r.readIndirect();
-            const ImageError diffuse = compareImages(refDiffuse, {w, h, std::move(light.diffuse)});
-            const ImageError specular = compareImages(refSpecular, {w, h, std::move(light.specular)});
-            const ImageError final = compareImages(refFinal, readImage(r, r.targets().hdr));
-            auto errorJson = [](const ImageError& e) {
-                return nlohmann::json{{"mse", e.mse},
-                                      {"rel_mse", e.relMse},
-                                      {"psnr", e.psnr},
-                                      {"max", e.maxAbs},
-                                      {"non_finite", e.nonFinite}};
-            };
-            const double indirect = indirectMs(r), trace = passMedian(r, "trace");
-            const double indirectRatio = referenceIndirect > 0.0 ? indirect / referenceIndirect : 0.0;
-            const double upsampleRatio = trace > 0.0 ? passMedian(r, "upsample") / trace : 0.0;
-            nlohmann::json entry = timingJson(r);
-            entry["name"] = config.name;
-            entry["trace_scale"] = config.settings.traceScale;
-            entry["anisotropy"] = r.settings().anisotropy;
-            entry["indirect_ms"] = indirect;
-            entry["indirect_over_reference"] = indirectRatio;
-            entry["upsample_over_trace"] = upsampleRatio;
-            entry["resampled_fraction"] = r.resampledFraction();
-            entry["error"] = {{"diffuse", errorJson(diffuse)},
-                              {"specular", errorJson(specular)},
-                              {"final", errorJson(final)}};
-            report["configs"].push_back(entry);
-            std::snprintf(
-                line, sizeof(line),
-                "| %-20s | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %7.2f%% | %10.4g | "
-                "%10.4g | %10.4g | %8.2f |\n",
-                config.name.c_str(), trace, passMedian(r, "upsample"), passMedian(r, "resample"), indirect,
-                indirectRatio, upsampleRatio, r.timer().frameStats().medianMs, 100.0 * r.resampledFraction(),
-                diffuse.mse, specular.mse, final.mse, final.psnr);
-            table += line;
-        }
-        // The acceptance ratios (issue 8), same run: sg's upsample against normal's (both without
-        // re-tracing), and for the default configuration (sg + adaptive) upsample against trace, indirect
-        // against reference.
-        const double normalUpsample = passMedian(*configs[2].renderer, "upsample");
-        const double sgUpsample = passMedian(*configs[3].renderer, "upsample");
-        const nlohmann::json& method = report["configs"].back();
-        report["upsample_ratio_sg_over_normal"] = normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0;
-        report["upsample_over_trace"] = method["upsample_over_trace"];
-        report["indirect_over_reference"] = method["indirect_over_reference"];
-        std::snprintf(
-            line, sizeof(line),
-            "\nsg+adaptive: upsample / trace %.3f, indirect / reference indirect %.3f; upsample sg / "
-            "normal %.3f (medians, same run)\n",
-            method["upsample_over_trace"].get<double>(), method["indirect_over_reference"].get<double>(),
-            normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0);
-        table += line;
+        reportUpsampling(configs, w, h, report, table);
     }
     checkValidation(session);
     char caption[300];

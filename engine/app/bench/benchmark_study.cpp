@@ -71,6 +71,140 @@ struct StudyConfig {
     float beta = 20.0f, kappa = 100.0f, sigma = 0.1f, diffuseSharpness = 2.0f;
 };
 
+// Build: run 0 is the reference (trace scale 1), then the sweeps in the order the report reads them: sg β × κ,
+// normal σ_n, sg λ_d. The upsampling alone: no history, no re-tracing.
+std::vector<BenchmarkRun> buildStudyRuns(vk::Context& context, const Scene& scene, const RenderSettings& settings) {
+    std::vector<StudyConfig> studies;
+    for (float beta : kBetas)
+        for (float kappa : kKappas) studies.push_back({"sg", beta, kappa, 0.1f, 2.0f});
+    for (float sigma : kSigmas) studies.push_back({"normal", 20.0f, 100.0f, sigma, 2.0f});
+    for (float sharpness : kDiffuseSharpness) studies.push_back({"sg-diffuse", 20.0f, 100.0f, 0.1f, sharpness});
+    std::vector<BenchmarkRun> runs;
+    RenderSettings base = settings;
+    base.temporal = false;
+    base.adaptive = false;
+    runs.push_back({"reference", &scene, base, nullptr, ""});
+    runs.back().settings.traceScale = 1;
+    for (const StudyConfig& study : studies) {
+        RenderSettings s = base;
+        s.traceScale = 4;
+        s.weights = study.kind == "normal" ? RenderSettings::Weights::Normal : RenderSettings::Weights::Sg;
+        s.beta = study.beta;
+        s.kappa = study.kappa;
+        s.sigmaN = study.sigma;
+        s.diffuseSharpness = study.diffuseSharpness;
+        runs.push_back({study.kind, &scene, s, nullptr, ""});
+    }
+    for (BenchmarkRun& run : runs) run.renderer = std::make_unique<Renderer>(context, scene, run.settings);
+    return runs;
+}
+
+// Errors per configuration and class (diffuse, specular), summed over frames; pixel counts per class.
+struct StudyErrors {
+    std::vector<std::array<double, kClasses>> diffuse, specular;
+    std::array<double, kClasses> pixels{};
+};
+
+// Run: every configuration renders the same frames as the reference, whose frame is read just before.
+StudyErrors runStudy(std::vector<BenchmarkRun>& runs, uint32_t frames) {
+    StudyErrors errors;
+    errors.diffuse.resize(runs.size());
+    errors.specular.resize(runs.size());
+    std::vector<uint8_t> classes;
+    Renderer::IndirectLight referenceLight;
+    FrameHooks hooks;
+    hooks.afterFrame = [&](size_t index, uint32_t) {
+        Renderer& renderer = *runs[index].renderer;
+        if (index == 0) {
+            classes = materialClasses(renderer);
+            referenceLight = renderer.readIndirect();
+            for (uint8_t c : classes)
+                for (int k = 0; k < kClasses; ++k) errors.pixels[size_t(k)] += (c >> k) & 1u;
+            return;
+        }
+        const Renderer::IndirectLight light = renderer.readIndirect();
+        const auto d = classSquaredErrors(referenceLight.diffuse, light.diffuse, classes);
+        const auto s = classSquaredErrors(referenceLight.specular, light.specular, classes);
+        for (int k = 0; k < kClasses; ++k) {
+            errors.diffuse[index][size_t(k)] += d[size_t(k)];
+            errors.specular[index][size_t(k)] += s[size_t(k)];
+        }
+    };
+    // Block 1: the reference's frame is read just before every configuration renders the same frame.
+    renderInterleaved(runs, frames, 0, 1, hooks);
+    return errors;
+}
+
+// Report: for each class with pixels, the MSE heat maps and optima (JSON) and one row of the table.
+void reportStudyScene(const std::string& sceneName, const std::vector<BenchmarkRun>& runs,
+                      const StudyErrors& errors, uint32_t frames, json& sceneJson, std::string& table) {
+    for (int k = 0; k < kClasses; ++k) {
+        const double pixels = errors.pixels[size_t(k)];
+        if (pixels < 1.0) continue;
+        auto mse = [&](const std::vector<std::array<double, kClasses>>& sums, size_t run) {
+            return sums[run][size_t(k)] / pixels;
+        };
+        const auto& specularSums = errors.specular;
+        const auto& diffuseSums = errors.diffuse;
+        json sg = json::array(), normalSpecular = json::array(), normalDiffuse = json::array(),
+             sgDiffuse = json::array();
+        size_t run = 1;
+        size_t bestSg = 0, bestNormal = 0, bestNormalDiffuse = 0, bestSgDiffuse = 0, defaultSg = 0,
+               defaultNormal = 0, defaultSgDiffuse = 0;
+        double bestSgMse = 1e300, bestNormalMse = 1e300, bestNormalDiffuseMse = 1e300, bestSgDiffuseMse = 1e300;
+        for (size_t b = 0; b < kBetas.size(); ++b) {
+            json row = json::array();
+            for (size_t q = 0; q < kKappas.size(); ++q, ++run) {
+                row.push_back(mse(specularSums, run));
+                if (mse(specularSums, run) < bestSgMse) bestSgMse = mse(specularSums, run), bestSg = run;
+                if (kBetas[b] == 20.0f && kKappas[q] == 100.0f) defaultSg = run;
+            }
+            sg.push_back(row);
+        }
+        for (size_t i = 0; i < kSigmas.size(); ++i, ++run) {
+            normalSpecular.push_back(mse(specularSums, run));
+            normalDiffuse.push_back(mse(diffuseSums, run));
+            if (mse(specularSums, run) < bestNormalMse) bestNormalMse = mse(specularSums, run), bestNormal = run;
+            if (mse(diffuseSums, run) < bestNormalDiffuseMse)
+                bestNormalDiffuseMse = mse(diffuseSums, run), bestNormalDiffuse = run;
+            if (kSigmas[i] == 0.1f) defaultNormal = run;
+        }
+        for (size_t i = 0; i < kDiffuseSharpness.size(); ++i, ++run) {
+            sgDiffuse.push_back(mse(diffuseSums, run));
+            if (mse(diffuseSums, run) < bestSgDiffuseMse)
+                bestSgDiffuseMse = mse(diffuseSums, run), bestSgDiffuse = run;
+            if (kDiffuseSharpness[i] == 2.0f) defaultSgDiffuse = run;
+        }
+        const RenderSettings& sgBest = runs[bestSg].settings;
+        const RenderSettings& normalBest = runs[bestNormal].settings;
+        sceneJson["classes"].push_back(
+            {{"class", kClassNames[k]},
+             {"pixels", pixels / frames},
+             {"sg_specular_mse", sg},
+             {"normal_specular_mse", normalSpecular},
+             {"normal_diffuse_mse", normalDiffuse},
+             {"sg_diffuse_mse", sgDiffuse},
+             {"sg_optimum", {{"beta", sgBest.beta}, {"kappa", sgBest.kappa}, {"mse", bestSgMse}}},
+             {"normal_optimum", {{"sigma_n", normalBest.sigmaN}, {"mse", bestNormalMse}}},
+             {"sg_diffuse_optimum",
+              {{"diffuse_sharpness", runs[bestSgDiffuse].settings.diffuseSharpness}, {"mse", bestSgDiffuseMse}}},
+             {"normal_diffuse_optimum",
+              {{"sigma_n", runs[bestNormalDiffuse].settings.sigmaN}, {"mse", bestNormalDiffuseMse}}}});
+        char line[600];
+        std::snprintf(line, sizeof(line),
+                      "| %s | %s | %.0f | %g, %g (%.3g) | %.3g | %g (%.3g) | %.3g | %g (%.3g) | %.3g "
+                      "| %g (%.3g) | "
+                      "%.3g |\n",
+                      sceneName.c_str(), kClassNames[k], pixels / frames, sgBest.beta, sgBest.kappa, bestSgMse,
+                      mse(specularSums, defaultSg), normalBest.sigmaN, bestNormalMse,
+                      mse(specularSums, defaultNormal), runs[bestSgDiffuse].settings.diffuseSharpness,
+                      bestSgDiffuseMse, mse(diffuseSums, defaultSgDiffuse),
+                      runs[bestNormalDiffuse].settings.sigmaN, bestNormalDiffuseMse,
+                      mse(diffuseSums, defaultNormal));
+        table += line;
+    }
+}
+
 }  // namespace
 
 int runStudyBenchmark(const ParsedArgs& args, const SessionOptions& session, const BenchmarkFrames& timing,
@@ -97,129 +231,11 @@ int runStudyBenchmark(const ParsedArgs& args, const SessionOptions& session, con
         report["device"] = context.deviceName();
         for (const ReportScene& entry : scenes) {
             const Scene scene = loadScene(entry.scene);
-            std::vector<StudyConfig> studies;
-            for (float beta : kBetas)
-                for (float kappa : kKappas) studies.push_back({"sg", beta, kappa, 0.1f, 2.0f});
-            for (float sigma : kSigmas) studies.push_back({"normal", 20.0f, 100.0f, sigma, 2.0f});
-            for (float sharpness : kDiffuseSharpness)
-                studies.push_back({"sg-diffuse", 20.0f, 100.0f, 0.1f, sharpness});
-            std::vector<BenchmarkRun> runs;
-            RenderSettings base = session.settings;
-            base.temporal = false;
-            base.adaptive = false;
-            runs.push_back({"reference", &scene, base, nullptr, ""});
-            runs.back().settings.traceScale = 1;
-            for (const StudyConfig& study : studies) {
-                RenderSettings s = base;
-                s.traceScale = 4;
-                s.weights =
-                    study.kind == "normal" ? RenderSettings::Weights::Normal : RenderSettings::Weights::Sg;
-                s.beta = study.beta;
-                s.kappa = study.kappa;
-                s.sigmaN = study.sigma;
-                s.diffuseSharpness = study.diffuseSharpness;
-                runs.push_back({study.kind, &scene, s, nullptr, ""});
-            }
-            for (BenchmarkRun& run : runs)
-                run.renderer = std::make_unique<Renderer>(context, scene, run.settings);
+            std::vector<BenchmarkRun> runs = buildStudyRuns(context, scene, session.settings);
             std::fprintf(stderr, "study: %s, %zu configurations\n", entry.name.c_str(), runs.size());
-
-            // Errors per configuration and class (diffuse, specular), summed over frames; pixel counts per
-            // class.
-            std::vector<std::array<double, kClasses>> diffuseSums(runs.size()), specularSums(runs.size());
-            std::array<double, kClasses> pixelSums{};
-            std::vector<uint8_t> classes;
-            Renderer::IndirectLight referenceLight;
-            FrameHooks hooks;
-            hooks.afterFrame = [&](size_t index, uint32_t) {
-                Renderer& renderer = *runs[index].renderer;
-                if (index == 0) {
-                    classes = materialClasses(renderer);
-                    referenceLight = renderer.readIndirect();
-                    for (uint8_t c : classes)
-                        for (int k = 0; k < kClasses; ++k) pixelSums[size_t(k)] += (c >> k) & 1u;
-                    return;
-                }
-                const Renderer::IndirectLight light = renderer.readIndirect();
-                const auto d = classSquaredErrors(referenceLight.diffuse, light.diffuse, classes);
-                const auto s = classSquaredErrors(referenceLight.specular, light.specular, classes);
-                for (int k = 0; k < kClasses; ++k) {
-                    diffuseSums[index][size_t(k)] += d[size_t(k)];
-                    specularSums[index][size_t(k)] += s[size_t(k)];
-                }
-            };
-            // Block 1: the reference's frame is read just before every configuration renders the same frame.
-            renderInterleaved(runs, frames, 0, 1, hooks);
-
+            const StudyErrors errors = runStudy(runs, frames);
             json sceneJson = {{"scene", entry.name}, {"classes", json::array()}};
-            for (int k = 0; k < kClasses; ++k) {
-                const double pixels = pixelSums[size_t(k)];
-                if (pixels < 1.0) continue;
-                auto mse = [&](const std::vector<std::array<double, kClasses>>& sums, size_t run) {
-                    return sums[run][size_t(k)] / pixels;
-                };
-                json sg = json::array(), normalSpecular = json::array(), normalDiffuse = json::array(),
-                     sgDiffuse = json::array();
-                size_t run = 1;
-                size_t bestSg = 0, bestNormal = 0, bestNormalDiffuse = 0, bestSgDiffuse = 0, defaultSg = 0,
-                       defaultNormal = 0, defaultSgDiffuse = 0;
-                double bestSgMse = 1e300, bestNormalMse = 1e300, bestNormalDiffuseMse = 1e300,
-                       bestSgDiffuseMse = 1e300;
-                for (size_t b = 0; b < kBetas.size(); ++b) {
-                    json row = json::array();
-                    for (size_t q = 0; q < kKappas.size(); ++q, ++run) {
-                        row.push_back(mse(specularSums, run));
-                        if (mse(specularSums, run) < bestSgMse)
-                            bestSgMse = mse(specularSums, run), bestSg = run;
-                        if (kBetas[b] == 20.0f && kKappas[q] == 100.0f) defaultSg = run;
-                    }
-                    sg.push_back(row);
-                }
-                for (size_t i = 0; i < kSigmas.size(); ++i, ++run) {
-                    normalSpecular.push_back(mse(specularSums, run));
-                    normalDiffuse.push_back(mse(diffuseSums, run));
-                    if (mse(specularSums, run) < bestNormalMse)
-                        bestNormalMse = mse(specularSums, run), bestNormal = run;
-                    if (mse(diffuseSums, run) < bestNormalDiffuseMse)
-                        bestNormalDiffuseMse = mse(diffuseSums, run), bestNormalDiffuse = run;
-                    if (kSigmas[i] == 0.1f) defaultNormal = run;
-                }
-                for (size_t i = 0; i < kDiffuseSharpness.size(); ++i, ++run) {
-                    sgDiffuse.push_back(mse(diffuseSums, run));
-                    if (mse(diffuseSums, run) < bestSgDiffuseMse)
-                        bestSgDiffuseMse = mse(diffuseSums, run), bestSgDiffuse = run;
-                    if (kDiffuseSharpness[i] == 2.0f) defaultSgDiffuse = run;
-                }
-                const RenderSettings& sgBest = runs[bestSg].settings;
-                const RenderSettings& normalBest = runs[bestNormal].settings;
-                sceneJson["classes"].push_back(
-                    {{"class", kClassNames[k]},
-                     {"pixels", pixels / frames},
-                     {"sg_specular_mse", sg},
-                     {"normal_specular_mse", normalSpecular},
-                     {"normal_diffuse_mse", normalDiffuse},
-                     {"sg_diffuse_mse", sgDiffuse},
-                     {"sg_optimum", {{"beta", sgBest.beta}, {"kappa", sgBest.kappa}, {"mse", bestSgMse}}},
-                     {"normal_optimum", {{"sigma_n", normalBest.sigmaN}, {"mse", bestNormalMse}}},
-                     {"sg_diffuse_optimum",
-                      {{"diffuse_sharpness", runs[bestSgDiffuse].settings.diffuseSharpness},
-                       {"mse", bestSgDiffuseMse}}},
-                     {"normal_diffuse_optimum",
-                      {{"sigma_n", runs[bestNormalDiffuse].settings.sigmaN},
-                       {"mse", bestNormalDiffuseMse}}}});
-                char line[600];
-                std::snprintf(line, sizeof(line),
-                              "| %s | %s | %.0f | %g, %g (%.3g) | %.3g | %g (%.3g) | %.3g | %g (%.3g) | %.3g "
-                              "| %g (%.3g) | "
-                              "%.3g |\n",
-                              entry.name.c_str(), kClassNames[k], pixels / frames, sgBest.beta, sgBest.kappa,
-                              bestSgMse, mse(specularSums, defaultSg), normalBest.sigmaN, bestNormalMse,
-                              mse(specularSums, defaultNormal), runs[bestSgDiffuse].settings.diffuseSharpness,
-                              bestSgDiffuseMse, mse(diffuseSums, defaultSgDiffuse),
-                              runs[bestNormalDiffuse].settings.sigmaN, bestNormalDiffuseMse,
-                              mse(diffuseSums, defaultNormal));
-                table += line;
-            }
+            reportStudyScene(entry.name, runs, errors, frames, sceneJson, table);
             report["scenes"].push_back(sceneJson);
         }
     }
