@@ -47,8 +47,8 @@ layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHTS) const int WEIGHTS = VCT_WEIGHTS_
 layout(constant_id = VCT_UPSAMPLE_SPEC_TEMPORAL) const bool TEMPORAL = true;  // --temporal
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;  // write weightSumImage
 
-// Resources: bound by engine/passes/upsample_pass.cpp (its resource table gives these binding numbers and is checked
-// against them when the pipeline is made).
+// Resources: bound by engine/passes/upsample_pass.cpp (its resource table gives these binding numbers and is
+// checked against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform usampler2D indirectLow;  // the trace's output (lib/indirect_pack.glsl)
 layout(set = 0, binding = 5) uniform sampler2D depthTexture;
@@ -61,13 +61,18 @@ layout(set = 0, binding = 14) uniform sampler2D guidePositionTexture;
 layout(set = 0, binding = 15) uniform sampler2D guideNormalTexture;
 layout(set = 0, binding = 16) uniform sampler2D guideAxisTexture;
 layout(set = 0, binding = 10) uniform usampler2D indirectHistory;  // last frame's output
-layout(set = 0, binding = 3, rgba32ui) uniform writeonly uimage2D indirectImage;  // diffuse, specular + accumulated weights A
-layout(set = 0, binding = 12, rgba16f) uniform writeonly image2D weightSumImage;  // r: sum of weights (diffuse), g: (specular), b: 1 re-traced
-// The pixels to re-trace (count, the resample pass's indirect dispatch, pixels).
+// Diffuse, specular + accumulated weights A.
+layout(set = 0, binding = 3, rgba32ui) uniform writeonly uimage2D indirectImage;
+// r: sum of weights (diffuse), g: (specular), b: 1 re-traced.
+layout(set = 0, binding = 12, rgba16f) uniform writeonly image2D weightSumImage;
+// The pixels to re-trace (count, the resample pass's indirect dispatch, pixels). clang-format would put the
+// instance name of this GLSL block on a line of its own.
+// clang-format off
 layout(set = 0, binding = 13, std430) buffer ResampleList {
     ResampleListHeader header;
     uint pixels[];
 } resampleList;
+// clang-format on
 
 // Tent radius in low-res texels: 1 (bilinear: the 2×2 nearest) without a guide; 2 (4×4) with one, so that the
 // guide has candidates left to choose from where it rejects some.
