@@ -9,8 +9,8 @@
 #include <set>
 #include <string>
 
-#include "app/demo/demo_controls.h"
 #include "app/cli/session.h"
+#include "app/demo/demo_controls.h"
 #include "core/error.h"
 #include "report/settings_json.h"
 

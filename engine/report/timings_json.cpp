@@ -13,8 +13,11 @@ namespace vct {
 void writeTimingsJson(const std::filesystem::path& path, const TimingReport& report) {
     nlohmann::json passes = nlohmann::json::array();
     for (const vk::PassTiming& pass : report.passes)
-        passes.push_back({{"name", pass.name}, {"median_ms", pass.medianMs}, {"p95_ms", pass.p95Ms},
-                          {"min_ms", pass.minMs}, {"runs", pass.runs}});
+        passes.push_back({{"name", pass.name},
+                          {"median_ms", pass.medianMs},
+                          {"p95_ms", pass.p95Ms},
+                          {"min_ms", pass.minMs},
+                          {"runs", pass.runs}});
     nlohmann::json json = {{"device", report.device},
                            {"size", {report.width, report.height}},
                            {"frames", report.frames},
@@ -45,7 +48,8 @@ std::string formatTimingTable(const TimingReport& report) {
                   report.frame.p95Ms, report.frame.minMs, report.frame.samples);
     table += line;
     if (report.frame.medianMs > 0.0) {
-        std::snprintf(line, sizeof(line), "fps          %9.1f (1000 / frame median)\n", 1000.0 / report.frame.medianMs);
+        std::snprintf(line, sizeof(line), "fps          %9.1f (1000 / frame median)\n",
+                      1000.0 / report.frame.medianMs);
         table += line;
     }
     std::snprintf(line, sizeof(line), "re-traced    %9.2f%% of the pixels (last frame)\n",

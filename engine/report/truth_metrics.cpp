@@ -5,8 +5,8 @@
 #include <cstdio>
 
 #include "core/error.h"
-#include "report/image_metrics.h"
 #include "render/shader_math.h"
+#include "report/image_metrics.h"
 #include "scene/input_limits.h"
 
 namespace vct {

@@ -6,7 +6,9 @@
 
 namespace vct {
 
-glm::vec3 CameraView::position() const { return glm::vec3(glm::inverse(view)[3]); }
+glm::vec3 CameraView::position() const {
+    return glm::vec3(glm::inverse(view)[3]);
+}
 
 glm::mat4 CameraView::projection(float aspect) const {
     glm::mat4 proj = glm::perspective(yfov, aspect, znear, zfar);

@@ -374,7 +374,9 @@ namespace {
 
 // Scene::validate, one entity kind at a time (in the order the checks have always run: the first problem
 // found is the one reported).
-[[noreturn]] void fail(const std::string& what) { throw Error(what); }
+[[noreturn]] void fail(const std::string& what) {
+    throw Error(what);
+}
 
 std::string quoted(const std::string& s, size_t i) {
     return "'" + (s.empty() ? "#" + std::to_string(i) : s) + "'";
@@ -417,8 +419,8 @@ void validatePrimitive(const Scene& scene, const Primitive& prim, const std::str
     for (uint32_t i = 0; i < prim.indexCount; ++i) {
         uint32_t index = scene.indices[prim.firstIndex + i];
         if (index >= prim.vertexCount)
-            fail(where + "index " + std::to_string(i) + " (= " + std::to_string(index) + ") is out of range (" +
-                 std::to_string(prim.vertexCount) + " vertices)");
+            fail(where + "index " + std::to_string(i) + " (= " + std::to_string(index) +
+                 ") is out of range (" + std::to_string(prim.vertexCount) + " vertices)");
     }
     for (uint32_t v = 0; v < prim.vertexCount; ++v) {
         const Vertex& vert = scene.vertices[size_t(prim.vertexOffset) + v];
@@ -436,7 +438,8 @@ void validateMeshes(const Scene& scene) {
         const Mesh& mesh = scene.meshes[me];
         for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
             std::string where = "mesh " + quoted(mesh.name, me) + " primitive " + std::to_string(pi) + ": ";
-            if (mesh.primitives[pi] >= scene.primitives.size()) fail(where + "primitive index is out of range");
+            if (mesh.primitives[pi] >= scene.primitives.size())
+                fail(where + "primitive index is out of range");
             validatePrimitive(scene, scene.primitives[mesh.primitives[pi]], where);
         }
     }
@@ -447,10 +450,12 @@ void validateNodes(const Scene& scene) {
         const Node& node = scene.nodes[n];
         std::string where = "node " + quoted(node.name, n) + ": ";
         if (node.mesh >= static_cast<int>(scene.meshes.size())) fail(where + "mesh index is out of range");
-        if (node.camera >= static_cast<int>(scene.cameras.size())) fail(where + "camera index is out of range");
+        if (node.camera >= static_cast<int>(scene.cameras.size()))
+            fail(where + "camera index is out of range");
         if (node.light >= static_cast<int>(scene.lights.size())) fail(where + "light index is out of range");
         for (int c : node.children)
-            if (c < 0 || c >= static_cast<int>(scene.nodes.size())) fail(where + "child index is out of range");
+            if (c < 0 || c >= static_cast<int>(scene.nodes.size()))
+                fail(where + "child index is out of range");
         bool finiteTransform =
             finite(node.translation) && finite(node.scale) &&
             finite(glm::vec4(node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w));
@@ -499,7 +504,8 @@ void validateCameras(const Scene& scene) {
 void validateWorldTransforms(const Scene& scene) {
     std::vector<float> times{0.0f};
     for (const Animation& anim : scene.animations)
-        for (const AnimationChannel& ch : anim.channels) times.insert(times.end(), ch.times.begin(), ch.times.end());
+        for (const AnimationChannel& ch : anim.channels)
+            times.insert(times.end(), ch.times.begin(), ch.times.end());
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
     const size_t step = std::max<size_t>(1, times.size() / 4096);
@@ -508,8 +514,8 @@ void validateWorldTransforms(const Scene& scene) {
         for (size_t n = 0; n < world.size(); ++n)
             for (int col = 0; col < 4; ++col)
                 if (!finite(world[n][col]))
-                    fail("node " + quoted(scene.nodes[n].name, n) + ": world transform at t = " +
-                         std::to_string(times[t]) +
+                    fail("node " + quoted(scene.nodes[n].name, n) +
+                         ": world transform at t = " + std::to_string(times[t]) +
                          " is not finite (the product of its ancestors' transforms overflows float)");
     }
 }
@@ -520,7 +526,8 @@ void validateExtent(const Scene& scene) {
         fail("scene " + quoted(scene.name, 0) + " has no mesh instances: nothing to draw");
     const Aabb box = scene.bounds();
     if (!finite(box.min) || !finite(box.max))
-        fail("scene " + quoted(scene.name, 0) + ": the transformed vertices are not finite (bounds overflow float)");
+        fail("scene " + quoted(scene.name, 0) +
+             ": the transformed vertices are not finite (bounds overflow float)");
     // A camera a million scene sizes away sees at most a pixel of it, and its view products overflow float
     // long before a float position does.
     const glm::vec3 size = box.max - box.min, centre = 0.5f * box.min + 0.5f * box.max;
@@ -530,7 +537,8 @@ void validateExtent(const Scene& scene) {
         if (scene.nodes[n].camera < 0) continue;
         const glm::dvec3 offset = glm::dvec3(glm::vec3(world[n][3])) - glm::dvec3(centre);
         if (glm::length(offset) > reach)
-            fail("node " + quoted(scene.nodes[n].name, n) + ": its camera is " + numberText(glm::length(offset)) +
+            fail("node " + quoted(scene.nodes[n].name, n) + ": its camera is " +
+                 numberText(glm::length(offset)) +
                  " units from the scene, more than 1e6 times the scene's size: nothing would be in view");
     }
 }

@@ -101,7 +101,8 @@ VCT_INLINE float equalLobeLogWeight(vec3 axisA, vec3 axisB, float smoothed, floa
 }
 
 VCT_INLINE float lobeWeight(vec4 a, vec4 b, float beta, float kappa) {
-    return lobeWeightSmoothed(vec3(a), smoothedSharpness(a.w, kappa), vec3(b), smoothedSharpness(b.w, kappa), beta);
+    return lobeWeightSmoothed(vec3(a), smoothedSharpness(a.w, kappa), vec3(b), smoothedSharpness(b.w, kappa),
+                              beta);
 }
 
 // Normal-aware baseline: w_n = exp((na·nb − 1) / σ_n²), again with na·nb − 1 = −½‖na − nb‖².
@@ -182,7 +183,8 @@ VCT_INLINE ivec2 jitterOffset(uint frameIndex, int scale) {
     for (int level = 0; level < 2 && bit > 0; ++level) {
         // Rank within a 2×2 Bayer block: 0 → (0,0), 1 → (1,1), 2 → (1,0), 3 → (0,1).
         const uint r = k % 4u;
-        const ivec2 step = r == 0u ? ivec2(0, 0) : (r == 1u ? ivec2(1, 1) : (r == 2u ? ivec2(1, 0) : ivec2(0, 1)));
+        const ivec2 step =
+            r == 0u ? ivec2(0, 0) : (r == 1u ? ivec2(1, 1) : (r == 2u ? ivec2(1, 0) : ivec2(0, 1)));
         o += step * bit;
         k /= 4u;
         bit /= 2;

@@ -9,6 +9,8 @@
 // scaling: per-pass cost against pixel count and voxel resolution (app/bench/benchmark_scaling.cpp).
 // In every mode the renderers take turns in blocks of frames (app/bench/benchmark_run.h), so all of them see the
 // same machine load, which is what makes ratios between them meaningful on a shared CPU device.
+#include "app/bench/benchmark_command.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,11 +21,10 @@
 #include "app/bench/benchmark_modes.h"
 #include "app/bench/benchmark_run.h"
 #include "app/cli/cli.h"
-#include "app/bench/benchmark_command.h"
 #include "app/cli/session.h"
 #include "core/error.h"
-#include "report/image_metrics.h"
 #include "io/safe_write.h"
+#include "report/image_metrics.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera_path.h"
 
@@ -73,7 +74,8 @@ std::vector<BenchmarkRun> buildUpsamplingRuns(vk::Context& context, const Scene&
 }
 
 // Run: every configuration renders the same frames, interleaved in blocks, along --camera-path if given.
-void runUpsampling(std::vector<BenchmarkRun>& configs, const ParsedArgs& args, const BenchmarkFrames& timing) {
+void runUpsampling(std::vector<BenchmarkRun>& configs, const ParsedArgs& args,
+                   const BenchmarkFrames& timing) {
     const std::optional<CameraPath> path =
         args.has("camera-path") ? std::optional<CameraPath>(loadCameraPath(args.get("camera-path")))
                                 : std::nullopt;
@@ -101,11 +103,10 @@ void reportUpsampling(std::vector<BenchmarkRun>& configs, uint32_t w, uint32_t h
     };
     const double referenceIndirect = indirectMs(reference);
     char line[512];
-    std::snprintf(
-        line, sizeof(line),
-        "| %-20s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %10s | %10s | %10s | %8s |\n",
-        "configuration", "trace", "upsample", "resample", "indirect", "ind/ref", "ups/trc", "frame",
-        "re-traced", "MSE diff.", "MSE spec.", "MSE final", "PSNR fin");
+    std::snprintf(line, sizeof(line),
+                  "| %-20s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %8s | %10s | %10s | %10s | %8s |\n",
+                  "configuration", "trace", "upsample", "resample", "indirect", "ind/ref", "ups/trc", "frame",
+                  "re-traced", "MSE diff.", "MSE spec.", "MSE final", "PSNR fin");
     table += line;
     table += "|" + std::string(22, '-');
     for (int column = 0; column < 8; ++column) table += "|" + std::string(10, '-');
@@ -135,17 +136,15 @@ void reportUpsampling(std::vector<BenchmarkRun>& configs, uint32_t w, uint32_t h
         entry["indirect_over_reference"] = indirectRatio;
         entry["upsample_over_trace"] = upsampleRatio;
         entry["resampled_fraction"] = r.resampledFraction();
-        entry["error"] = {{"diffuse", errorJson(diffuse)},
-                          {"specular", errorJson(specular)},
-                          {"final", errorJson(final)}};
+        entry["error"] = {
+            {"diffuse", errorJson(diffuse)}, {"specular", errorJson(specular)}, {"final", errorJson(final)}};
         report["configs"].push_back(entry);
-        std::snprintf(
-            line, sizeof(line),
-            "| %-20s | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %7.2f%% | %10.4g | "
-            "%10.4g | %10.4g | %8.2f |\n",
-            config.name.c_str(), trace, passMedian(r, "upsample"), passMedian(r, "resample"), indirect,
-            indirectRatio, upsampleRatio, r.timer().frameStats().medianMs, 100.0 * r.resampledFraction(),
-            diffuse.mse, specular.mse, final.mse, final.psnr);
+        std::snprintf(line, sizeof(line),
+                      "| %-20s | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %8.3f | %7.2f%% | %10.4g | "
+                      "%10.4g | %10.4g | %8.2f |\n",
+                      config.name.c_str(), trace, passMedian(r, "upsample"), passMedian(r, "resample"),
+                      indirect, indirectRatio, upsampleRatio, r.timer().frameStats().medianMs,
+                      100.0 * r.resampledFraction(), diffuse.mse, specular.mse, final.mse, final.psnr);
         table += line;
     }
     // The acceptance ratios (issue 8), same run: sg's upsample against normal's (both without
@@ -157,12 +156,12 @@ void reportUpsampling(std::vector<BenchmarkRun>& configs, uint32_t w, uint32_t h
     report["upsample_ratio_sg_over_normal"] = normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0;
     report["upsample_over_trace"] = method["upsample_over_trace"];
     report["indirect_over_reference"] = method["indirect_over_reference"];
-    std::snprintf(
-        line, sizeof(line),
-        "\nsg+adaptive: upsample / trace %.3f, indirect / reference indirect %.3f; upsample sg / "
-        "normal %.3f (medians, same run)\n",
-        method["upsample_over_trace"].get<double>(), method["indirect_over_reference"].get<double>(),
-        normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0);
+    std::snprintf(line, sizeof(line),
+                  "\nsg+adaptive: upsample / trace %.3f, indirect / reference indirect %.3f; upsample sg / "
+                  "normal %.3f (medians, same run)\n",
+                  method["upsample_over_trace"].get<double>(),
+                  method["indirect_over_reference"].get<double>(),
+                  normalUpsample > 0.0 ? sgUpsample / normalUpsample : 0.0);
     table += line;
 }
 

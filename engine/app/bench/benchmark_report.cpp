@@ -21,12 +21,12 @@
 #include <optional>
 #include <sstream>
 
-#include "app/cli/aux_output.h"
 #include "app/bench/benchmark_modes.h"
 #include "app/bench/benchmark_run.h"
+#include "app/cli/aux_output.h"
 #include "core/error.h"
-#include "report/image_metrics.h"
 #include "io/safe_write.h"
+#include "report/image_metrics.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera_path.h"
 

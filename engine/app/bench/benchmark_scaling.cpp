@@ -16,7 +16,7 @@ int runScalingBenchmark(const ParsedArgs& args, const SessionOptions& session, c
     (void)args;
     const Scene scene = loadScene(session.scene);
     struct Point {
-        const char* sweep;  // "pixels" or "voxels"
+        const char* sweep;               // "pixels" or "voxels"
         uint32_t width, height, voxels;  // voxels 0: the device's default
     };
     std::vector<Point> points;
@@ -48,12 +48,14 @@ int runScalingBenchmark(const ParsedArgs& args, const SessionOptions& session, c
         }
         renderInterleaved(runs, timing.frames, timing.warmup, timing.block);
 
-        report = {{"device", context.deviceName()}, {"scene", session.scene},     {"frames", timing.frames},
-                  {"warmup", timing.warmup},         {"block", timing.block},     {"points", nlohmann::json::array()}};
+        report = {{"device", context.deviceName()}, {"scene", session.scene},
+                  {"frames", timing.frames},        {"warmup", timing.warmup},
+                  {"block", timing.block},          {"points", nlohmann::json::array()}};
         std::vector<std::string> passes;
         for (const BenchmarkRun& run : runs)
             if (run.renderer && passes.empty())
-                for (const vk::PassTiming& pass : run.renderer->timer().passStats()) passes.push_back(pass.name);
+                for (const vk::PassTiming& pass : run.renderer->timer().passStats())
+                    passes.push_back(pass.name);
         table = passTableHeader("sweep|size|voxels|frame ms", passes);
         for (size_t i = 0; i < runs.size(); ++i) {
             const BenchmarkRun& run = runs[i];
@@ -80,11 +82,12 @@ int runScalingBenchmark(const ParsedArgs& args, const SessionOptions& session, c
     }
     checkValidation(session);
     char caption[300];
-    std::snprintf(caption, sizeof(caption),
-                  "Device: %s, scene %s, default configuration, %u frames in blocks of %u (medians after %u warm-up "
-                  "frames, ms).",
-                  report["device"].get<std::string>().c_str(), session.scene.c_str(), timing.frames, timing.block,
-                  timing.warmup);
+    std::snprintf(
+        caption, sizeof(caption),
+        "Device: %s, scene %s, default configuration, %u frames in blocks of %u (medians after %u warm-up "
+        "frames, ms).",
+        report["device"].get<std::string>().c_str(), session.scene.c_str(), timing.frames, timing.block,
+        timing.warmup);
     writeBenchmarkReport(outDir, "scaling", report, caption, table);
     return 0;
 }

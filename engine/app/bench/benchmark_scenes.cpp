@@ -25,7 +25,8 @@ std::vector<std::string> gltfModelsUnder(const std::filesystem::path& dir) {
             std::vector<std::string> found;
             for (const auto& file : std::filesystem::directory_iterator(folder, error)) {
                 const std::string ext = file.path().extension().string();
-                if (file.is_regular_file() && (ext == ".gltf" || ext == ".glb")) found.push_back(file.path().string());
+                if (file.is_regular_file() && (ext == ".gltf" || ext == ".glb"))
+                    found.push_back(file.path().string());
             }
             std::sort(found.begin(), found.end());
             if (!found.empty()) {
@@ -57,7 +58,9 @@ std::vector<std::string> sceneList(const ParsedArgs& args) {
 }
 
 // A short name for the table: the file's stem, or the built-in name.
-std::string shortName(const std::string& scene) { return std::filesystem::path(scene).stem().string(); }
+std::string shortName(const std::string& scene) {
+    return std::filesystem::path(scene).stem().string();
+}
 
 }  // namespace
 
@@ -66,7 +69,8 @@ int runScenesBenchmark(const ParsedArgs& args, const SessionOptions& session, co
     const std::vector<std::string> names = sceneList(args);
     std::vector<Scene> scenes;
     scenes.reserve(names.size());
-    for (const std::string& name : names) scenes.push_back(loadScene(name));  // a bad file fails before any frame
+    for (const std::string& name : names)
+        scenes.push_back(loadScene(name));  // a bad file fails before any frame
 
     nlohmann::json report;
     std::string table;
@@ -86,16 +90,14 @@ int runScenesBenchmark(const ParsedArgs& args, const SessionOptions& session, co
                 if (run.name == "cornell") return run.renderer->timer().frameStats().medianMs;
             return 0.0;
         }();
-        report = {{"device", context.deviceName()},
-                  {"width", session.settings.width},
-                  {"height", session.settings.height},
-                  {"frames", timing.frames},
-                  {"warmup", timing.warmup},
-                  {"block", timing.block},
+        report = {{"device", context.deviceName()},    {"width", session.settings.width},
+                  {"height", session.settings.height}, {"frames", timing.frames},
+                  {"warmup", timing.warmup},           {"block", timing.block},
                   {"scenes", nlohmann::json::array()}};
         // Columns: the passes of the first run that has them all (GI on: every pass).
         std::vector<std::string> passes;
-        for (const vk::PassTiming& pass : runs.front().renderer->timer().passStats()) passes.push_back(pass.name);
+        for (const vk::PassTiming& pass : runs.front().renderer->timer().passStats())
+            passes.push_back(pass.name);
         table = passTableHeader("scene|frame ms|fps|÷ cornell", passes);
         for (size_t i = 0; i < runs.size(); ++i) {
             const Renderer& r = *runs[i].renderer;
@@ -114,11 +116,12 @@ int runScenesBenchmark(const ParsedArgs& args, const SessionOptions& session, co
     }
     checkValidation(session);
     char caption[300];
-    std::snprintf(caption, sizeof(caption),
-                  "Device: %s, %ux%u, default configuration, %u frames in blocks of %u (medians after %u warm-up "
-                  "frames, ms).",
-                  report["device"].get<std::string>().c_str(), session.settings.width, session.settings.height,
-                  timing.frames, timing.block, timing.warmup);
+    std::snprintf(
+        caption, sizeof(caption),
+        "Device: %s, %ux%u, default configuration, %u frames in blocks of %u (medians after %u warm-up "
+        "frames, ms).",
+        report["device"].get<std::string>().c_str(), session.settings.width, session.settings.height,
+        timing.frames, timing.block, timing.warmup);
     writeBenchmarkReport(outDir, "scenes", report, caption, table);
     return 0;
 }

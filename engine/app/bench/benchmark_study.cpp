@@ -73,12 +73,14 @@ struct StudyConfig {
 
 // Build: run 0 is the reference (trace scale 1), then the sweeps in the order the report reads them: sg β × κ,
 // normal σ_n, sg λ_d. The upsampling alone: no history, no re-tracing.
-std::vector<BenchmarkRun> buildStudyRuns(vk::Context& context, const Scene& scene, const RenderSettings& settings) {
+std::vector<BenchmarkRun> buildStudyRuns(vk::Context& context, const Scene& scene,
+                                         const RenderSettings& settings) {
     std::vector<StudyConfig> studies;
     for (float beta : kBetas)
         for (float kappa : kKappas) studies.push_back({"sg", beta, kappa, 0.1f, 2.0f});
     for (float sigma : kSigmas) studies.push_back({"normal", 20.0f, 100.0f, sigma, 2.0f});
-    for (float sharpness : kDiffuseSharpness) studies.push_back({"sg-diffuse", 20.0f, 100.0f, 0.1f, sharpness});
+    for (float sharpness : kDiffuseSharpness)
+        studies.push_back({"sg-diffuse", 20.0f, 100.0f, 0.1f, sharpness});
     std::vector<BenchmarkRun> runs;
     RenderSettings base = settings;
     base.temporal = false;
@@ -151,7 +153,8 @@ void reportStudyScene(const std::string& sceneName, const std::vector<BenchmarkR
         size_t run = 1;
         size_t bestSg = 0, bestNormal = 0, bestNormalDiffuse = 0, bestSgDiffuse = 0, defaultSg = 0,
                defaultNormal = 0, defaultSgDiffuse = 0;
-        double bestSgMse = 1e300, bestNormalMse = 1e300, bestNormalDiffuseMse = 1e300, bestSgDiffuseMse = 1e300;
+        double bestSgMse = 1e300, bestNormalMse = 1e300, bestNormalDiffuseMse = 1e300,
+               bestSgDiffuseMse = 1e300;
         for (size_t b = 0; b < kBetas.size(); ++b) {
             json row = json::array();
             for (size_t q = 0; q < kKappas.size(); ++q, ++run) {
@@ -164,7 +167,8 @@ void reportStudyScene(const std::string& sceneName, const std::vector<BenchmarkR
         for (size_t i = 0; i < kSigmas.size(); ++i, ++run) {
             normalSpecular.push_back(mse(specularSums, run));
             normalDiffuse.push_back(mse(diffuseSums, run));
-            if (mse(specularSums, run) < bestNormalMse) bestNormalMse = mse(specularSums, run), bestNormal = run;
+            if (mse(specularSums, run) < bestNormalMse)
+                bestNormalMse = mse(specularSums, run), bestNormal = run;
             if (mse(diffuseSums, run) < bestNormalDiffuseMse)
                 bestNormalDiffuseMse = mse(diffuseSums, run), bestNormalDiffuse = run;
             if (kSigmas[i] == 0.1f) defaultNormal = run;
@@ -187,7 +191,8 @@ void reportStudyScene(const std::string& sceneName, const std::vector<BenchmarkR
              {"sg_optimum", {{"beta", sgBest.beta}, {"kappa", sgBest.kappa}, {"mse", bestSgMse}}},
              {"normal_optimum", {{"sigma_n", normalBest.sigmaN}, {"mse", bestNormalMse}}},
              {"sg_diffuse_optimum",
-              {{"diffuse_sharpness", runs[bestSgDiffuse].settings.diffuseSharpness}, {"mse", bestSgDiffuseMse}}},
+              {{"diffuse_sharpness", runs[bestSgDiffuse].settings.diffuseSharpness},
+               {"mse", bestSgDiffuseMse}}},
              {"normal_diffuse_optimum",
               {{"sigma_n", runs[bestNormalDiffuse].settings.sigmaN}, {"mse", bestNormalDiffuseMse}}}});
         char line[600];
@@ -195,8 +200,8 @@ void reportStudyScene(const std::string& sceneName, const std::vector<BenchmarkR
                       "| %s | %s | %.0f | %g, %g (%.3g) | %.3g | %g (%.3g) | %.3g | %g (%.3g) | %.3g "
                       "| %g (%.3g) | "
                       "%.3g |\n",
-                      sceneName.c_str(), kClassNames[k], pixels / frames, sgBest.beta, sgBest.kappa, bestSgMse,
-                      mse(specularSums, defaultSg), normalBest.sigmaN, bestNormalMse,
+                      sceneName.c_str(), kClassNames[k], pixels / frames, sgBest.beta, sgBest.kappa,
+                      bestSgMse, mse(specularSums, defaultSg), normalBest.sigmaN, bestNormalMse,
                       mse(specularSums, defaultNormal), runs[bestSgDiffuse].settings.diffuseSharpness,
                       bestSgDiffuseMse, mse(diffuseSums, defaultSgDiffuse),
                       runs[bestNormalDiffuse].settings.sigmaN, bestNormalDiffuseMse,

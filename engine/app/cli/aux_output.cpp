@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
 #include "app/cli/upsample_views.h"
+#include "core/error.h"
 #include "io/image_io.h"
 #include "render/shader_math.h"
 
@@ -33,7 +33,9 @@ void opaque(std::vector<float>& rgba) {
     for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 1.0f;
 }
 
-uint8_t toByte(float v) { return uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) * 255.0f)); }
+uint8_t toByte(float v) {
+    return uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) * 255.0f));
+}
 
 // direct.exr, and diffuse_indirect.exr and specular_indirect.exr with GI on: the light buffers of --aux.
 void writeLightBuffers(Renderer& renderer, const std::filesystem::path& dir,
@@ -95,8 +97,9 @@ AuxView parseAuxView(const std::string& value) {
     if (value == "voxels") return AuxView::Voxels;
     if (value == "resample") return AuxView::Resample;
     if (value == "weights") return AuxView::Weights;
-    throw UsageError("--view '" + value +
-                     "': expected final, direct, diffuse, specular, normals, roughness, voxels, resample or weights");
+    throw UsageError(
+        "--view '" + value +
+        "': expected final, direct, diffuse, specular, normals, roughness, voxels, resample or weights");
 }
 
 void writeFinalExr(Renderer& renderer, const std::filesystem::path& path) {
@@ -151,7 +154,8 @@ std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view, uint32_t voxelM
     } else {
         vk::Image* source = &t.direct;
         if (view == AuxView::Normals || view == AuxView::Roughness) source = &t.normalRoughness;
-        if (view == AuxView::Voxels) source = &renderer.renderVoxelView(voxelMip);  // radiance: tone mapped below
+        if (view == AuxView::Voxels)
+            source = &renderer.renderVoxelView(voxelMip);  // radiance: tone mapped below
         rgba = renderer.readFloatImage(*source);
         sw = source->width();
         sh = source->height();
@@ -163,9 +167,12 @@ std::vector<uint8_t> viewImage(Renderer& renderer, AuxView view, uint32_t voxelM
         const size_t x = (i / 4) % t.width, y = (i / 4) / t.width;
         const size_t s = ((y * sh / t.height) * sw + x * sw / t.width) * 4;
         glm::vec3 c(rgba[s], rgba[s + 1], rgba[s + 2]);
-        if (view == AuxView::Normals) c = c * 0.5f + 0.5f;
-        else if (view == AuxView::Roughness) c = glm::vec3(rgba[s + 3]);
-        else c = glsl::linearToSrgb(glsl::toneMapAces(c, exposure));
+        if (view == AuxView::Normals)
+            c = c * 0.5f + 0.5f;
+        else if (view == AuxView::Roughness)
+            c = glm::vec3(rgba[s + 3]);
+        else
+            c = glsl::linearToSrgb(glsl::toneMapAces(c, exposure));
         for (size_t k = 0; k < 3; ++k) bytes[i + k] = toByte(c[int(k)]);
         bytes[i + 3] = 255;
     }

@@ -20,8 +20,8 @@ uint32_t ParsedArgs::getUint(const std::string& name, uint32_t min, uint32_t max
     uint64_t value = 0;
     auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (error != std::errc() || end != text.data() + text.size() || value < min || value > max)
-        throw UsageError("--" + name + " '" + text + "': expected an integer from " + std::to_string(min) + " to " +
-                         std::to_string(max));
+        throw UsageError("--" + name + " '" + text + "': expected an integer from " + std::to_string(min) +
+                         " to " + std::to_string(max));
     return uint32_t(value);
 }
 
@@ -47,7 +47,8 @@ std::optional<ParsedArgs> CommandSpec::parse(int argc, char** argv, int first) c
             return std::nullopt;
         }
         if (arg.rfind("--", 0) != 0)
-            throw UsageError("vct " + name_ + ": unexpected argument '" + arg + "' (see vct " + name_ + " --help)");
+            throw UsageError("vct " + name_ + ": unexpected argument '" + arg + "' (see vct " + name_ +
+                             " --help)");
         std::string key = arg.substr(2), value;
         bool inlineValue = false;
         if (size_t eq = key.find('='); eq != std::string::npos) {
@@ -58,14 +59,18 @@ std::optional<ParsedArgs> CommandSpec::parse(int argc, char** argv, int first) c
         const Option* option = nullptr;
         for (const Option& candidate : options_)
             if (candidate.name == key) option = &candidate;
-        if (!option) throw UsageError("vct " + name_ + ": unknown flag '--" + key + "' (see vct " + name_ + " --help)");
+        if (!option)
+            throw UsageError("vct " + name_ + ": unknown flag '--" + key + "' (see vct " + name_ +
+                             " --help)");
         if (option->valueName.empty()) {
             if (inlineValue) throw UsageError("vct " + name_ + ": --" + key + " takes no value");
             args.values_[key] = "1";
             continue;
         }
         if (!inlineValue) {
-            if (i + 1 >= argc) throw UsageError("vct " + name_ + ": --" + key + " needs a value (" + option->valueName + ")");
+            if (i + 1 >= argc)
+                throw UsageError("vct " + name_ + ": --" + key + " needs a value (" + option->valueName +
+                                 ")");
             value = argv[++i];
         }
         args.values_[key] = value;
@@ -79,7 +84,8 @@ std::string CommandSpec::help() const {
     for (const Option& option : options_) {
         std::string flag = "  --" + option.name + (option.valueName.empty() ? "" : " " + option.valueName);
         out << flag << std::string(flag.size() < 28 ? 28 - flag.size() : 1, ' ') << option.help;
-        if (!option.defaultValue.empty() && !option.valueName.empty()) out << " (default " << option.defaultValue << ")";
+        if (!option.defaultValue.empty() && !option.valueName.empty())
+            out << " (default " << option.defaultValue << ")";
         out << "\n";
     }
     out << "  --help                    this text\n";

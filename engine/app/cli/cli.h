@@ -10,14 +10,14 @@
 namespace vct {
 
 struct Option {
-    std::string name;      // without the leading "--"
-    std::string valueName; // empty: a switch without a value
+    std::string name;       // without the leading "--"
+    std::string valueName;  // empty: a switch without a value
     std::string help;
     std::string defaultValue;
 };
 
 class ParsedArgs {
-public:
+  public:
     bool has(const std::string& name) const { return values_.count(name) > 0; }
     std::string get(const std::string& name) const;  // the value given, else the option's default
     uint32_t getUint(const std::string& name, uint32_t min, uint32_t max) const;
@@ -25,14 +25,14 @@ public:
     // "WxH", each in [1, maxDimension].
     std::pair<uint32_t, uint32_t> getSize(const std::string& name, uint32_t maxDimension) const;
 
-private:
+  private:
     friend class CommandSpec;
     std::map<std::string, std::string> values_;
     std::map<std::string, std::string> defaults_;
 };
 
 class CommandSpec {
-public:
+  public:
     CommandSpec(std::string name, std::string summary, std::vector<Option> options);
     // Parses argv[first..]; "--help" returns nullopt after printing help to stdout.
     std::optional<ParsedArgs> parse(int argc, char** argv, int first) const;
@@ -40,7 +40,7 @@ public:
     const std::string& name() const { return name_; }
     const std::string& summary() const { return summary_; }
 
-private:
+  private:
     std::string name_, summary_;
     std::vector<Option> options_;
 };

@@ -14,8 +14,8 @@
 #include "app/cli/cli.h"
 #include "app/cli/commands.h"
 #include "core/error.h"
-#include "report/image_metrics.h"
 #include "io/safe_write.h"
+#include "report/image_metrics.h"
 #include "report/truth_metrics.h"
 #include "scene/input_limits.h"
 

@@ -46,7 +46,8 @@ std::vector<Option> renderOptions() {
 
 const CommandSpec& renderSpec() {
     static const CommandSpec spec(
-        "render", "Renders frames headless (no window) and writes DIR/final.png, DIR/final.exr, DIR/timings.json.",
+        "render",
+        "Renders frames headless (no window) and writes DIR/final.png, DIR/final.exr, DIR/timings.json.",
         renderOptions());
     return spec;
 }
@@ -59,18 +60,22 @@ int runRenderCommand(int argc, char** argv, int first) {
     const ParsedArgs& args = *parsed;
     SessionOptions options = sessionOptions(args);
     const uint32_t frames = args.getUint("frames", 1, 100000);
-    const uint32_t warmup = args.has("warmup") ? args.getUint("warmup", 0, frames - 1) : std::min(10u, frames / 4);
+    const uint32_t warmup =
+        args.has("warmup") ? args.getUint("warmup", 0, frames - 1) : std::min(10u, frames / 4);
     const std::filesystem::path outDir = args.get("out");
     const AuxView view = parseAuxView(args.get("view"));
     const std::optional<CameraPath> cameraPath =
-        args.has("camera-path") ? std::optional<CameraPath>(loadCameraPath(args.get("camera-path"))) : std::nullopt;
+        args.has("camera-path") ? std::optional<CameraPath>(loadCameraPath(args.get("camera-path")))
+                                : std::nullopt;
     const uint32_t cutFrame = args.has("camera-cut") ? args.getUint("camera-cut", 1, frames - 1) : frames;
     // --voxel-mip M: 0 .. mipCount − 1 of the grid (log2(N) + 1 mips), checked before any frame is rendered.
-    if (args.has("voxel-mip") && view != AuxView::Voxels) throw UsageError("--voxel-mip: only with --view voxels");
+    if (args.has("voxel-mip") && view != AuxView::Voxels)
+        throw UsageError("--voxel-mip: only with --view voxels");
     if (view == AuxView::Voxels && !options.settings.gi)
         throw UsageError("--view voxels: there is no voxel grid with --gi off");
     // The per-pixel sum of upsampling weights is an output of its own, written only when something shows it.
-    options.settings.writeWeightSum = args.has("aux") || view == AuxView::Weights || view == AuxView::Resample;
+    options.settings.writeWeightSum =
+        args.has("aux") || view == AuxView::Weights || view == AuxView::Resample;
     // Checked before any frame: with GI off the frame has no indirect light, weights or re-traced pixels.
     if (auxViewNeedsGi(view) && !options.settings.gi)
         throw UsageError(std::string("--view ") + auxViewName(view) +
@@ -87,7 +92,8 @@ int runRenderCommand(int argc, char** argv, int first) {
         Renderer& renderer = session.renderer();
         const uint32_t mip = view == AuxView::Voxels ? voxelMip(renderer.voxelGrid()->mipCount()) : 0;
         for (uint32_t frame = 0; frame < frames; ++frame) {
-            FrameInput input = fixedStepFrame(session.scene(), frame, warmup, cameraPath ? &*cameraPath : nullptr);
+            FrameInput input =
+                fixedStepFrame(session.scene(), frame, warmup, cameraPath ? &*cameraPath : nullptr);
             if (frame == cutFrame) input.cut = true;
             if (frame >= cutFrame) input.camera = cutCamera(input.camera);
             renderer.render(input);

@@ -35,14 +35,14 @@ Option settingOption(std::string_view name);
 void applySettingArgs(const ParsedArgs& args, RenderSettings& settings);
 
 class Session {
-public:
+  public:
     explicit Session(const SessionOptions& options);
     ~Session();
     vk::Context& context() { return *context_; }
     const Scene& scene() const { return scene_; }
     Renderer& renderer() { return *renderer_; }
 
-private:
+  private:
     Scene scene_;
     std::unique_ptr<vk::Context> context_;
     std::unique_ptr<Renderer> renderer_;

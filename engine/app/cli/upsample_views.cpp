@@ -21,7 +21,8 @@ std::vector<float> readWeightSum(Renderer& renderer) {
 
 // A 5-stop ramp (black, blue, cyan, yellow, white) at t ∈ [0, 1].
 glm::vec3 heat(float t) {
-    static const glm::vec3 stops[] = {{0, 0, 0}, {0.1f, 0.2f, 1.0f}, {0, 0.9f, 0.9f}, {1.0f, 0.9f, 0}, {1, 1, 1}};
+    static const glm::vec3 stops[] = {
+        {0, 0, 0}, {0.1f, 0.2f, 1.0f}, {0, 0.9f, 0.9f}, {1.0f, 0.9f, 0}, {1, 1, 1}};
     t = std::clamp(std::isfinite(t) ? t : 0.0f, 0.0f, 1.0f) * 4.0f;
     const int i = std::min(int(t), 3);
     return glm::mix(stops[i], stops[i + 1], t - float(i));
@@ -63,7 +64,8 @@ std::vector<uint8_t> weightHeatMap(Renderer& renderer) {
 
 std::vector<std::string> writeUpsampleAux(Renderer& renderer, const std::filesystem::path& dir) {
     // Nothing is upsampled without GI or at trace scale 1 (every pixel traced): no weights to write.
-    if (!renderer.voxelGrid() || renderer.settings().traceScale <= 1 || !renderer.settings().writeWeightSum) return {};
+    if (!renderer.voxelGrid() || renderer.settings().traceScale <= 1 || !renderer.settings().writeWeightSum)
+        return {};
     FrameTargets& t = renderer.targets();
     std::vector<float> weights = renderer.readFloatImage(t.weightSum);
     std::vector<uint8_t> mask(size_t(t.width) * t.height * 4, 255);

@@ -21,7 +21,8 @@ namespace {
 const CommandSpec& voxelizeSpec() {
     static const CommandSpec spec(
         "voxelize",
-        "Voxelizes the scene at t = 0 (and lights the voxels) and writes FILE.vdb: sparse OpenVDB grids albedo, normal,\n"
+        "Voxelizes the scene at t = 0 (and lights the voxels) and writes FILE.vdb: sparse OpenVDB grids "
+        "albedo, normal,\n"
         "emission, opacity, radiance and the static geometry's accumulator (static_*), read back by\n"
         "vct render --voxel-cache FILE.vdb.",
         {{"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
@@ -80,7 +81,8 @@ int runVoxelizeCommand(int argc, char** argv, int first) {
     const ParsedArgs& args = *parsed;
     const std::filesystem::path out = args.get("out");
     if (out.empty()) throw UsageError("vct voxelize: --out FILE.vdb is required");
-    if (out.extension() != ".vdb") throw UsageError("--out '" + out.string() + "': expected a .vdb file name");
+    if (out.extension() != ".vdb")
+        throw UsageError("--out '" + out.string() + "': expected a .vdb file name");
 
     SessionOptions options;
     options.scene = args.get("scene");
@@ -126,9 +128,9 @@ int runVoxelizeCommand(int argc, char** argv, int first) {
                         100.0 * double(g.activeVoxels) / double(total));
         const uint64_t fileBytes = std::filesystem::file_size(out, error);
         const uint64_t denseBytes = denseVoxelBytes(n);
-        std::printf("wrote %s: %s (%llu bytes), dense %s (%.1f%% of it)\n", out.c_str(), megabytes(fileBytes).c_str(),
-                    static_cast<unsigned long long>(fileBytes), megabytes(denseBytes).c_str(),
-                    100.0 * double(fileBytes) / double(denseBytes));
+        std::printf("wrote %s: %s (%llu bytes), dense %s (%.1f%% of it)\n", out.c_str(),
+                    megabytes(fileBytes).c_str(), static_cast<unsigned long long>(fileBytes),
+                    megabytes(denseBytes).c_str(), 100.0 * double(fileBytes) / double(denseBytes));
     }
     // Counted after the device is destroyed, so leaks reported at teardown fail the run too.
     checkValidation(options);

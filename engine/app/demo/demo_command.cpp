@@ -4,6 +4,8 @@
 // rendered (side A, and side B for the split view; or the path-traced reference told what to trace, on its
 // own thread: app/demo/demo_reference.h) → views and UI composed in the window (app/demo/demo_display.h).
 #define GLFW_INCLUDE_VULKAN
+#include "app/demo/demo_command.h"
+
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <unistd.h>
@@ -16,7 +18,7 @@
 #include <string>
 
 #include "app/cli/cli.h"
-#include "app/demo/demo_command.h"
+#include "app/cli/session.h"
 #include "app/demo/demo_controls.h"
 #include "app/demo/demo_display.h"
 #include "app/demo/demo_input.h"
@@ -26,7 +28,6 @@
 #include "app/demo/demo_script.h"
 #include "app/demo/demo_timers.h"
 #include "app/demo/fly_camera.h"
-#include "app/cli/session.h"
 #include "app/demo/shader_reload.h"
 #include "app/demo/window.h"
 #include "core/error.h"

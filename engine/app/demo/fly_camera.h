@@ -17,7 +17,7 @@ struct FlyInput {
 };
 
 class FlyCamera {
-public:
+  public:
     static constexpr float kFastFactor = 4.0f;
     static constexpr float kMaxPitch = 1.55f;  // ≈ 89°
 
@@ -35,7 +35,7 @@ public:
     float pitch() const { return pitch_; }
     float speed() const { return speed_; }
 
-private:
+  private:
     CameraView start_;  // also the lens (yfov, znear, zfar) kept after moving
     bool moved_ = false;
     glm::vec3 position_{0.0f};

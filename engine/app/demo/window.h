@@ -17,7 +17,7 @@ namespace vct {
 
 // Owns GLFW itself (glfwInit/glfwTerminate) and one window. No display → vct::Error.
 class Window {
-public:
+  public:
     Window(const std::string& title, uint32_t width, uint32_t height);
     ~Window();
     Window(const Window&) = delete;
@@ -32,7 +32,7 @@ public:
     // The first file dropped on the window since the last call (empty: none).
     std::string takeDroppedFile();
 
-private:
+  private:
     static void onFramebufferSize(GLFWwindow* window, int width, int height);
     static void onDrop(GLFWwindow* window, int count, const char** paths);
     GLFWwindow* window_ = nullptr;
@@ -49,7 +49,7 @@ struct SwapchainImage {
 };
 
 class Swapchain {
-public:
+  public:
     // Creates the surface and checks the context's queue can present to it; the swapchain itself comes
     // from recreate().
     Swapchain(const vk::Context& context, Window& window);
@@ -70,7 +70,7 @@ public:
 
     VkExtent2D extent() const { return extent_; }
 
-private:
+  private:
     VkSurfaceFormatKHR chooseFormat() const;
 
     const vk::Context& context_;
