@@ -9,6 +9,7 @@ packages=(
   libimgui-dev                                                               # the demo's panel (+ backend sources)
   libembree-dev libtbb-dev                                                   # the path-traced reference
   libgtest-dev xvfb xauth                                                    # tests, headless window
+  clang-format git                                                           # the format check (Debian 12: version 14)
 )
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

@@ -24,8 +24,10 @@ layout(set = 0, binding = 4) uniform sampler2D depthTexture;
 layout(set = 0, binding = 5) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 6) uniform sampler2D baseColorMetallicTexture;
 layout(set = 0, binding = 7) uniform sampler2D emissiveOcclusionTexture;
-layout(set = 0, binding = 8, rgba32ui) uniform readonly uimage2D indirectImage;  // full-res demodulated indirect light (lib/indirect_pack.glsl)
-layout(set = 0, binding = 10) uniform sampler2D dfgTable;  // split-sum DFG table, uv = (n·v, perceptual roughness)
+// Full-res demodulated indirect light (lib/indirect_pack.glsl).
+layout(set = 0, binding = 8, rgba32ui) uniform readonly uimage2D indirectImage;
+// Split-sum DFG table, uv = (n·v, perceptual roughness).
+layout(set = 0, binding = 10) uniform sampler2D dfgTable;
 
 // Indirect light leaving the surface at `pixel` towards the camera.
 vec3 indirect(ivec2 pixel) {

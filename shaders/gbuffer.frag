@@ -75,13 +75,15 @@ void main() {
     const vec3 mapped = materialTexture(normalTexture, inUv).xyz * 2.0 - 1.0;
     const float normalScale = material.emissiveNormalScale.w;
     const vec3 scaled = vec3(mapped.xy * normalScale, mapped.z);
-    const vec3 shadingNormal = safeNormalize(tangent * scaled.x + bitangent * scaled.y + normal * scaled.z, normal);
+    const vec3 shadingNormal =
+        safeNormalize(tangent * scaled.x + bitangent * scaled.y + normal * scaled.z, normal);
 
     const vec4 mr = materialTexture(metallicRoughnessTexture, inUv);
     const float metallic = clamp(material.metallicRoughnessCutoffAo.x * mr.b, 0.0, 1.0);
     const float perceptualRoughness = clamp(material.metallicRoughnessCutoffAo.y * mr.g, 0.0, 1.0);
     const vec3 emissive = material.emissiveNormalScale.rgb * materialTexture(emissiveTexture, inUv).rgb;
-    const float occlusion = 1.0 + material.metallicRoughnessCutoffAo.w * (materialTexture(occlusionTexture, inUv).r - 1.0);
+    const float occlusion =
+        1.0 + material.metallicRoughnessCutoffAo.w * (materialTexture(occlusionTexture, inUv).r - 1.0);
 
     // Normal filtering widens the GGX lobe: α'² from α² (α = perceptual²), written back as perceptual √α'.
     const float alpha = alphaFromPerceptual(perceptualRoughness);
@@ -99,7 +101,8 @@ void main() {
 #endif
     }
     if ((frame.flags & VCT_FLAG_SPECULAR_AA) != 0u)
-        alpha2 = specularAAAlpha2(alpha2, specularAAVariance(dot(dndx, dndx), dot(dndy, dndy)), SPECULAR_AA_THRESHOLD);
+        alpha2 = specularAAAlpha2(alpha2, specularAAVariance(dot(dndx, dndx), dot(dndy, dndy)),
+                                  SPECULAR_AA_THRESHOLD);
     const float roughness = sqrt(sqrt(saturate(alpha2)));
 
     outNormalRoughness = vec4(shadingNormal, roughness);

@@ -44,11 +44,11 @@ layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 // The configuration, fixed per pipeline (engine/passes/upsample_pass.cpp keeps one pipeline per combination).
 layout(constant_id = VCT_SPEC_TRACE_SCALE) const int SCALE = 4;  // trace scale s: 2 or 4
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHTS) const int WEIGHTS = VCT_WEIGHTS_SG;
-layout(constant_id = VCT_UPSAMPLE_SPEC_TEMPORAL) const bool TEMPORAL = true;  // --temporal
+layout(constant_id = VCT_UPSAMPLE_SPEC_TEMPORAL) const bool TEMPORAL = true;      // --temporal
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;  // write weightSumImage
 
-// Resources: bound by engine/passes/upsample_pass.cpp (its resource table gives these binding numbers and is checked
-// against them when the pipeline is made).
+// Resources: bound by engine/passes/upsample_pass.cpp (its resource table gives these binding numbers and is
+// checked against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform usampler2D indirectLow;  // the trace's output (lib/indirect_pack.glsl)
 layout(set = 0, binding = 5) uniform sampler2D depthTexture;
@@ -61,13 +61,18 @@ layout(set = 0, binding = 14) uniform sampler2D guidePositionTexture;
 layout(set = 0, binding = 15) uniform sampler2D guideNormalTexture;
 layout(set = 0, binding = 16) uniform sampler2D guideAxisTexture;
 layout(set = 0, binding = 10) uniform usampler2D indirectHistory;  // last frame's output
-layout(set = 0, binding = 3, rgba32ui) uniform writeonly uimage2D indirectImage;  // diffuse, specular + accumulated weights A
-layout(set = 0, binding = 12, rgba16f) uniform writeonly image2D weightSumImage;  // r: sum of weights (diffuse), g: (specular), b: 1 re-traced
-// The pixels to re-trace (count, the resample pass's indirect dispatch, pixels).
+// Diffuse, specular + accumulated weights A.
+layout(set = 0, binding = 3, rgba32ui) uniform writeonly uimage2D indirectImage;
+// r: sum of weights (diffuse), g: (specular), b: 1 re-traced.
+layout(set = 0, binding = 12, rgba16f) uniform writeonly image2D weightSumImage;
+// The pixels to re-trace (count, the resample pass's indirect dispatch, pixels). clang-format would put the
+// instance name of this GLSL block on a line of its own.
+// clang-format off
 layout(set = 0, binding = 13, std430) buffer ResampleList {
     ResampleListHeader header;
     uint pixels[];
 } resampleList;
+// clang-format on
 
 // Tent radius in low-res texels: 1 (bilinear: the 2×2 nearest) without a guide; 2 (4×4) with one, so that the
 // guide has candidates left to choose from where it rejects some.
@@ -106,7 +111,8 @@ vec2 lobeLogWeights(Guide a, vec3 sharpnessA, vec3 nq, vec3 axisQ, vec3 sharpnes
     if (WEIGHTS == VCT_WEIGHTS_BILINEAR) return vec2(0.0);
     if (WEIGHTS == VCT_WEIGHTS_NORMAL) return vec2(normalLogWeight(a.n, nq, frame.upsample.normalVariance));
     const float beta = frame.upsample.beta;
-    const float diffuseSharpness = smoothedSharpness(1.0 / frame.upsample.diffuseSharpness, frame.upsample.kappa);
+    const float diffuseSharpness =
+        smoothedSharpness(1.0 / frame.upsample.diffuseSharpness, frame.upsample.kappa);
     return vec2(equalLobeLogWeight(a.n, nq, diffuseSharpness, beta),
                 lobeLogWeightPrepared(a.specularAxis, sharpnessA, axisQ, sharpnessQ, beta));
 }
@@ -128,10 +134,11 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     const float kappa = frame.upsample.kappa;
     // A background pixel's "position" is at the far plane (or infinite): its weights may be garbage, even NaN;
     // its outputs are replaced by zeros at the end, without a branch around the work.
-    const Guide here = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0), position,
-                                        frame.cameraPosition, kappa);
+    const Guide here =
+        guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0), position, frame.cameraPosition, kappa);
     const vec4 herePlane = scaledTangentPlane(here.n, here.p, here.cameraDistance);
-    const vec3 hereSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.specularSharpness) : vec3(0.0);
+    const vec3 hereSharpness =
+        WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.specularSharpness) : vec3(0.0);
 
     // ---- spatial: the cell's low-res samples, each at its own jittered full-res position ----
     // Two sums of the same weights: spatialWeight (the sum of weights W_s of docs/design.md §6.5, for τ and the
@@ -144,10 +151,12 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         const Sample j = samples[k];
         // Kernel × validity: 0 outside the image and on the background.
         const vec2 offset = (vec2(pixel) - j.at) / float(SCALE);
-        const float f = (WEIGHTS == VCT_WEIGHTS_BILINEAR ? tentKernel(offset, 1.0) : bsplineKernel(offset)) * j.valid;
-        const vec2 w = f * (exp(planeLogWeightFrom(herePlane, j.p) +
-                                lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness)) +
-                            FALLBACK_SHARE);
+        const float f =
+            (WEIGHTS == VCT_WEIGHTS_BILINEAR ? tentKernel(offset, 1.0) : bsplineKernel(offset)) * j.valid;
+        const vec2 w =
+            f * (exp(planeLogWeightFrom(herePlane, j.p) +
+                     lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness)) +
+                 FALLBACK_SHARE);
         const float share = WEIGHTS != VCT_WEIGHTS_BILINEAR && all(equal(j.at, vec2(pixel)))
                                 ? EXACT_SAMPLE_WEIGHT / BSPLINE_CENTRE
                                 : 1.0;
@@ -202,13 +211,13 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         const Guide then = guideFromGBuffer(texelFetch(prevNormalRoughnessTexture, at, 0),
                                             worldFromDepth(frame.prevInvViewProj, atUv, prevDepth),
                                             frame.prevCameraPosition, kappa);
-        const vec3 thenSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(then.specularSharpness) : vec3(0.0);
+        const vec3 thenSharpness =
+            WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(then.specularSharpness) : vec3(0.0);
         const uvec4 historyTexel = texelFetch(indirectHistory, at, 0);
         const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
         const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
-        const vec2 guide =
-            exp(planeLogWeightFrom(herePlane, then.p) + lobeLogWeights(here, hereSharpness, then.n, then.specularAxis,
-                                                                  thenSharpness));
+        const vec2 guide = exp(planeLogWeightFrom(herePlane, then.p) +
+                               lobeLogWeights(here, hereSharpness, then.n, then.specularAxis, thenSharpness));
         // Outside last frame's image or on its background: no history (the select also keeps the garbage
         // guide of a far-plane position out of the sums).
         historyWeight = inside && !isBackground(prevDepth) && !isDegeneratePosition(then.p)

@@ -13,9 +13,10 @@ layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) readonly buffer Static { uint staticAccum[]; };
 layout(set = 0, binding = 2) readonly buffer Dynamic { uint dynamicAccum[]; };
-layout(set = 0, binding = 3, rgba8) uniform writeonly image3D albedoImage;     // albedo, opacity
-layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D normalImage;   // averaged normal (not renormalised), w unused
-layout(set = 0, binding = 5, rgba16f) uniform writeonly image3D emissionImage; // emitted radiance
+layout(set = 0, binding = 3, rgba8) uniform writeonly image3D albedoImage;  // albedo, opacity
+// Averaged normal (not renormalised), w unused.
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D normalImage;
+layout(set = 0, binding = 5, rgba16f) uniform writeonly image3D emissionImage;  // emitted radiance
 
 layout(push_constant) uniform Push { VoxelizePushConstants push; };
 

@@ -26,11 +26,17 @@ layout(push_constant) uniform Push { VoxelizePushConstants push; };
 
 const uint kFloatsPerVertex = 12;
 
-vec3 vertexPosition(uint v) { return vec3(vertexData[v * kFloatsPerVertex], vertexData[v * kFloatsPerVertex + 1],
-                                          vertexData[v * kFloatsPerVertex + 2]); }
-vec3 vertexNormal(uint v) { return vec3(vertexData[v * kFloatsPerVertex + 3], vertexData[v * kFloatsPerVertex + 4],
-                                        vertexData[v * kFloatsPerVertex + 5]); }
-vec2 vertexUv(uint v) { return vec2(vertexData[v * kFloatsPerVertex + 6], vertexData[v * kFloatsPerVertex + 7]); }
+vec3 vertexPosition(uint v) {
+    return vec3(vertexData[v * kFloatsPerVertex], vertexData[v * kFloatsPerVertex + 1],
+                vertexData[v * kFloatsPerVertex + 2]);
+}
+vec3 vertexNormal(uint v) {
+    return vec3(vertexData[v * kFloatsPerVertex + 3], vertexData[v * kFloatsPerVertex + 4],
+                vertexData[v * kFloatsPerVertex + 5]);
+}
+vec2 vertexUv(uint v) {
+    return vec2(vertexData[v * kFloatsPerVertex + 6], vertexData[v * kFloatsPerVertex + 7]);
+}
 
 // One texel of the given mip (nearest, wrapping): voxels average many samples anyway, and a plain fetch avoids
 // the filtering path, which is very slow in compute on software rasterizers with large textures.
@@ -88,8 +94,8 @@ void main() {
                 const vec2 texcoord = bary.x * uv[0] + bary.y * uv[1] + bary.z * uv[2];
                 const vec4 base = material.baseColorFactor * fetchTexel(baseColorTexture, texcoord, baseLod);
                 if (mask && base.a < material.metallicRoughnessCutoffAo.z) continue;  // cut-out
-                const vec3 emission = material.emissiveNormalScale.rgb *
-                                      fetchTexel(emissiveTexture, texcoord, emissiveLod).rgb;
+                const vec3 emission =
+                    material.emissiveNormalScale.rgb * fetchTexel(emissiveTexture, texcoord, emissiveLod).rgb;
                 // Interpolated shading normal; the face normal when the vertex normals cancel out.
                 vec3 normal = bary.x * nrm[0] + bary.y * nrm[1] + bary.z * nrm[2];
                 if (dot(normal, normal) < 1e-12) normal = faceNormal;

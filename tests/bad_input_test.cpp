@@ -2,11 +2,7 @@
 // 1: a bad file), by itself (no signal, no hang), and with exactly one non-empty line on stderr that names
 // the problem. The glTF files are written here: a valid one-triangle scene with a texture (which must render)
 // and broken variants of it.
-#include "io/image_io.h"
-#include "test_util.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -15,8 +11,12 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "io/image_io.h"
+#include "test_util.h"
 
 namespace vct {
 namespace {
@@ -43,7 +43,8 @@ std::string lower(std::string text) {
 
 // Runs vct with `args` and checks the failure: exit status `expectedCode` (and 1..127 in any case, i.e. not
 // a crash or a signal), one non-empty line on stderr containing every string in `mentions` (case-insensitive).
-void expectFailure(const std::vector<std::string>& args, int expectedCode, const std::vector<std::string>& mentions) {
+void expectFailure(const std::vector<std::string>& args, int expectedCode,
+                   const std::vector<std::string>& mentions) {
     RunResult r = test::runVct(args, kTimeout);
     std::string command = "vct";
     for (const std::string& a : args) command += " " + a;
@@ -62,7 +63,8 @@ void expectFailure(const std::vector<std::string>& args, int expectedCode, const
     EXPECT_EQ(err.find_first_of("\r\n"), std::string::npos) << "stderr is not one line:\n" << r.err;
     EXPECT_NE(err.find_first_not_of(" \t"), std::string::npos) << "stderr is blank";
     for (const std::string& m : mentions)
-        EXPECT_NE(lower(err).find(lower(m)), std::string::npos) << "stderr does not mention '" << m << "': " << err;
+        EXPECT_NE(lower(err).find(lower(m)), std::string::npos)
+            << "stderr does not mention '" << m << "': " << err;
 }
 
 // ---- a minimal scene: one triangle with UVs and a base colour texture ----
@@ -72,7 +74,7 @@ constexpr size_t kBinSize = 60;
 
 std::vector<unsigned char> triangleBin(float x1 = 1.0f) {
     const float values[] = {0, 0, 0, x1, 0, 0, 0, 1, 0,  // POSITION
-                            0, 1, 1, 1, 0, 0};           // TEXCOORD_0
+                            0, 1, 1, 1,  0, 0};          // TEXCOORD_0
     std::vector<unsigned char> bytes(sizeof(values));
     std::memcpy(bytes.data(), values, sizeof(values));
     return bytes;
@@ -84,19 +86,27 @@ std::string triangleGltf(const std::string& imageUri) {
         {"scene", 0},
         {"scenes", {{{"nodes", {0}}}}},
         {"nodes", {{{"name", "triangle"}, {"mesh", 0}}}},
-        {"meshes", {{{"name", "Triangle"},
-                     {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}}}}}}},
-        {"materials", {{{"name", "textured"},
-                        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
-                        {"doubleSided", true}}}},
+        {"meshes",
+         {{{"name", "Triangle"},
+           {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}}}}}}},
+        {"materials",
+         {{{"name", "textured"},
+           {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+           {"doubleSided", true}}}},
         {"textures", {{{"source", 0}}}},
         {"images", {{{"uri", imageUri}}}},
         {"buffers", {{{"uri", "scene.bin"}, {"byteLength", kBinSize}}}},
-        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
-                         {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}}}},
-        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
-                        {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
-                       {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
+          {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}}}},
+        {"accessors",
+         {{{"bufferView", 0},
+           {"componentType", 5126},
+           {"count", 3},
+           {"type", "VEC3"},
+           {"min", {0, 0, 0}},
+           {"max", {1, 1, 0}}},
+          {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}},
     };
     return gltf.dump(2);
 }
@@ -118,7 +128,8 @@ fs::path writeTriangleScene(const fs::path& dir, const std::vector<unsigned char
 }
 
 std::vector<std::string> renderArgs(const fs::path& scene, const fs::path& dir) {
-    return {"render", "--scene", scene.string(), "--size", "32x18", "--frames", "1", "--out", (dir / "out").string()};
+    return {"render", "--scene", scene.string(),        "--size", "32x18", "--frames",
+            "1",      "--out",   (dir / "out").string()};
 }
 
 // The control: the unbroken scene renders, so each failure below is caused by its one defect.
@@ -141,7 +152,8 @@ TEST(BadInput, MissingSceneFile) {
 
 TEST(BadInput, MalformedJson) {
     const fs::path dir = caseDir();
-    test::writeTextFile(dir / "broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [{\"nodes\": [0}\n");
+    test::writeTextFile(dir / "broken.gltf",
+                        "{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [{\"nodes\": [0}\n");
     expectFailure(renderArgs(dir / "broken.gltf", dir), kFileError, {"broken.gltf", "parse"});
 }
 
@@ -187,7 +199,8 @@ TEST(BadInput, UnknownFlag) {
 
 TEST(BadInput, NonNumericFrames) {
     const fs::path dir = caseDir();
-    expectFailure({"render", "--frames", "abc", "--out", (dir / "out").string()}, kUsageError, {"--frames", "abc"});
+    expectFailure({"render", "--frames", "abc", "--out", (dir / "out").string()}, kUsageError,
+                  {"--frames", "abc"});
 }
 
 TEST(BadInput, UnknownSubcommand) {

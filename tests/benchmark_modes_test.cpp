@@ -1,11 +1,10 @@
-// `vct benchmark --mode scenes|scaling` (app/benchmark_scenes.cpp, app/benchmark_scaling.cpp): one entry per
+// `vct benchmark --mode scenes|scaling` (app/bench/benchmark_scenes.cpp, app/bench/benchmark_scaling.cpp): one entry per
 // scene or point with finite per-pass medians, frame ratios that add up, the report files, and bad modes.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "test_util.h"
@@ -16,9 +15,9 @@ namespace fs = std::filesystem;
 
 TEST(BenchmarkModes, ScenesReportsEveryRequestedScene) {
     const fs::path dir = vct::test::freshOutputDir("benchmark_modes/scenes");
-    const auto r = vct::test::runVct({"benchmark", "--mode", "scenes", "--scenes", "cornell,plane", "--size", "64x36",
-                                      "--voxels", "32", "--frames", "5", "--warmup", "1", "--block", "2",
-                                      "--validate", "--out", dir.string()});
+    const auto r = vct::test::runVct({"benchmark", "--mode", "scenes", "--scenes", "cornell,plane", "--size",
+                                      "64x36", "--voxels", "32", "--frames", "5", "--warmup", "1", "--block",
+                                      "2", "--validate", "--out", dir.string()});
     ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
     ASSERT_TRUE(fs::is_regular_file(dir / "scenes.md"));
     const nlohmann::json report = nlohmann::json::parse(std::ifstream(dir / "scenes.json"));
@@ -45,8 +44,9 @@ TEST(BenchmarkModes, BadModeAndMissingSceneAreUsageErrors) {
     ASSERT_TRUE(mode.exited());
     EXPECT_EQ(mode.exitCode, 2) << mode.describe();
     EXPECT_NE(mode.err.find("--mode 'fastest'"), std::string::npos) << mode.err;
-    const auto scene = vct::test::runVct({"benchmark", "--mode", "scenes", "--scenes", "cornell,/no/such.gltf",
-                                          "--size", "64x36", "--frames", "3", "--warmup", "1", "--out", dir.string()});
+    const auto scene =
+        vct::test::runVct({"benchmark", "--mode", "scenes", "--scenes", "cornell,/no/such.gltf", "--size",
+                           "64x36", "--frames", "3", "--warmup", "1", "--out", dir.string()});
     ASSERT_TRUE(scene.exited());
     EXPECT_NE(scene.exitCode, 0) << scene.describe();
     EXPECT_NE(scene.err.find("such.gltf"), std::string::npos) << scene.err;

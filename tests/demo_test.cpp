@@ -11,10 +11,10 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "app/demo_controls.h"
-#include "app/demo_reference.h"
-#include "app/demo_script.h"
-#include "app/demo_timers.h"
+#include "app/demo/demo_controls.h"
+#include "app/demo/demo_reference.h"
+#include "app/demo/demo_script.h"
+#include "app/demo/demo_timers.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "scene/builtin_scenes.h"

@@ -1,5 +1,5 @@
 // The demo's fly camera: starting pose, turning, pitch clamp, moving in the camera's frame.
-#include "app/fly_camera.h"
+#include "app/demo/fly_camera.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,7 @@
 // The vct program end to end: `vct render` on the built-in cornell scene (exit status, images, timings.json),
 // the informational commands, and every glTF sample model in shared/scenes. Renders are small (160x90, a few
 // frames) because CI runs them on lavapipe.
-#include "io/image_io.h"
-#include "test_util.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -13,10 +9,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "io/image_io.h"
+#include "test_util.h"
 
 namespace vct {
 namespace {
@@ -38,12 +38,12 @@ std::vector<float> luminances(const ImageRgba32f& image) {
 // ---- vct render on the cornell scene: one render per test process, shared by the tests below ----
 
 class RenderCornell : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         // Per process: ctest runs every test in its own process, possibly several at once.
         dir_ = new fs::path(test::freshOutputDir("render_cli/cornell-" + std::to_string(getpid())));
-        run_ = new RunResult(test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames", "4",
-                                           "--out", dir_->string(), "--validate"}));
+        run_ = new RunResult(test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames",
+                                           "4", "--out", dir_->string(), "--validate"}));
         std::cout << "vct render cornell 160x90 x4 --validate: " << run_->seconds << " s\n";
     }
     static void TearDownTestSuite() {
@@ -54,9 +54,7 @@ protected:
         run_ = nullptr;
         dir_ = nullptr;
     }
-    void SetUp() override {
-        ASSERT_TRUE(run_->exited() && run_->exitCode == 0) << run_->describe();
-    }
+    void SetUp() override { ASSERT_TRUE(run_->exited() && run_->exitCode == 0) << run_->describe(); }
 
     static fs::path* dir_;
     static RunResult* run_;
@@ -113,10 +111,12 @@ TEST_F(RenderCornell, ExrIsFiniteLitAndHasShadows) {
         dark += l < 0.1f * bright;
         lit += l > 10.0f * kAmbientMax;
     }
-    const double darkFraction = double(dark) / double(lum.size()), litFraction = double(lit) / double(lum.size());
-    std::cout << "cornell luminance: min " << lo << ", median " << sorted[sorted.size() / 2] << ", 99th percentile "
-              << bright << ", max " << hi << "; " << 100.0 * litFraction << "% of pixels above "
-              << 10.0f * kAmbientMax << ", " << 100.0 * darkFraction << "% below 10% of the 99th percentile\n";
+    const double darkFraction = double(dark) / double(lum.size()),
+                 litFraction = double(lit) / double(lum.size());
+    std::cout << "cornell luminance: min " << lo << ", median " << sorted[sorted.size() / 2]
+              << ", 99th percentile " << bright << ", max " << hi << "; " << 100.0 * litFraction
+              << "% of pixels above " << 10.0f * kAmbientMax << ", " << 100.0 * darkFraction
+              << "% below 10% of the 99th percentile\n";
 
     EXPECT_GT(hi - lo, 0.05f) << "the image is (nearly) constant";
     EXPECT_GT(bright, 0.5f) << "nothing is lit well above the ambient level";
@@ -150,7 +150,8 @@ TEST_F(RenderCornell, TimingsJsonFollowsTheSchema) {
     ASSERT_TRUE(timings.contains("warmup") && timings["warmup"].is_number_integer()) << timings.dump(2);
     EXPECT_EQ(timings["warmup"].get<int64_t>(), 1);
 
-    ASSERT_TRUE(timings.contains("frame_median_ms") && timings["frame_median_ms"].is_number()) << timings.dump(2);
+    ASSERT_TRUE(timings.contains("frame_median_ms") && timings["frame_median_ms"].is_number())
+        << timings.dump(2);
     const double frameMedian = timings["frame_median_ms"].get<double>();
     EXPECT_GT(frameMedian, 0.0);
 
@@ -250,13 +251,15 @@ std::string modelTestName(const ::testing::TestParamInfo<std::string>& info) {
 class RenderSharedModel : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RenderSharedModel, RendersWithValidationAndFiniteOutput) {
-    if (GetParam().empty()) GTEST_SKIP() << "no glTF models under " << kSharedScenes << " (shared/scenes absent)";
+    if (GetParam().empty())
+        GTEST_SKIP() << "no glTF models under " << kSharedScenes << " (shared/scenes absent)";
     const fs::path model = kSharedScenes / GetParam();
     ASSERT_TRUE(fs::is_regular_file(model)) << model;
     const fs::path dir = test::freshOutputDir("render_cli/models/" + model.stem().string());
-    RunResult r = test::runVct({"render", "--scene", model.string(), "--size", "160x90", "--frames", "2", "--out",
-                                dir.string(), "--validate"});
-    std::cout << "vct render " << model.filename().string() << " 160x90 x2 --validate: " << r.seconds << " s\n";
+    RunResult r = test::runVct({"render", "--scene", model.string(), "--size", "160x90", "--frames", "2",
+                                "--out", dir.string(), "--validate"});
+    std::cout << "vct render " << model.filename().string() << " 160x90 x2 --validate: " << r.seconds
+              << " s\n";
     RecordProperty("render_seconds", std::to_string(r.seconds));
     ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
     EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;

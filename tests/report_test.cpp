@@ -11,7 +11,7 @@
 #include <set>
 
 #include "io/image_io.h"
-#include "io/image_metrics.h"
+#include "report/image_metrics.h"
 #include "scene/camera_path.h"
 #include "test_util.h"
 
@@ -66,7 +66,8 @@ TEST(Report, ToneMappedPsnrUsesPeakOneNotTheHdrPeak) {
     const vct::ImageError hdr = vct::compareImages(reference, image);
     const vct::ImageError display = vct::compareToneMapped(reference, image, 1.0f);
     // HDR peak 1000: MSE 0.005 reads 83 dB, which says nothing about what is seen.
-    EXPECT_NEAR(hdr.psnr, 10.0 * std::log10(1000.0 * 1000.0 / 0.005), 1e-4);  // 0.6f − 0.5f is not 0.1 exactly
+    EXPECT_NEAR(hdr.psnr, 10.0 * std::log10(1000.0 * 1000.0 / 0.005),
+                1e-4);  // 0.6f − 0.5f is not 0.1 exactly
     // Display: ACES + sRGB of 0.5 and 0.6 differ by ~0.035, half the pixels: ~32 dB with peak 1.
     EXPECT_GT(display.psnr, 28.0);
     EXPECT_LT(display.psnr, 36.0);

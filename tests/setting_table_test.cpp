@@ -9,10 +9,10 @@
 #include <set>
 #include <string>
 
-#include "app/demo_controls.h"
-#include "app/session.h"
+#include "app/cli/session.h"
+#include "app/demo/demo_controls.h"
 #include "core/error.h"
-#include "io/settings_json.h"
+#include "report/settings_json.h"
 
 namespace vct {
 namespace {

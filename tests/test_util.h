@@ -40,13 +40,18 @@ struct RunResult {
     // For failure messages: how it ended, and what it wrote (clipped).
     std::string describe() const {
         auto clip = [](const std::string& text) {
-            return text.size() <= 4000 ? text : text.substr(0, 2000) + "\n[...]\n" + text.substr(text.size() - 2000);
+            return text.size() <= 4000 ? text
+                                       : text.substr(0, 2000) + "\n[...]\n" + text.substr(text.size() - 2000);
         };
         std::ostringstream s;
-        if (!startError.empty()) s << "could not start: " << startError;
-        else if (timedOut) s << "timed out after " << seconds << " s (killed)";
-        else if (signal) s << "killed by signal " << signal << " (" << strsignal(signal) << ")";
-        else s << "exit code " << exitCode;
+        if (!startError.empty())
+            s << "could not start: " << startError;
+        else if (timedOut)
+            s << "timed out after " << seconds << " s (killed)";
+        else if (signal)
+            s << "killed by signal " << signal << " (" << strsignal(signal) << ")";
+        else
+            s << "exit code " << exitCode;
         s << " after " << seconds << " s\n--- stdout ---\n" << clip(out) << "\n--- stderr ---\n" << clip(err);
         return s.str();
     }
@@ -58,7 +63,9 @@ inline RunResult runProcess(const std::string& program, const std::vector<std::s
                             std::chrono::seconds timeout = std::chrono::seconds(300)) {
     RunResult result;
     const auto start = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
 
     if (access(program.c_str(), X_OK) != 0) {
         result.startError = program + ": " + std::strerror(errno);
@@ -124,7 +131,8 @@ inline RunResult runProcess(const std::string& program, const std::vector<std::s
             pid_t r = waitpid(pid, &status, WNOHANG);
             if (r == pid) {
                 reaped = true;
-                drainDeadline = std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(500));
+                drainDeadline =
+                    std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(500));
             } else if (r < 0 && errno != EINTR) {
                 result.startError = std::string("waitpid: ") + std::strerror(errno);
                 break;
@@ -135,7 +143,8 @@ inline RunResult runProcess(const std::string& program, const std::vector<std::s
             result.timedOut = true;
             kill(-pid, SIGKILL);
             kill(pid, SIGKILL);
-            while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+            while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+            }
             reaped = true;
             break;
         }
@@ -145,7 +154,8 @@ inline RunResult runProcess(const std::string& program, const std::vector<std::s
             continue;
         }
         // Short slices while the child runs, so its exit is noticed even if something else holds the pipes.
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>((reaped ? drainDeadline : deadline) - now);
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>((reaped ? drainDeadline : deadline) - now);
         int ready = poll(fds, 2, int(std::clamp<long long>(left.count(), 1, 50)));
         if (ready < 0 && errno != EINTR) break;
         if (ready <= 0) continue;
@@ -173,7 +183,8 @@ inline RunResult runProcess(const std::string& program, const std::vector<std::s
 }
 
 // The vct program under test (VCT_BINARY from tests/CMakeLists.txt).
-inline RunResult runVct(const std::vector<std::string>& args, std::chrono::seconds timeout = std::chrono::seconds(300)) {
+inline RunResult runVct(const std::vector<std::string>& args,
+                        std::chrono::seconds timeout = std::chrono::seconds(300)) {
     return runProcess(VCT_BINARY, args, timeout);
 }
 
@@ -200,7 +211,9 @@ inline void writeBinaryFile(const std::filesystem::path& path, const std::vector
 }
 
 // Rec. 709 luminance of linear RGB.
-inline float luminance(float r, float g, float b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
+inline float luminance(float r, float g, float b) {
+    return 0.2126f * r + 0.7152f * g + 0.0722f * b;
+}
 
 // Number of NaN or infinite values among `values`.
 inline size_t countNonFinite(const std::vector<float>& values) {

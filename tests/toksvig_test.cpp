@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "io/image_io.h"
-#include "io/image_metrics.h"
 #include "render/shader_math.h"
+#include "report/image_metrics.h"
 #include "test_util.h"
 
 namespace vct {
@@ -82,12 +82,14 @@ TEST(Toksvig, VariantsAgreeForSmallVariance) {
 TEST(SpecularAA, ZeroDerivativesAddNothingAndTheAdditionIsBounded) {
     EXPECT_EQ(g::specularAAVariance(0.0f, 0.0f), 0.0f);
     for (float a2 : {0.0f, 0.01f, 0.5f, 1.0f})
-        EXPECT_FLOAT_EQ(g::specularAAAlpha2(a2, g::specularAAVariance(0.0f, 0.0f), g::SPECULAR_AA_THRESHOLD), a2);
+        EXPECT_FLOAT_EQ(g::specularAAAlpha2(a2, g::specularAAVariance(0.0f, 0.0f), g::SPECULAR_AA_THRESHOLD),
+                        a2);
     const float huge = g::specularAAVariance(1e30f, INFINITY);
     for (float a2 : {0.0f, 0.01f, 0.5f, 0.9f}) {
         float prev = a2;
         for (float d2 : {1e-4f, 1e-2f, 0.1f, 1.0f, 4.0f}) {
-            const float out = g::specularAAAlpha2(a2, g::specularAAVariance(d2, d2), g::SPECULAR_AA_THRESHOLD);
+            const float out =
+                g::specularAAAlpha2(a2, g::specularAAVariance(d2, d2), g::SPECULAR_AA_THRESHOLD);
             EXPECT_GE(out, prev);
             EXPECT_LE(out, std::min(a2 + g::SPECULAR_AA_THRESHOLD, 1.0f) + 1e-6f);
             prev = out;
@@ -108,9 +110,10 @@ TEST(SpecularAA, ZeroDerivativesAddNothingAndTheAdditionIsBounded) {
 ImageRgba32f renderPlane(const std::string& name, uint32_t width, uint32_t height,
                          const std::vector<std::string>& extra) {
     const fs::path dir = test::freshOutputDir("toksvig/" + name);
-    std::vector<std::string> args = {"render", "--scene", "plane", "--size",
-                                     std::to_string(width) + "x" + std::to_string(height), "--frames", "1",
-                                     "--out", dir.string(), "--specular-aa", "off", "--gi", "off"};
+    std::vector<std::string> args = {
+        "render",   "--scene", "plane", "--size",     std::to_string(width) + "x" + std::to_string(height),
+        "--frames", "1",       "--out", dir.string(), "--specular-aa",
+        "off",      "--gi",    "off"};
     args.insert(args.end(), extra.begin(), extra.end());
     test::RunResult run = test::runVct(args);
     EXPECT_TRUE(run.exited() && run.exitCode == 0) << run.describe();
@@ -152,8 +155,8 @@ Errors compare(const ImageRgba32f& reference, uint32_t width, uint32_t height, u
     const ImageRgba32f on = renderPlane("on-" + size, width, height, {"--toksvig", "on"});
     const ImageRgba32f off = renderPlane("off-" + size, width, height, {"--toksvig", "off"});
     const Errors errors{compareImages(reference, on).mse, compareImages(reference, off).mse};
-    std::printf("plane %s vs %ux box-filtered level-0 reference: MSE toksvig on %.6g, off %.6g%s\n", size.c_str(),
-                factor, errors.on, errors.off, note);
+    std::printf("plane %s vs %ux box-filtered level-0 reference: MSE toksvig on %.6g, off %.6g%s\n",
+                size.c_str(), factor, errors.on, errors.off, note);
     return errors;
 }
 
@@ -194,8 +197,9 @@ TEST(ToksvigGpu, RoughnessZeroStaysFinite) {
     const std::string scene =
         std::string(VCT_SHARED_SCENES) + "/MetalRoughSpheresNoTextures/glTF/MetalRoughSpheresNoTextures.gltf";
     if (!fs::exists(scene)) GTEST_SKIP() << scene << " not present";
-    test::RunResult run = test::runVct({"render", "--scene", scene, "--size", "160x90", "--frames", "2", "--out",
-                                        dir.string(), "--aux", "--toksvig", "on", "--specular-aa", "on"});
+    test::RunResult run =
+        test::runVct({"render", "--scene", scene, "--size", "160x90", "--frames", "2", "--out", dir.string(),
+                      "--aux", "--toksvig", "on", "--specular-aa", "on"});
     ASSERT_TRUE(run.exited() && run.exitCode == 0) << run.describe();
     for (const auto& entry : fs::directory_iterator(dir)) {
         if (entry.path().extension() == ".exr") {

@@ -1,4 +1,4 @@
-// vct against ground truth (`vct compare --reference-dir`, engine/io/truth_metrics.h) on synthetic reference
+// vct against ground truth (`vct compare --reference-dir`, engine/report/truth_metrics.h) on synthetic reference
 // and vct directories whose answers are known exactly: per-surface ratios, the reference's noise on its sums,
 // relMSE with the noise subtracted, PSNR of identical images (null in JSON: it has no infinity), a
 // background-only image (null ratios, never NaN), log2 ratio maps, and one-line errors for missing files,
@@ -16,8 +16,8 @@
 
 #include "core/error.h"
 #include "io/image_io.h"
-#include "io/image_metrics.h"
-#include "io/truth_metrics.h"
+#include "report/image_metrics.h"
+#include "report/truth_metrics.h"
 #include "test_util.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/image_io.h"
-#include "io/image_metrics.h"
+#include "report/image_metrics.h"
 #include "test_util.h"
 
 namespace {

@@ -8,13 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <glm/gtc/packing.hpp>
 #include <limits>
 #include <random>
 #include <set>
 #include <utility>
 #include <vector>
-
-#include <glm/gtc/packing.hpp>
 
 #include "render/settings.h"
 #include "render/shader_math.h"
@@ -28,10 +27,14 @@ const float kKappa = SG_DEFAULT_KAPPA;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr double kPi = 3.14159265358979323846;
 
-float weight(vec4 a, vec4 b) { return lobeWeight(a, b, kBeta, kKappa); }
+float weight(vec4 a, vec4 b) {
+    return lobeWeight(a, b, kBeta, kKappa);
+}
 
 // 1/λ that gives the smoothed sharpness λ̄ (inverse of smoothedSharpness): 1/λ = 1/λ̄ − 1/κ.
-float invLambdaFor(float smoothed) { return 1.0f / smoothed - 1.0f / kKappa; }
+float invLambdaFor(float smoothed) {
+    return 1.0f / smoothed - 1.0f / kKappa;
+}
 
 // Every weight must be a number in [0, 1].
 ::testing::AssertionResult isWeight(float w) {
@@ -39,11 +42,17 @@ float invLambdaFor(float smoothed) { return 1.0f / smoothed - 1.0f / kKappa; }
     return ::testing::AssertionFailure() << "weight " << w << " is not in [0, 1]";
 }
 
-bool isFiniteVec(vec4 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w); }
+bool isFiniteVec(vec4 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
 
 // fp16 storage of a lobe (or a normal): every component rounded through a half float.
-vec4 roundHalf(vec4 v) { return glm::unpackHalf4x16(glm::packHalf4x16(v)); }
-vec3 roundHalf(vec3 v) { return vec3(roundHalf(vec4(v, 0.0f))); }
+vec4 roundHalf(vec4 v) {
+    return glm::unpackHalf4x16(glm::packHalf4x16(v));
+}
+vec3 roundHalf(vec3 v) {
+    return vec3(roundHalf(vec4(v, 0.0f)));
+}
 
 struct Rng {
     std::mt19937 gen{20150403u};
@@ -126,7 +135,8 @@ TEST(UpsampleWeights, SpecularLobeIsTheReflectedWarpedNdf) {
     EXPECT_NEAR(length(vec3(headOn) - vec3(0, 0, 1)), 0.0f, 1e-6f);
     EXPECT_FLOAT_EQ(headOn.w, 0.5f);
     // Rougher is wider (larger 1/λ); grazing is sharper (λ ∝ 1/n·v).
-    EXPECT_LT(specularLobe(vec3(0, 0, 1), vec3(0, 0, 1), 0.2f).w, specularLobe(vec3(0, 0, 1), vec3(0, 0, 1), 0.4f).w);
+    EXPECT_LT(specularLobe(vec3(0, 0, 1), vec3(0, 0, 1), 0.2f).w,
+              specularLobe(vec3(0, 0, 1), vec3(0, 0, 1), 0.4f).w);
     EXPECT_LT(specularLobe(vec3(0, 0, 1), normalize(vec3(1, 0, 0.1f)), 0.5f).w, headOn.w);
 }
 
@@ -241,7 +251,8 @@ TEST(UpsampleWeights, LobeWeightDecreasesWithSharpnessMismatch) {
         for (float r : {0.25f, 0.5f, 0.9f, 1.0f, 1.1f, 2.0f}) {
             if (smoothedA * r >= kKappa) continue;
             const double expected = std::pow(2.0 * std::sqrt(double(r)) / (1.0 + r), double(kBeta));
-            EXPECT_NEAR(weight(a, vec4(axis, invLambdaFor(smoothedA * r))), expected, 1e-4 * expected + 1e-30);
+            EXPECT_NEAR(weight(a, vec4(axis, invLambdaFor(smoothedA * r))), expected,
+                        1e-4 * expected + 1e-30);
         }
         // Sharper b (1/λb from 1/λa down to 0, a mirror) and wider b (up to 1/λ = 1e6): both decrease.
         float previous = 1.0f;
@@ -624,7 +635,8 @@ TEST(IndirectPack, RoundTripsBfloat16) {
     // Huge values stay finite (fp16 would overflow at 65504); inf and NaN pass through.
     EXPECT_TRUE(std::isfinite(unpackBfloat16x2(packBfloat16x2(1e30f, 0.0f)).x));
     EXPECT_TRUE(std::isinf(unpackBfloat16x2(packBfloat16x2(kInf, 0.0f)).x));
-    EXPECT_TRUE(std::isnan(unpackBfloat16x2(packBfloat16x2(std::numeric_limits<float>::quiet_NaN(), 0.0f)).x));
+    EXPECT_TRUE(
+        std::isnan(unpackBfloat16x2(packBfloat16x2(std::numeric_limits<float>::quiet_NaN(), 0.0f)).x));
 }
 
 // --- jitter sequence -----------------------------------------------------------------------------------------------

@@ -2,11 +2,6 @@
 // round trip on synthetic voxels (no GPU), then end to end on lavapipe: voxelize writes a sparse file that
 // vdb_print reads, a cached render gives the very same image, a re-export from the cache the very same voxels,
 // and bad caches end with one line and a non-zero exit.
-#include "io/image_io.h"
-#include "io/vdb_io.h"
-#include "core/error.h"
-#include "test_util.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +11,11 @@
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include "core/error.h"
+#include "io/image_io.h"
+#include "io/vdb_io.h"
+#include "test_util.h"
 
 namespace vct {
 namespace {
@@ -29,9 +29,15 @@ fs::path caseDir() {
     return test::freshOutputDir(std::string("vdb/") + info->test_suite_name() + "." + info->name());
 }
 
-const std::vector<std::string> kGridNames = {"albedo",       "normal",            "emission",
-                                             "opacity",      "radiance",          "static_count",
-                                             "static_albedo_sum", "static_normal_sum", "static_emission_sum"};
+const std::vector<std::string> kGridNames = {"albedo",
+                                             "normal",
+                                             "emission",
+                                             "opacity",
+                                             "radiance",
+                                             "static_count",
+                                             "static_albedo_sum",
+                                             "static_normal_sum",
+                                             "static_emission_sum"};
 
 // Voxels at the grid's corners and edges plus a pseudo-random scatter, with values that a lossy path would
 // change: negative normals, tiny and huge floats, accumulator words with the top bit set. Sorted by linear
@@ -78,14 +84,16 @@ TEST(VdbIo, RoundTripIsExact) {
     ASSERT_EQ(grids.size(), kGridNames.size());
     for (size_t i = 0; i < grids.size(); ++i) {
         EXPECT_EQ(grids[i].name, kGridNames[i]);
-        EXPECT_EQ(grids[i].activeVoxels, i < 5 ? file.voxels.size() : file.staticAccum.size()) << grids[i].name;
+        EXPECT_EQ(grids[i].activeVoxels, i < 5 ? file.voxels.size() : file.staticAccum.size())
+            << grids[i].name;
     }
 
     const VoxelFile read = readVoxelFile(dir / "synthetic.vdb");
     EXPECT_EQ(read.info, file.info);
     ASSERT_EQ(read.voxels.size(), file.voxels.size());
     ASSERT_EQ(read.staticAccum.size(), file.staticAccum.size());
-    for (size_t i = 0; i < file.voxels.size(); ++i) ASSERT_EQ(read.voxels[i], file.voxels[i]) << "voxel " << i;
+    for (size_t i = 0; i < file.voxels.size(); ++i)
+        ASSERT_EQ(read.voxels[i], file.voxels[i]) << "voxel " << i;
     for (size_t i = 0; i < file.staticAccum.size(); ++i)
         ASSERT_EQ(read.staticAccum[i], file.staticAccum[i]) << "accumulator voxel " << i;
     EXPECT_EQ(read, file);
@@ -162,10 +170,11 @@ TEST(VdbIo, BadFilesThrowOneLineErrors) {
 // ---- end to end through the vct program (lavapipe) ----
 
 // `vct voxelize --scene cornell --voxels N --out dir/name` (exit 0 asserted).
-fs::path voxelize(const fs::path& dir, const std::string& name, uint32_t n, std::vector<std::string> extra = {}) {
+fs::path voxelize(const fs::path& dir, const std::string& name, uint32_t n,
+                  std::vector<std::string> extra = {}) {
     const fs::path out = dir / name;
-    std::vector<std::string> args = {"voxelize", "--scene", "cornell", "--voxels", std::to_string(n), "--out",
-                                     out.string()};
+    std::vector<std::string> args = {"voxelize",        "--scene", "cornell",   "--voxels",
+                                     std::to_string(n), "--out",   out.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     RunResult r = test::runVct(args);
     EXPECT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
@@ -190,7 +199,8 @@ TEST(Voxelize, WritesSparseFileThatVdbPrintLists) {
     const fs::path dir = caseDir();
     const fs::path file = voxelize(dir, "cornell32.vdb", 32, {"--validate"});
     ASSERT_TRUE(fs::exists(file));
-    EXPECT_LT(fs::file_size(file), denseVoxelBytes(32)) << "the sparse file should be smaller than dense grids";
+    EXPECT_LT(fs::file_size(file), denseVoxelBytes(32))
+        << "the sparse file should be smaller than dense grids";
 
     const VoxelFile read = readVoxelFile(file);
     EXPECT_EQ(read.info.resolution, 32u);
@@ -220,8 +230,8 @@ TEST(Voxelize, WritesSparseFileThatVdbPrintLists) {
 
 // Pixel data of DIR/final.exr.
 ImageRgba32f renderCornell(const fs::path& dir, std::vector<std::string> extra = {}) {
-    std::vector<std::string> args = {"render", "--scene", "cornell", "--size", "160x90", "--voxels", "32",
-                                     "--frames", "2", "--out", dir.string()};
+    std::vector<std::string> args = {"render", "--scene",  "cornell", "--size", "160x90",    "--voxels",
+                                     "32",     "--frames", "2",       "--out",  dir.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     RunResult r = test::runVct(args);
     EXPECT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
@@ -232,7 +242,8 @@ TEST(VoxelCache, RendersTheSameImage) {
     const fs::path dir = caseDir();
     const fs::path cache = voxelize(dir, "cornell32.vdb", 32);
     const ImageRgba32f computed = renderCornell(dir / "computed");
-    const ImageRgba32f cached = renderCornell(dir / "cached", {"--voxel-cache", cache.string(), "--validate"});
+    const ImageRgba32f cached =
+        renderCornell(dir / "cached", {"--voxel-cache", cache.string(), "--validate"});
     ASSERT_EQ(computed.width, 160u);
     ASSERT_EQ(cached.width, computed.width);
     ASSERT_EQ(cached.height, computed.height);
@@ -246,7 +257,8 @@ TEST(VoxelCache, ReexportGivesTheSameVoxels) {
     const fs::path first = voxelize(dir, "first.vdb", 32);
     // Without --voxels: the cache's N.
     const fs::path again = dir / "again.vdb";
-    RunResult r = test::runVct({"voxelize", "--scene", "cornell", "--voxel-cache", first.string(), "--out", again.string()});
+    RunResult r = test::runVct(
+        {"voxelize", "--scene", "cornell", "--voxel-cache", first.string(), "--out", again.string()});
     ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
     const VoxelFile a = readVoxelFile(first), b = readVoxelFile(again);
     EXPECT_EQ(a.info, b.info);
@@ -256,9 +268,10 @@ TEST(VoxelCache, ReexportGivesTheSameVoxels) {
 }
 
 // `vct render` with a bad cache: exit `code`, by itself, one line on stderr that mentions `mention`.
-void expectRenderFailure(const fs::path& dir, std::vector<std::string> extra, int code, const std::string& mention) {
-    std::vector<std::string> args = {"render", "--scene", "cornell", "--size", "32x18", "--frames", "1",
-                                     "--out", (dir / "out").string()};
+void expectRenderFailure(const fs::path& dir, std::vector<std::string> extra, int code,
+                         const std::string& mention) {
+    std::vector<std::string> args = {
+        "render", "--scene", "cornell", "--size", "32x18", "--frames", "1", "--out", (dir / "out").string()};
     args.insert(args.end(), extra.begin(), extra.end());
     std::string command = "vct";
     for (const std::string& a : args) command += " " + a;
@@ -277,7 +290,8 @@ TEST(VoxelCache, BadCachesFailWithOneLine) {
     const fs::path dir = caseDir();
     expectRenderFailure(dir, {"--voxel-cache", (dir / "missing.vdb").string()}, 1, "does not exist");
     test::writeTextFile(dir / "garbage.vdb", "garbage, not OpenVDB");
-    expectRenderFailure(dir, {"--voxel-cache", (dir / "garbage.vdb").string()}, 1, "not a readable OpenVDB file");
+    expectRenderFailure(dir, {"--voxel-cache", (dir / "garbage.vdb").string()}, 1,
+                        "not a readable OpenVDB file");
 
     // vct files made for another grid (written here: no GPU voxelization needed).
     VoxelFile other;
@@ -291,7 +305,8 @@ TEST(VoxelCache, BadCachesFailWithOneLine) {
     expectRenderFailure(dir, {"--voxels", "32", "--voxel-cache", (dir / "other.vdb").string()}, 1,
                         "other grid bounds");
     expectRenderFailure(dir, {"--voxel-cache", (dir / "other.vdb").string()}, 1, "other grid bounds");
-    expectRenderFailure(dir, {"--gi", "off", "--voxel-cache", (dir / "other.vdb").string()}, 2, "needs --gi on");
+    expectRenderFailure(dir, {"--gi", "off", "--voxel-cache", (dir / "other.vdb").string()}, 2,
+                        "needs --gi on");
 
     RunResult r = test::runVct({"voxelize", "--out", (dir / "x.txt").string()});
     EXPECT_EQ(r.exitCode, 2) << r.describe();

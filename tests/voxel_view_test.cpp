@@ -3,12 +3,12 @@
 // mips 0 and 2 render under validation, show something, and differ; the voxel view stays out of the frame's
 // pass timings; bad combinations are usage errors (exit 2, one line).
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -24,8 +24,9 @@ using nlohmann::json;
 constexpr uint32_t kWidth = 160, kHeight = 90;
 
 test::RunResult renderVoxels(const fs::path& dir, const std::vector<std::string>& extra) {
-    std::vector<std::string> args = {"render", "--scene", "cornell", "--size", "160x90", "--frames", "2",
-                                     "--voxels", "32", "--out", dir.string(), "--view", "voxels"};
+    std::vector<std::string> args = {"render",     "--scene", "cornell",  "--size", "160x90",
+                                     "--frames",   "2",       "--voxels", "32",     "--out",
+                                     dir.string(), "--view",  "voxels"};
     args.insert(args.end(), extra.begin(), extra.end());
     return test::runVct(args);
 }
@@ -80,7 +81,8 @@ TEST(VoxelView, MipsZeroAndTwoRenderAndDiffer) {
 }
 
 // Exit status 2 with one line on stderr that contains `expected`.
-void expectUsageError(const std::vector<std::string>& extra, const std::string& name, const std::string& expected) {
+void expectUsageError(const std::vector<std::string>& extra, const std::string& name,
+                      const std::string& expected) {
     const fs::path dir = test::freshOutputDir("voxel_view/" + name);
     const test::RunResult run = renderVoxels(dir, extra);
     ASSERT_TRUE(run.exited()) << run.describe();

@@ -4,7 +4,9 @@
 #include <cstring>
 #include <string>
 
-#include "app/commands.h"
+#include "app/bench/benchmark_command.h"
+#include "app/cli/commands.h"
+#include "app/demo/demo_command.h"
 #include "core/error.h"
 
 namespace {

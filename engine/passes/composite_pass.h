@@ -10,12 +10,12 @@
 namespace vct {
 
 class CompositePass : public Pass {
-public:
+  public:
     explicit CompositePass(const vk::Context& context);
     const char* name() const override { return "composite"; }
     void execute(const FrameContext& frame) override;
 
-private:
+  private:
     DfgLut dfg_;  // before resources_, which names its image
     ResourceTable resources_;
     vk::Pipeline pipeline_;

@@ -8,13 +8,13 @@
 namespace vct {
 
 class DirectPass : public Pass {
-public:
+  public:
     explicit DirectPass(const vk::Context& context);
     const char* name() const override { return "direct"; }
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     void execute(const FrameContext& frame) override;
 
-private:
+  private:
     ResourceTable resources_;
     vk::Pipeline pipeline_;
 };

@@ -8,13 +8,13 @@
 namespace vct {
 
 class GBufferPass : public Pass {
-public:
+  public:
     explicit GBufferPass(const vk::Context& context);
     const char* name() const override { return "gbuffer"; }
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     void execute(const FrameContext& frame) override;
 
-private:
+  private:
     ResourceTable resources_;
     vk::Pipeline pipeline_;
 };

@@ -7,13 +7,13 @@
 namespace vct {
 
 class ShadowPass : public Pass {
-public:
+  public:
     explicit ShadowPass(const vk::Context& context);
     const char* name() const override { return "shadow"; }
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
     void execute(const FrameContext& frame) override;
 
-private:
+  private:
     ResourceTable resources_;
     vk::Pipeline pipeline_;
 };

@@ -11,12 +11,12 @@
 namespace vct {
 
 class UpsamplePass : public Pass {
-public:
+  public:
     explicit UpsamplePass(const vk::Context& context);
     const char* name() const override { return "upsample"; }
     void execute(const FrameContext& frame) override;
 
-private:
+  private:
     // The pipeline specialized for this frame's trace scale, weights, temporal and adaptive settings
     // (shaders/upsample.comp), compiled the first time that combination is used.
     const vk::Pipeline& pipelineFor(const RenderSettings& settings);

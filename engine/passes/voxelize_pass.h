@@ -13,13 +13,13 @@
 namespace vct {
 
 class VoxelizePass : public Pass {
-public:
+  public:
     VoxelizePass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "voxelize"; }
     void execute(const FrameContext& frame) override;
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
-private:
+  private:
     // Dispatches the triangles of every instance whose `moving` flag equals `moving` into `accumulator`.
     void voxelizeInstances(const FrameContext& frame, bool moving, const vk::Buffer& accumulator);
 

@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.h"
+#include "scene/camera.h"
 #include "scene/scene.h"
 
 namespace vct::reference {

@@ -26,8 +26,8 @@ DfgLut::DfgLut(const vk::Context& context, uint32_t size) : device_(context.devi
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {size, size, 1};
-        vkCmdCopyBufferToImage(cmd, staging.handle(), image_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                               &region);
+        vkCmdCopyBufferToImage(cmd, staging.handle(), image_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               1, &region);
         image_.use(cmd, vk::ImageAccess::Sampled);
     });
 

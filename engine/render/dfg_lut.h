@@ -8,7 +8,7 @@
 namespace vct {
 
 class DfgLut {
-public:
+  public:
     // 32² texels are enough: the table is smooth, and linear filtering interpolates it well (< 1e-2 error).
     explicit DfgLut(const vk::Context& context, uint32_t size = 32);
     ~DfgLut();
@@ -18,7 +18,7 @@ public:
     vk::Image& image() { return image_; }
     VkSampler sampler() const { return sampler_; }
 
-private:
+  private:
     VkDevice device_ = VK_NULL_HANDLE;
     vk::Image image_;
     VkSampler sampler_ = VK_NULL_HANDLE;

@@ -41,7 +41,7 @@ enum class HistorySwap : uint8_t { None, EveryFrame, WithGBuffer };
 // direct             direct light + emission (linear HDR)
 // indirectLow        demodulated indirect light, diffuse and specular packed in one texel with their weights
 //                    (lib/cone.glsl, lib/indirect_pack.glsl): the trace's low-res output
-// indirect           the same at full resolution: the upsample output (weights: accumulated A, design §6.5)
+// indirect           the same at full resolution: the upsample output (weights: accumulated A, docs/design.md §6.5)
 // guidePosition      per low-res sample, what the upsample weights compare (lib/upsample_guide.glsl):
 //                    world position, w: 1 (0 background)
 // guideNormal        unit normal, w: smoothed specular lobe sharpness

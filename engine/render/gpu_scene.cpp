@@ -16,9 +16,12 @@ namespace {
 
 VkSamplerAddressMode addressMode(TextureWrap wrap) {
     switch (wrap) {
-        case TextureWrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-        case TextureWrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
-        default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+        case TextureWrap::ClampToEdge:
+            return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        case TextureWrap::MirroredRepeat:
+            return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+        default:
+            return VK_SAMPLER_ADDRESS_MODE_REPEAT;
     }
 }
 
@@ -83,7 +86,8 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
         gpu::GpuMaterial g{};
         g.baseColorFactor = m.baseColorFactor;
         g.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
-        g.metallicRoughnessCutoffAo = glm::vec4(m.metallicFactor, m.roughnessFactor, m.alphaCutoff, m.occlusionStrength);
+        g.metallicRoughnessCutoffAo =
+            glm::vec4(m.metallicFactor, m.roughnessFactor, m.alphaCutoff, m.occlusionStrength);
         // Blend is drawn as opaque (no transparency pass); mask keeps its cut-out.
         g.flags = glm::uvec4(m.alphaMode == AlphaMode::Mask ? VCT_ALPHA_MASK : VCT_ALPHA_OPAQUE, 0, 0, 0);
         materials.push_back(g);
@@ -188,11 +192,16 @@ void GpuScene::uploadTextures() {
 namespace {
 int textureIndex(const Material& material, GpuScene::Slot slot) {
     switch (slot) {
-        case GpuScene::Slot::BaseColor: return material.baseColorTexture;
-        case GpuScene::Slot::MetallicRoughness: return material.metallicRoughnessTexture;
-        case GpuScene::Slot::Normal: return material.normalTexture;
-        case GpuScene::Slot::Emissive: return material.emissiveTexture;
-        case GpuScene::Slot::Occlusion: return material.occlusionTexture;
+        case GpuScene::Slot::BaseColor:
+            return material.baseColorTexture;
+        case GpuScene::Slot::MetallicRoughness:
+            return material.metallicRoughnessTexture;
+        case GpuScene::Slot::Normal:
+            return material.normalTexture;
+        case GpuScene::Slot::Emissive:
+            return material.emissiveTexture;
+        case GpuScene::Slot::Occlusion:
+            return material.occlusionTexture;
     }
     return -1;
 }
@@ -234,12 +243,13 @@ void GpuScene::update(float timeSeconds, bool cut) {
     const std::vector<gpu::GpuLight> previousLights = std::move(lights_);
     lights_ = sceneLights(scene_, world, rotations);
     changed = changed || previousLights.size() != lights_.size() ||
-              (!lights_.empty() &&
-               std::memcmp(previousLights.data(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight)) != 0);
+              (!lights_.empty() && std::memcmp(previousLights.data(), lights_.data(),
+                                               lights_.size() * sizeof(gpu::GpuLight)) != 0);
     changed_ = changed;
     hasUpdated_ = true;
     fitShadow();
-    if (!lights_.empty()) std::memcpy(lightBuffer_.mapped(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight));
+    if (!lights_.empty())
+        std::memcpy(lightBuffer_.mapped(), lights_.data(), lights_.size() * sizeof(gpu::GpuLight));
 }
 
 void GpuScene::fitShadow() {
@@ -273,9 +283,11 @@ void GpuScene::fitShadow() {
         const float fov = std::clamp(2.0f * outer + 0.1f, 0.2f, 2.8f);
         const float farPlane = glm::length(eye - center) + radius;
         const float nearPlane = std::max(1e-3f, farPlane * 1e-3f);
-        lightViewProj_ = glm::perspective(fov, 1.0f, nearPlane, farPlane) * glm::lookAt(eye, eye + direction, up);
+        lightViewProj_ =
+            glm::perspective(fov, 1.0f, nearPlane, farPlane) * glm::lookAt(eye, eye + direction, up);
         // Texel size at the scene's centre distance.
-        shadowTexelWorld_ = 2.0f * std::tan(0.5f * fov) * glm::length(eye - center) / float(VCT_SHADOW_MAP_SIZE);
+        shadowTexelWorld_ =
+            2.0f * std::tan(0.5f * fov) * glm::length(eye - center) / float(VCT_SHADOW_MAP_SIZE);
     }
 }
 

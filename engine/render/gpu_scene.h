@@ -21,7 +21,7 @@ namespace vct {
 uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested);
 
 class GpuScene {
-public:
+  public:
     // `anisotropy`: the material sampler's level, as chosen by chooseAnisotropy (0: off).
     GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy);
     ~GpuScene();
@@ -55,7 +55,7 @@ public:
     VkImageView textureView(const Material& material, Slot slot) const;
     VkSampler textureSampler(const Material& material, Slot slot) const;
 
-private:
+  private:
     void uploadTextures();
     vk::Image uploadTexture(const Texture& texture);
     VkSampler samplerFor(TextureWrap s, TextureWrap t);

@@ -32,13 +32,13 @@ struct FrameContext {
 };
 
 enum class PassReuse {
-    Never,                 // runs every frame (the jittered trace and what follows it)
-    WhileSceneUnchanged,   // depends only on the scene's geometry and lights (shadow map, voxel grid)
-    WhileViewUnchanged,    // depends on those and the camera (G-buffer, direct light)
+    Never,                // runs every frame (the jittered trace and what follows it)
+    WhileSceneUnchanged,  // depends only on the scene's geometry and lights (shadow map, voxel grid)
+    WhileViewUnchanged,   // depends on those and the camera (G-buffer, direct light)
 };
 
 class Pass {
-public:
+  public:
     virtual ~Pass() = default;
     virtual const char* name() const = 0;
     // Records the pass's work, its resource table's barriers first (ResourceTable::bind or barriers).
@@ -49,6 +49,8 @@ public:
 };
 
 // Dispatch size for a full-image compute pass in VCT_TILE_SIZE tiles.
-inline uint32_t tileCount(uint32_t pixels) { return (pixels + VCT_TILE_SIZE - 1) / VCT_TILE_SIZE; }
+inline uint32_t tileCount(uint32_t pixels) {
+    return (pixels + VCT_TILE_SIZE - 1) / VCT_TILE_SIZE;
+}
 
 }  // namespace vct

@@ -43,7 +43,8 @@ void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const Re
             if (int(primitive.material) != boundMaterial) {
                 using Slot = GpuScene::Slot;
                 auto texture = [&](Slot slot) {
-                    return std::make_pair(gpuScene.textureView(material, slot), gpuScene.textureSampler(material, slot));
+                    return std::make_pair(gpuScene.textureView(material, slot),
+                                          gpuScene.textureSampler(material, slot));
                 };
                 auto [baseView, baseSampler] = texture(Slot::BaseColor);
                 auto [mrView, mrSampler] = texture(Slot::MetallicRoughness);

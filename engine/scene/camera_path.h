@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.h"
+#include "scene/camera.h"
 
 namespace vct {
 

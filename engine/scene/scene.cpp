@@ -370,69 +370,92 @@ void Scene::addDefaultsIfMissing() {
     }
 }
 
-void Scene::validate() const {
-    auto fail = [](const std::string& what) { throw Error(what); };
-    auto quoted = [](const std::string& s, size_t i) {
-        return "'" + (s.empty() ? "#" + std::to_string(i) : s) + "'";
-    };
+namespace {
 
-    for (size_t t = 0; t < textures.size(); ++t) {
-        const Texture& tex = textures[t];
+// Scene::validate, one entity kind at a time (in the order the checks have always run: the first problem
+// found is the one reported).
+[[noreturn]] void fail(const std::string& what) {
+    throw Error(what);
+}
+
+std::string quoted(const std::string& s, size_t i) {
+    return "'" + (s.empty() ? "#" + std::to_string(i) : s) + "'";
+}
+
+void validateTextures(const Scene& scene) {
+    for (size_t t = 0; t < scene.textures.size(); ++t) {
+        const Texture& tex = scene.textures[t];
         size_t expected = size_t(tex.width) * tex.height * 4;
         if (tex.width == 0 || tex.height == 0 || tex.mips.empty() || tex.mips[0].size() != expected)
             fail("texture " + quoted(tex.name, t) + ": image data does not match its size " +
                  std::to_string(tex.width) + "x" + std::to_string(tex.height));
     }
-    for (size_t m = 0; m < materials.size(); ++m) {
-        const Material& mat = materials[m];
+}
+
+void validateMaterials(const Scene& scene) {
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& mat = scene.materials[m];
         for (int tex : {mat.baseColorTexture, mat.metallicRoughnessTexture, mat.normalTexture,
                         mat.emissiveTexture, mat.occlusionTexture})
-            if (tex < -1 || tex >= static_cast<int>(textures.size()))
+            if (tex < -1 || tex >= static_cast<int>(scene.textures.size()))
                 fail("material " + quoted(mat.name, m) + ": texture index " + std::to_string(tex) +
                      " is out of range");
         if (!finite(mat.baseColorFactor) || !finite(mat.emissiveFactor) ||
             !std::isfinite(mat.metallicFactor) || !std::isfinite(mat.roughnessFactor))
             fail("material " + quoted(mat.name, m) + ": a factor is not finite");
     }
-    for (size_t me = 0; me < meshes.size(); ++me) {
-        const Mesh& mesh = meshes[me];
+}
+
+// One primitive of a mesh: its ranges in the index and vertex buffers, its indices and its vertices.
+void validatePrimitive(const Scene& scene, const Primitive& prim, const std::string& where) {
+    if (prim.material >= scene.materials.size())
+        fail(where + "material " + std::to_string(prim.material) + " is out of range (" +
+             std::to_string(scene.materials.size()) + " materials)");
+    if (size_t(prim.firstIndex) + prim.indexCount > scene.indices.size())
+        fail(where + "index range is past the end of the index buffer");
+    if (prim.vertexOffset < 0 || size_t(prim.vertexOffset) + prim.vertexCount > scene.vertices.size())
+        fail(where + "vertex range is past the end of the vertex buffer");
+    if (prim.indexCount % 3 != 0) fail(where + "index count is not a multiple of 3");
+    for (uint32_t i = 0; i < prim.indexCount; ++i) {
+        uint32_t index = scene.indices[prim.firstIndex + i];
+        if (index >= prim.vertexCount)
+            fail(where + "index " + std::to_string(i) + " (= " + std::to_string(index) +
+                 ") is out of range (" + std::to_string(prim.vertexCount) + " vertices)");
+    }
+    for (uint32_t v = 0; v < prim.vertexCount; ++v) {
+        const Vertex& vert = scene.vertices[size_t(prim.vertexOffset) + v];
+        const char* bad = !finite(vert.position)  ? "position"
+                          : !finite(vert.normal)  ? "normal"
+                          : !finite(vert.uv)      ? "texture coordinate"
+                          : !finite(vert.tangent) ? "tangent"
+                                                  : nullptr;
+        if (bad) fail(where + "vertex " + std::to_string(v) + " has a non-finite " + bad);
+    }
+}
+
+void validateMeshes(const Scene& scene) {
+    for (size_t me = 0; me < scene.meshes.size(); ++me) {
+        const Mesh& mesh = scene.meshes[me];
         for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
             std::string where = "mesh " + quoted(mesh.name, me) + " primitive " + std::to_string(pi) + ": ";
-            if (mesh.primitives[pi] >= primitives.size()) fail(where + "primitive index is out of range");
-            const Primitive& prim = primitives[mesh.primitives[pi]];
-            if (prim.material >= materials.size())
-                fail(where + "material " + std::to_string(prim.material) + " is out of range (" +
-                     std::to_string(materials.size()) + " materials)");
-            if (size_t(prim.firstIndex) + prim.indexCount > indices.size())
-                fail(where + "index range is past the end of the index buffer");
-            if (prim.vertexOffset < 0 || size_t(prim.vertexOffset) + prim.vertexCount > vertices.size())
-                fail(where + "vertex range is past the end of the vertex buffer");
-            if (prim.indexCount % 3 != 0) fail(where + "index count is not a multiple of 3");
-            for (uint32_t i = 0; i < prim.indexCount; ++i) {
-                uint32_t index = indices[prim.firstIndex + i];
-                if (index >= prim.vertexCount)
-                    fail(where + "index " + std::to_string(i) + " (= " + std::to_string(index) +
-                         ") is out of range (" + std::to_string(prim.vertexCount) + " vertices)");
-            }
-            for (uint32_t v = 0; v < prim.vertexCount; ++v) {
-                const Vertex& vert = vertices[size_t(prim.vertexOffset) + v];
-                const char* bad = !finite(vert.position)  ? "position"
-                                  : !finite(vert.normal)  ? "normal"
-                                  : !finite(vert.uv)      ? "texture coordinate"
-                                  : !finite(vert.tangent) ? "tangent"
-                                                          : nullptr;
-                if (bad) fail(where + "vertex " + std::to_string(v) + " has a non-finite " + bad);
-            }
+            if (mesh.primitives[pi] >= scene.primitives.size())
+                fail(where + "primitive index is out of range");
+            validatePrimitive(scene, scene.primitives[mesh.primitives[pi]], where);
         }
     }
-    for (size_t n = 0; n < nodes.size(); ++n) {
-        const Node& node = nodes[n];
+}
+
+void validateNodes(const Scene& scene) {
+    for (size_t n = 0; n < scene.nodes.size(); ++n) {
+        const Node& node = scene.nodes[n];
         std::string where = "node " + quoted(node.name, n) + ": ";
-        if (node.mesh >= static_cast<int>(meshes.size())) fail(where + "mesh index is out of range");
-        if (node.camera >= static_cast<int>(cameras.size())) fail(where + "camera index is out of range");
-        if (node.light >= static_cast<int>(lights.size())) fail(where + "light index is out of range");
+        if (node.mesh >= static_cast<int>(scene.meshes.size())) fail(where + "mesh index is out of range");
+        if (node.camera >= static_cast<int>(scene.cameras.size()))
+            fail(where + "camera index is out of range");
+        if (node.light >= static_cast<int>(scene.lights.size())) fail(where + "light index is out of range");
         for (int c : node.children)
-            if (c < 0 || c >= static_cast<int>(nodes.size())) fail(where + "child index is out of range");
+            if (c < 0 || c >= static_cast<int>(scene.nodes.size()))
+                fail(where + "child index is out of range");
         bool finiteTransform =
             finite(node.translation) && finite(node.scale) &&
             finite(glm::vec4(node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w));
@@ -440,10 +463,14 @@ void Scene::validate() const {
             for (int c = 0; c < 4; ++c) finiteTransform = finiteTransform && finite((*node.matrix)[c]);
         if (!finiteTransform) fail(where + "transform is not finite");
     }
-    // Lights and cameras like material factors: finite, and in the range their formulas are defined for.
-    constexpr float kHalfPi = 1.5707964f, kPi = 3.1415927f;
-    for (size_t l = 0; l < lights.size(); ++l) {
-        const Light& light = lights[l];
+}
+
+// Lights and cameras like material factors: finite, and in the range their formulas are defined for.
+constexpr float kHalfPi = 1.5707964f, kPi = 3.1415927f;
+
+void validateLights(const Scene& scene) {
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+        const Light& light = scene.lights[l];
         const std::string where = "light " + quoted(light.name, l) + ": ";
         if (!finite(light.color) || light.color.x < 0.0f || light.color.y < 0.0f || light.color.z < 0.0f)
             fail(where + "color is not finite and non-negative");
@@ -458,8 +485,11 @@ void Scene::validate() const {
             fail(where + "spot cone angles " + numberText(light.innerConeAngle) + ", " +
                  numberText(light.outerConeAngle) + " are not 0 <= inner < outer <= pi/2");
     }
-    for (size_t c = 0; c < cameras.size(); ++c) {
-        const Camera& cam = cameras[c];
+}
+
+void validateCameras(const Scene& scene) {
+    for (size_t c = 0; c < scene.cameras.size(); ++c) {
+        const Camera& cam = scene.cameras[c];
         const std::string where = "camera " + quoted(cam.name, c) + ": ";
         if (!(cam.yfov > 0.0f && cam.yfov < kPi))
             fail(where + "yfov " + numberText(cam.yfov) + " is not in (0, pi)");
@@ -467,41 +497,63 @@ void Scene::validate() const {
             fail(where + "znear " + numberText(cam.znear) + " is not finite and positive");
         if (!std::isfinite(cam.zfar)) fail(where + "zfar is not finite");
     }
-    // Each node may be finite while their product is not (a scale of 1e20 over a translation of 1e20): the
-    // world transforms at t = 0 and at every key time (up to a few thousand) must be finite too.
+}
+
+// Each node may be finite while their product is not (a scale of 1e20 over a translation of 1e20): the
+// world transforms at t = 0 and at every key time (up to a few thousand) must be finite too.
+void validateWorldTransforms(const Scene& scene) {
     std::vector<float> times{0.0f};
-    for (const Animation& anim : animations)
+    for (const Animation& anim : scene.animations)
         for (const AnimationChannel& ch : anim.channels)
             times.insert(times.end(), ch.times.begin(), ch.times.end());
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
     const size_t step = std::max<size_t>(1, times.size() / 4096);
     for (size_t t = 0; t < times.size(); t += step) {
-        const std::vector<glm::mat4> world = evaluate(times[t]);
+        const std::vector<glm::mat4> world = scene.evaluate(times[t]);
         for (size_t n = 0; n < world.size(); ++n)
             for (int col = 0; col < 4; ++col)
                 if (!finite(world[n][col]))
-                    fail("node " + quoted(nodes[n].name, n) +
+                    fail("node " + quoted(scene.nodes[n].name, n) +
                          ": world transform at t = " + std::to_string(times[t]) +
                          " is not finite (the product of its ancestors' transforms overflows float)");
     }
-    if (instances(0.0f).empty()) fail("scene " + quoted(name, 0) + " has no mesh instances: nothing to draw");
-    const Aabb box = bounds();
+}
+
+// Something to draw, finite bounds, and every camera near enough to see it.
+void validateExtent(const Scene& scene) {
+    if (scene.instances(0.0f).empty())
+        fail("scene " + quoted(scene.name, 0) + " has no mesh instances: nothing to draw");
+    const Aabb box = scene.bounds();
     if (!finite(box.min) || !finite(box.max))
-        fail("scene " + quoted(name, 0) +
+        fail("scene " + quoted(scene.name, 0) +
              ": the transformed vertices are not finite (bounds overflow float)");
     // A camera a million scene sizes away sees at most a pixel of it, and its view products overflow float
     // long before a float position does.
     const glm::vec3 size = box.max - box.min, centre = 0.5f * box.min + 0.5f * box.max;
     const double reach = 1e6 * std::max(double(std::max(size.x, std::max(size.y, size.z))), 1e-30);
-    const std::vector<glm::mat4> world = evaluate(0.0f);
-    for (size_t n = 0; n < nodes.size(); ++n) {
-        if (nodes[n].camera < 0) continue;
+    const std::vector<glm::mat4> world = scene.evaluate(0.0f);
+    for (size_t n = 0; n < scene.nodes.size(); ++n) {
+        if (scene.nodes[n].camera < 0) continue;
         const glm::dvec3 offset = glm::dvec3(glm::vec3(world[n][3])) - glm::dvec3(centre);
         if (glm::length(offset) > reach)
-            fail("node " + quoted(nodes[n].name, n) + ": its camera is " + numberText(glm::length(offset)) +
+            fail("node " + quoted(scene.nodes[n].name, n) + ": its camera is " +
+                 numberText(glm::length(offset)) +
                  " units from the scene, more than 1e6 times the scene's size: nothing would be in view");
     }
+}
+
+}  // namespace
+
+void Scene::validate() const {
+    validateTextures(*this);
+    validateMaterials(*this);
+    validateMeshes(*this);
+    validateNodes(*this);
+    validateLights(*this);
+    validateCameras(*this);
+    validateWorldTransforms(*this);
+    validateExtent(*this);
 }
 
 namespace {

@@ -15,8 +15,8 @@ const char* resultName(VkResult result);
 
 }  // namespace vct::vk
 
-#define VK_CHECK(call)                                                  \
-    do {                                                                \
-        VkResult vct_result_ = (call);                                  \
+#define VK_CHECK(call)                                                              \
+    do {                                                                            \
+        VkResult vct_result_ = (call);                                              \
         if (vct_result_ != VK_SUCCESS) ::vct::vk::throwVkError(vct_result_, #call); \
     } while (0)

@@ -13,9 +13,9 @@ namespace vct::vk {
 
 struct ContextOptions {
     bool validation = false;
-    std::string deviceSubstring;                    // choose the first device whose name contains it
-    std::vector<const char*> instanceExtensions;    // e.g. what GLFW needs for a window surface
-    bool swapchain = false;                         // enable VK_KHR_swapchain on the device
+    std::string deviceSubstring;                  // choose the first device whose name contains it
+    std::vector<const char*> instanceExtensions;  // e.g. what GLFW needs for a window surface
+    bool swapchain = false;                       // enable VK_KHR_swapchain on the device
 };
 
 // Number of validation messages (warnings and errors) this process has seen, including those emitted while a
@@ -23,7 +23,7 @@ struct ContextOptions {
 uint32_t validationMessageCount();
 
 class Context {
-public:
+  public:
     explicit Context(const ContextOptions& options);
     ~Context();
     Context(const Context&) = delete;
@@ -44,7 +44,7 @@ public:
 
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 
-private:
+  private:
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                         VkDebugUtilsMessageTypeFlagsEXT types,
                                                         const VkDebugUtilsMessengerCallbackDataEXT* data,

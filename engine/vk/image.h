@@ -1,5 +1,6 @@
 // A VkImage with its memory and views, and the last way it was used, so that barriers follow from how a
-// pass declares it uses an image (see vk/access.h) instead of being written by hand.
+// pass declares it uses an image (Image::use with an AccessInfo, below; the passes' resource tables in
+// render/pass_resources.h) instead of being written by hand.
 #pragma once
 
 #include <vulkan/vulkan.h>

@@ -1,10 +1,11 @@
 #include "vk/pipeline.h"
 
+#include <cstddef>
 #include <cstdlib>
 #include <fstream>
 #include <utility>
 
-#include "scene/scene.h"
+#include "core/vertex.h"
 #include "vk/binding_check.h"
 #include "vk/check.h"
 
@@ -78,8 +79,8 @@ void Pipeline::reset() {
     device_ = VK_NULL_HANDLE;
 }
 
-void Pipeline::createLayout(const Context& context, const std::vector<Binding>& bindings, uint32_t pushConstantSize,
-                            VkShaderStageFlags pushStages) {
+void Pipeline::createLayout(const Context& context, const std::vector<Binding>& bindings,
+                            uint32_t pushConstantSize, VkShaderStageFlags pushStages) {
     device_ = context.device();
     std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
     for (const Binding& b : bindings) layoutBindings.push_back({b.binding, b.type, 1, b.stages, nullptr});
@@ -112,7 +113,8 @@ Pipeline Pipeline::compute(const Context& context, const std::string& owner, con
     for (uint32_t id = 0; id < specialization.size(); ++id)
         entries.push_back({id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)});
     const VkSpecializationInfo specializationInfo{uint32_t(entries.size()), entries.data(),
-                                                  specialization.size() * sizeof(uint32_t), specialization.data()};
+                                                  specialization.size() * sizeof(uint32_t),
+                                                  specialization.data()};
     pipeline.createLayout(context, bindings, pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT);
     VkShaderModule module = createModule(context, code);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -122,7 +124,8 @@ Pipeline Pipeline::compute(const Context& context, const std::string& owner, con
     info.stage.pName = "main";
     if (!specialization.empty()) info.stage.pSpecializationInfo = &specializationInfo;
     info.layout = pipeline.layout_;
-    VkResult result = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline.pipeline_);
+    VkResult result =
+        vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline.pipeline_);
     vkDestroyShaderModule(context.device(), module, nullptr);
     VK_CHECK(result);
     return pipeline;
@@ -162,14 +165,16 @@ Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
         {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
         {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
     };
-    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineVertexInputStateCreateInfo vertexInput{
+        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     if (desc.vertexInput) {
         vertexInput.vertexBindingDescriptionCount = 1;
         vertexInput.pVertexBindingDescriptions = &vertexBinding;
         vertexInput.vertexAttributeDescriptionCount = desc.positionOnly ? 1 : 4;
         vertexInput.pVertexAttributeDescriptions = attributes;
     }
-    VkPipelineInputAssemblyStateCreateInfo inputAssembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo inputAssembly{
+        VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     inputAssembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
     viewport.viewportCount = 1;
@@ -181,7 +186,8 @@ Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.depthBiasEnable = desc.depthBias;
     raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    VkPipelineMultisampleStateCreateInfo multisample{
+        VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = desc.depthFormat != VK_FORMAT_UNDEFINED;
@@ -266,7 +272,8 @@ void DescriptorWriter::push(const Context& context, VkCommandBuffer cmd, const P
         writes_[i].pImageInfo = buffer ? nullptr : &images_[info_[i]];
         writes_[i].pBufferInfo = buffer ? &buffers_[info_[i]] : nullptr;
     }
-    context.cmdPushDescriptorSet(cmd, pipeline.bindPoint(), pipeline.layout(), 0, uint32_t(writeCount_), writes_);
+    context.cmdPushDescriptorSet(cmd, pipeline.bindPoint(), pipeline.layout(), 0, uint32_t(writeCount_),
+                                 writes_);
 }
 
 }  // namespace vct::vk

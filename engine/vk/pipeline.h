@@ -30,7 +30,7 @@ struct Binding {
 
 // A pipeline and its layout (one push-descriptor set + optional push constants). Destroys both.
 class Pipeline {
-public:
+  public:
     Pipeline() = default;
     ~Pipeline() { reset(); }
     Pipeline(Pipeline&& other) noexcept { *this = std::move(other); }
@@ -58,9 +58,9 @@ public:
         VkFormat depthFormat = VK_FORMAT_UNDEFINED;
         std::vector<Binding> bindings;
         uint32_t pushConstantSize = 0;
-        bool vertexInput = true;   // the scene's Vertex layout in binding 0
-        bool positionOnly = false; // only its position attribute (depth-only passes)
-        bool depthBias = false;    // dynamic depth bias (shadow maps)
+        bool vertexInput = true;    // core/vertex.h's Vertex layout in binding 0
+        bool positionOnly = false;  // only its position attribute (depth-only passes)
+        bool depthBias = false;     // dynamic depth bias (shadow maps)
     };
     // Dynamic rendering; viewport, scissor and cull mode are dynamic state.
     static Pipeline graphics(const Context& context, const GraphicsDesc& desc);
@@ -70,7 +70,7 @@ public:
         vkCmdPushConstants(cmd, layout_, pushStages_, 0, size, data);
     }
 
-private:
+  private:
     void createLayout(const Context& context, const std::vector<Binding>& bindings, uint32_t pushConstantSize,
                       VkShaderStageFlags pushStages);
 
@@ -85,7 +85,7 @@ private:
 // Collects the resources of one dispatch or draw and pushes them as set 0. A value: it may be copied (the
 // write records point into its own arrays only when pushed).
 class DescriptorWriter {
-public:
+  public:
     DescriptorWriter& sampled(uint32_t binding, VkImageView view, VkSampler sampler,
                               VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     DescriptorWriter& storage(uint32_t binding, VkImageView view);

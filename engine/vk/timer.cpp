@@ -34,7 +34,9 @@ GpuTimer::GpuTimer(const Context& context, uint32_t maxScopes) : context_(contex
     validMask_ = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
 }
 
-GpuTimer::~GpuTimer() { vkDestroyQueryPool(context_.device(), pool_, nullptr); }
+GpuTimer::~GpuTimer() {
+    vkDestroyQueryPool(context_.device(), pool_, nullptr);
+}
 
 void GpuTimer::beginFrame(VkCommandBuffer cmd) {
     vkCmdResetQueryPool(cmd, pool_, 0, 2 * maxScopes_);
@@ -44,15 +46,18 @@ void GpuTimer::beginFrame(VkCommandBuffer cmd) {
 }
 
 void GpuTimer::beginScope(VkCommandBuffer cmd, const std::string& name) {
-    if (openScope_ >= 0) throw Error("GpuTimer: scope '" + name + "' opened inside '" + scopes_.back().name + "'");
-    if (timedScopes_ == maxScopes_) throw Error("GpuTimer: more than " + std::to_string(maxScopes_) + " passes");
+    if (openScope_ >= 0)
+        throw Error("GpuTimer: scope '" + name + "' opened inside '" + scopes_.back().name + "'");
+    if (timedScopes_ == maxScopes_)
+        throw Error("GpuTimer: more than " + std::to_string(maxScopes_) + " passes");
     openScope_ = int(timedScopes_++);
     scopes_.push_back({name, openScope_});
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * uint32_t(openScope_));
 }
 
 void GpuTimer::skipScope(const std::string& name) {
-    if (openScope_ >= 0) throw Error("GpuTimer: scope '" + name + "' skipped inside '" + scopes_.back().name + "'");
+    if (openScope_ >= 0)
+        throw Error("GpuTimer: scope '" + name + "' skipped inside '" + scopes_.back().name + "'");
     scopes_.push_back({name, -1});
 }
 
@@ -98,6 +103,8 @@ std::vector<PassTiming> GpuTimer::passStats() const {
     return stats;
 }
 
-PassTiming GpuTimer::frameStats() const { return summarize("frame", frameSamples_); }
+PassTiming GpuTimer::frameStats() const {
+    return summarize("frame", frameSamples_);
+}
 
 }  // namespace vct::vk

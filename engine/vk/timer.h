@@ -21,7 +21,7 @@ struct PassTiming {
 };
 
 class GpuTimer {
-public:
+  public:
     GpuTimer(const Context& context, uint32_t maxScopes = 64);
     ~GpuTimer();
     GpuTimer(const GpuTimer&) = delete;
@@ -43,7 +43,7 @@ public:
     // The last collected frame's duration per pass (for the on-screen overlay).
     const std::vector<std::pair<std::string, double>>& lastFrame() const { return lastFrame_; }
 
-private:
+  private:
     const Context& context_;
     VkQueryPool pool_ = VK_NULL_HANDLE;
     uint32_t maxScopes_;

@@ -17,7 +17,9 @@ VCT_INLINE uint bfloat16Bits(float x) {
     return (bits + 0x7FFFu + ((bits >> 16) & 1u)) >> 16;
 }
 
-VCT_INLINE uint packBfloat16x2(float low, float high) { return bfloat16Bits(low) | (bfloat16Bits(high) << 16); }
+VCT_INLINE uint packBfloat16x2(float low, float high) {
+    return bfloat16Bits(low) | (bfloat16Bits(high) << 16);
+}
 
 VCT_INLINE vec2 unpackBfloat16x2(uint packed) {
     return vec2(uintBitsToFloat(packed << 16), uintBitsToFloat(packed & 0xFFFF0000u));

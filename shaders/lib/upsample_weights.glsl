@@ -19,7 +19,7 @@ const float SG_DEFAULT_KAPPA = 100.0f;
 // The largest κ: the trace stores each sample's λ̄ (≤ κ) in a 16-bit float (trace.comp's guide normal image),
 // whose largest finite value is 65504. A larger κ stored +inf for the mirror-like lobes (cornell's floor stripe
 // of roughness 0.05 reaches λ̄ ≈ 1.4e5 at κ = 1e6), and inf − inf in the weight below. The command line rejects
-// a larger --kappa (engine/app/session.cpp); smoothedSharpness clamps whatever κ arrives to it.
+// a larger --kappa (engine/app/cli/session.cpp); smoothedSharpness clamps whatever κ arrives to it.
 const float SG_MAX_KAPPA = 65504.0f;
 // The normal-aware baseline: σ_n² = 0.01.
 const float NORMAL_WEIGHT_DEFAULT_SIGMA2 = 0.01f;
@@ -101,7 +101,8 @@ VCT_INLINE float equalLobeLogWeight(vec3 axisA, vec3 axisB, float smoothed, floa
 }
 
 VCT_INLINE float lobeWeight(vec4 a, vec4 b, float beta, float kappa) {
-    return lobeWeightSmoothed(vec3(a), smoothedSharpness(a.w, kappa), vec3(b), smoothedSharpness(b.w, kappa), beta);
+    return lobeWeightSmoothed(vec3(a), smoothedSharpness(a.w, kappa), vec3(b), smoothedSharpness(b.w, kappa),
+                              beta);
 }
 
 // Normal-aware baseline: w_n = exp((na·nb − 1) / σ_n²), again with na·nb − 1 = −½‖na − nb‖².
@@ -182,7 +183,8 @@ VCT_INLINE ivec2 jitterOffset(uint frameIndex, int scale) {
     for (int level = 0; level < 2 && bit > 0; ++level) {
         // Rank within a 2×2 Bayer block: 0 → (0,0), 1 → (1,1), 2 → (1,0), 3 → (0,1).
         const uint r = k % 4u;
-        const ivec2 step = r == 0u ? ivec2(0, 0) : (r == 1u ? ivec2(1, 1) : (r == 2u ? ivec2(1, 0) : ivec2(0, 1)));
+        const ivec2 step =
+            r == 0u ? ivec2(0, 0) : (r == 1u ? ivec2(1, 1) : (r == 2u ? ivec2(1, 0) : ivec2(0, 1)));
         o += step * bit;
         k /= 4u;
         bit /= 2;

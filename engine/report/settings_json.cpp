@@ -1,0 +1,29 @@
+#include "report/settings_json.h"
+
+#include <variant>
+
+#include "core/error.h"
+#include "render/setting_table.h"
+
+namespace vct {
+
+nlohmann::json settingsJson(const RenderSettings& s) {
+    nlohmann::json json = nlohmann::json::object();
+    for (const SettingSpec& spec : settingTable()) {
+        if (!spec.json) continue;
+        json[settingJsonKey(spec)] = std::visit(
+            Overloaded{
+                [&](const FloatValue& v) { return nlohmann::json(s.*v.member); },
+                [&](const OnOffValue& v) { return nlohmann::json(s.*v.member); },
+                [&](const ChoiceValue& v) { return nlohmann::json(s.*v.member); },
+                [&](const NamedValue& v) { return nlohmann::json(v.names[size_t(s.*v.member)]); },
+                [&](const auto&) -> nlohmann::json {
+                    throw Error(std::string("settingsJson: no JSON form for setting '") + spec.name + "'");
+                },
+            },
+            spec.value);
+    }
+    return json;
+}
+
+}  // namespace vct

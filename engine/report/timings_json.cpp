@@ -1,0 +1,61 @@
+#include "report/timings_json.h"
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "io/safe_write.h"
+#include "report/settings_json.h"
+
+namespace vct {
+
+void writeTimingsJson(const std::filesystem::path& path, const TimingReport& report) {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const vk::PassTiming& pass : report.passes)
+        passes.push_back({{"name", pass.name},
+                          {"median_ms", pass.medianMs},
+                          {"p95_ms", pass.p95Ms},
+                          {"min_ms", pass.minMs},
+                          {"runs", pass.runs}});
+    nlohmann::json json = {{"device", report.device},
+                           {"size", {report.width, report.height}},
+                           {"frames", report.frames},
+                           {"warmup", report.warmup},
+                           {"anisotropy", report.anisotropy},
+                           {"passes", passes},
+                           {"frame_median_ms", report.frame.medianMs},
+                           {"fps", report.frame.medianMs > 0.0 ? 1000.0 / report.frame.medianMs : 0.0},
+                           {"settings", settingsJson(report.settings)},
+                           {"resampled_fraction", report.resampledFraction}};
+    writeTextReplacing(path, json.dump(2) + "\n");  // replaces a planted symlink instead of following it
+}
+
+std::string formatTimingTable(const TimingReport& report) {
+    std::string table;
+    char line[160];
+    // "ran": in how many of the timed frames the pass had work; a skipped frame counts as 0 ms (voxel passes
+    // when nothing in the scene changed).
+    std::snprintf(line, sizeof(line), "%-12s %10s %10s %10s %6s\n", "pass", "median ms", "p95 ms", "min ms",
+                  "ran");
+    table += line;
+    for (const vk::PassTiming& pass : report.passes) {
+        std::snprintf(line, sizeof(line), "%-12s %10.3f %10.3f %10.3f %6zu\n", pass.name.c_str(),
+                      pass.medianMs, pass.p95Ms, pass.minMs, pass.runs);
+        table += line;
+    }
+    std::snprintf(line, sizeof(line), "%-12s %10.3f %10.3f %10.3f %6zu\n", "frame", report.frame.medianMs,
+                  report.frame.p95Ms, report.frame.minMs, report.frame.samples);
+    table += line;
+    if (report.frame.medianMs > 0.0) {
+        std::snprintf(line, sizeof(line), "fps          %9.1f (1000 / frame median)\n",
+                      1000.0 / report.frame.medianMs);
+        table += line;
+    }
+    std::snprintf(line, sizeof(line), "re-traced    %9.2f%% of the pixels (last frame)\n",
+                  100.0 * report.resampledFraction);
+    table += line;
+    return table;
+}
+
+}  // namespace vct
