@@ -19,7 +19,8 @@ layout(set = 0, binding = 2, rgba8) uniform readonly image3D albedoImage;
 layout(set = 0, binding = 3, rgba16f) uniform readonly image3D normalImage;
 layout(set = 0, binding = 4, rgba16f) uniform readonly image3D emissionImage;
 layout(set = 0, binding = 5) uniform sampler2DShadow shadowMap;
-layout(set = 0, binding = 6, rgba16f) uniform writeonly image3D radianceImage;  // mip 0 of the radiance texture (6 slabs)
+layout(set = 0, binding = 6,
+       rgba16f) uniform writeonly image3D radianceImage;  // mip 0 of the radiance texture (6 slabs)
 // The light the voxels gathered from the grid (voxel_bounce.comp): cosine-weighted mean incoming radiance.
 layout(set = 0, binding = 7, rgba16f) uniform readonly image3D bounceImage;
 
@@ -45,7 +46,8 @@ void main() {
     if (any(greaterThanEqual(voxel, ivec3(n)))) return;
     const vec4 albedoOpacity = imageLoad(albedoImage, voxel);
     if (albedoOpacity.a <= 0.0) {
-        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) imageStore(radianceImage, slabTexel(voxel, slab, n), vec4(0.0));
+        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
+            imageStore(radianceImage, slabTexel(voxel, slab, n), vec4(0.0));
         return;
     }
     const vec3 nbar = imageLoad(normalImage, voxel).xyz;

@@ -20,11 +20,13 @@ layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 layout(set = 0, binding = 2) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 3) uniform sampler3D voxels;
-layout(set = 0, binding = 4, rgba32ui) uniform writeonly uimage2D indirectImage;  // the upsample output, overwritten at the listed pixels
+layout(set = 0, binding = 4, rgba32ui) uniform writeonly uimage2D
+    indirectImage;  // the upsample output, overwritten at the listed pixels
 layout(set = 0, binding = 6, std430) readonly buffer ResampleList {
     ResampleListHeader header;
     uint pixels[];
-} resampleList;
+}
+resampleList;
 
 #include "lib/cone_trace.glsl"
 

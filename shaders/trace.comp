@@ -27,11 +27,14 @@ layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 layout(set = 0, binding = 2) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 3) uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, with mips
-layout(set = 0, binding = 4, rgba32ui) uniform writeonly uimage2D indirectImage;  // packed (lib/indirect_pack.glsl); low res (full res at scale 1)
+layout(set = 0, binding = 4, rgba32ui) uniform writeonly uimage2D
+    indirectImage;  // packed (lib/indirect_pack.glsl); low res (full res at scale 1)
 // What the upsample weights compare, per low-res sample (lib/upsample_guide.glsl).
-layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D guidePositionImage;  // world position, w: 1 (0: background)
-layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D guideNormalImage;      // unit normal, w: smoothed specular sharpness λ̄
-layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D guideAxisImage;        // specular lobe axis
+layout(set = 0, binding = 6,
+       rgba32f) uniform writeonly image2D guidePositionImage;  // world position, w: 1 (0: background)
+layout(set = 0, binding = 7,
+       rgba16f) uniform writeonly image2D guideNormalImage;  // unit normal, w: smoothed specular sharpness λ̄
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D guideAxisImage;  // specular lobe axis
 
 #include "lib/cone_trace.glsl"
 
@@ -55,8 +58,7 @@ void main() {
     // No grid yet: no indirect light.
     IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
     if (frame.voxels.voxelSize > 0.0)
-        s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition - g.p, g.n),
-                         normalRoughness.w);
+        s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition - g.p, g.n), normalRoughness.w);
     // Weight 1: one fresh sample (what the history accumulates at trace scale 1).
     imageStore(indirectImage, lowPixel, packIndirect(vec4(s.diffuse, 1.0), vec4(s.specular, 1.0)));
     if (FULL_RESOLUTION) return;

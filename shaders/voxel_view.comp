@@ -22,7 +22,8 @@ layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 // against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, with mips
-layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D outputImage;  // radiance seen through the grid, full res
+layout(set = 0, binding = 2,
+       rgba16f) uniform writeonly image2D outputImage;  // radiance seen through the grid, full res
 layout(push_constant) uniform Push { VoxelViewPushConstants push; };
 
 const float VOXEL_VIEW_MAX_OPACITY = 0.99;
@@ -107,7 +108,8 @@ void main() {
                 vec4 s = vec4(0.0);
                 const vec3 w = voxelSlabWeights(dir);
                 for (int k = 0; k < 3; ++k)
-                    s += w[k] * texelFetch(voxels, ivec3(cell.x + voxelSlabFor(dir, k) * cells, cell.yz), mip);
+                    s +=
+                        w[k] * texelFetch(voxels, ivec3(cell.x + voxelSlabFor(dir, k) * cells, cell.yz), mip);
                 const float a = saturate(s.a);
                 // Opacity a is for one texel length; over `len`: 1 − (1 − a)^len, colour scaled alike.
                 const float aLen = 1.0 - pow(1.0 - min(a, 0.999999), len);

@@ -42,12 +42,14 @@ glm::vec3 diffuseCones(const GridSample& grid, glm::vec3 p, glm::vec3 n, float v
     glm::vec3 sum(0.0f);
     glm::vec3 origin = p + n * (v0 * CONE_START_OFFSET);
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        sum += diffuseConeWeight(i) *
-               glm::vec3(marchCone(grid, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF, v0, maxT));
+        sum += diffuseConeWeight(i) * glm::vec3(marchCone(grid, origin, diffuseConeDirection(n, i),
+                                                          DIFFUSE_CONE_TAN_HALF, v0, maxT));
     return sum;
 }
 
-bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 TEST(Cone, FootprintMipAndStep) {
     const float v0 = 0.1f;
@@ -156,13 +158,14 @@ TEST(Cone, NoNaNAtRoughnessExtremesAndGrazingOrBackFacingViews) {
     };
     const glm::vec3 n(0, 1, 0);
     for (float roughness : {0.0f, 1.0f}) {
-        for (glm::vec3 v : {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, -0.5f, 0)), glm::vec3(0, -1, 0)}) {
+        for (glm::vec3 v :
+             {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, -0.5f, 0)), glm::vec3(0, -1, 0)}) {
             // As trace.comp: n·v clamped to ≥ 0 before reflecting, a zero reflection replaced by n.
             float NoV = std::max(glm::dot(n, v), 0.0f);
             glm::vec3 r = 2.0f * NoV * n - v;
             r = glm::dot(r, r) > 1e-12f ? glm::normalize(r) : n;
-            glm::vec4 c = marchCone(grid, glm::vec3(0, 0.1f, 0), r, specularConeTanHalf(alphaFromPerceptual(roughness)),
-                                    0.1f, 20.0f);
+            glm::vec4 c = marchCone(grid, glm::vec3(0, 0.1f, 0), r,
+                                    specularConeTanHalf(alphaFromPerceptual(roughness)), 0.1f, 20.0f);
             EXPECT_TRUE(finite(glm::vec3(c)) && std::isfinite(c.a)) << roughness;
             glm::vec2 dfg = integrateDFG(NoV, alphaFromPerceptual(roughness), 64);
             EXPECT_TRUE(finite(specularDfg(glm::vec3(0.04f), dfg))) << roughness;
@@ -272,24 +275,24 @@ float regionLuminance(const vct::ImageRgba32f& image, int x0, int y0, int x1, in
     return float(sum / double((x1 - x0) * (y1 - y0)));
 }
 
-TEST(ConeGpu, IndirectLightBrightensShadowsOnCornell) {
-    vct::ImageRgba32f images[2];
-    const char* modes[2] = {"on", "off"};
-    for (int i = 0; i < 2; ++i) {
-        auto dir = vct::test::freshOutputDir(std::string("cone/gi_") + modes[i]);
-        auto r = vct::test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames", "2", "--voxels",
-                                    "32", "--trace-scale", "1", "--gi", modes[i], "--out", dir.string(), "--aux"});
-        ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
-        images[i] = vct::readExr(dir / "final.exr");
-        ASSERT_EQ(images[i].width, 160u);
-        EXPECT_EQ(vct::test::countNonFinite(images[i].pixels), 0u) << "gi " << modes[i];
-        if (i == 0) {
-            auto specular = vct::readExr(dir / "specular_indirect.exr");
-            EXPECT_EQ(vct::test::countNonFinite(specular.pixels), 0u);
-            // The glossy floor in front of the tall box reflects it and the lit back wall: not black.
-            EXPECT_GT(regionLuminance(specular, 70, 78, 100, 88), 0.01f);
-        }
-    }
+TEST(ConeGpu, IndirectLightInShadowsMatchesThePathTracedTruthOnCornell) {
+    // vct (32³, every pixel traced, t = 0) against the path-traced one-bounce reference of the same frame.
+    const auto vctDir = vct::test::freshOutputDir("cone/gi_on");
+    auto r = vct::test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames", "1",
+                                "--voxels", "32", "--trace-scale", "1", "--out", vctDir.string(), "--aux"});
+    ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
+    const auto refDir = vct::test::freshOutputDir("cone/gi_reference");
+    r = vct::test::runVct({"reference", "--scene", "cornell", "--size", "160x90", "--frame", "0", "--spp",
+                           "64", "--bounces", "1", "--out", refDir.string()});
+    ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
+    const vct::ImageRgba32f image = vct::readExr(vctDir / "final.exr");
+    const vct::ImageRgba32f truth = vct::readExr(refDir / "final.exr");
+    ASSERT_EQ(image.width, 160u);
+    EXPECT_EQ(vct::test::countNonFinite(image.pixels), 0u);
+    const auto specular = vct::readExr(vctDir / "specular_indirect.exr");
+    EXPECT_EQ(vct::test::countNonFinite(specular.pixels), 0u);
+    // The glossy floor in front of the tall box reflects it and the lit back wall: not black.
+    EXPECT_GT(regionLuminance(specular, 70, 78, 100, 88), 0.01f);
     // Regions picked from the 160x90 image (camera in builtin_scenes.cpp): the tall box's side facing away
     // from the spot light, and the sphere's shadow on the floor. Only indirect light reaches them.
     struct Region {
@@ -297,10 +300,12 @@ TEST(ConeGpu, IndirectLightBrightensShadowsOnCornell) {
         int x0, y0, x1, y1;
     } regions[] = {{"box side in shadow", 106, 30, 118, 60}, {"sphere shadow on floor", 32, 70, 45, 74}};
     for (const Region& region : regions) {
-        float on = regionLuminance(images[0], region.x0, region.y0, region.x1, region.y1);
-        float off = regionLuminance(images[1], region.x0, region.y0, region.x1, region.y1);
-        std::printf("%s: gi on %.4f, gi off %.4f\n", region.name, on, off);
-        EXPECT_GT(on, 1.3f * off) << region.name;
+        const float on = regionLuminance(image, region.x0, region.y0, region.x1, region.y1);
+        const float reference = regionLuminance(truth, region.x0, region.y0, region.x1, region.y1);
+        std::printf("%s: vct %.4f, path traced %.4f (%.2fx)\n", region.name, on, reference, on / reference);
+        // Measured: box side 1.32x, sphere shadow 0.81x the truth (64 spp: ±3 % noise on these sums).
+        EXPECT_GT(on, 0.72f * reference) << region.name;
+        EXPECT_LT(on, 1.45f * reference) << region.name;
     }
 }
 

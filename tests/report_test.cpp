@@ -41,7 +41,10 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // Static camera, 64 frames (every jitter offset 4 times), defaults (scale 4, sg, temporal, adaptive)
     // against trace scale 1 of the same frame. Before pixel-own samples counted more than interpolated ones
     // the history converged to the B-spline blur: diffuse 37.1 dB, specular 39.5 dB at 320x180 (41.9 and 44.4
-    // after); measured here (160x90, 32³): 41.5 dB and 41.2 dB with adaptive off, a little more with it.
+    // after); measured here (160x90, 32³): 41.5 dB and 41.2 dB with adaptive off, a little more with it. The
+    // tracer that converges to the path-traced truth (directional voxels, surface-clear footprints: issue 18)
+    // gives a sharper indirect signal, which the history converges to a little less closely: 39.6 dB and
+    // 39.0 dB (final sRGB still above 40 dB).
     const fs::path reference = render("converge_s1", {"--trace-scale", "1"});
     const fs::path upsampled = render("converge_s4", {});
     const double diffuse = psnr(reference / "diffuse_indirect.exr", upsampled / "diffuse_indirect.exr");
@@ -53,8 +56,8 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
         "static cornell, scale 4 vs 1 after 64 frames: diffuse %.2f dB, specular %.2f dB, final sRGB %.2f "
         "dB\n",
         diffuse, specular, display);
-    EXPECT_GE(diffuse, 40.0);
-    EXPECT_GE(specular, 40.0);
+    EXPECT_GE(diffuse, 39.0);
+    EXPECT_GE(specular, 38.5);
     EXPECT_GE(display, 40.0);
 }
 

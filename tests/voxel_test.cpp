@@ -1,16 +1,16 @@
 // The voxel grid: the shared math of shaders/lib/voxel.glsl on the CPU (triangle/box overlap, closest point,
 // coordinate conversions, grid fitting, fixed-point accumulation, the voxel cosine), and the voxelize /
 // inject / mips passes end to end through `vct render` on lavapipe.
-#include "render/voxel_grid.h"
-#include "test_util.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+
+#include "render/voxel_grid.h"
+#include "test_util.h"
 
 namespace vct {
 namespace {
@@ -21,7 +21,9 @@ using glm::vec4;
 
 const vec3 kCenter(0.5f), kHalf(0.5f);  // the unit voxel [0,1]³
 
-bool overlaps(vec3 a, vec3 b, vec3 c) { return g::triangleBoxOverlap(kCenter, kHalf, a, b, c); }
+bool overlaps(vec3 a, vec3 b, vec3 c) {
+    return g::triangleBoxOverlap(kCenter, kHalf, a, b, c);
+}
 
 TEST(VoxelOverlap, TriangleInsideAndThrough) {
     EXPECT_TRUE(overlaps(vec3(0.2f), vec3(0.8f, 0.2f, 0.2f), vec3(0.2f, 0.8f, 0.2f)));
@@ -111,7 +113,8 @@ TEST(VoxelGridFit, FlatSceneStaysValid) {
     for (const auto& [lo, hi] : cases) {
         const vec4 grid = g::voxelGridFit(lo, hi, 32.0f);
         EXPECT_GT(grid.w, 0.0f);
-        EXPECT_TRUE(std::isfinite(grid.x) && std::isfinite(grid.y) && std::isfinite(grid.z) && std::isfinite(grid.w));
+        EXPECT_TRUE(std::isfinite(grid.x) && std::isfinite(grid.y) && std::isfinite(grid.z) &&
+                    std::isfinite(grid.w));
         const vec3 v = g::voxelFromWorld(0.5f * (lo + hi), grid);
         for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(v[axis], 16.0f, 1e-3f);  // centred
     }
@@ -119,7 +122,8 @@ TEST(VoxelGridFit, FlatSceneStaysValid) {
 
 TEST(VoxelAccumulation, FixedPointAveragesAndSignedSums) {
     // Two normals that cancel plus one that does not: wrapping uint sums give the signed average.
-    const uint32_t sum = g::voxelEncodeSigned(-1.0f) + g::voxelEncodeSigned(0.5f) + g::voxelEncodeSigned(-0.2f);
+    const uint32_t sum =
+        g::voxelEncodeSigned(-1.0f) + g::voxelEncodeSigned(0.5f) + g::voxelEncodeSigned(-0.2f);
     EXPECT_NEAR(g::voxelDecodeSigned(sum, 3), (-1.0f + 0.5f - 0.2f) / 3.0f, 2e-3f);
     EXPECT_NEAR(g::voxelDecodeUnit(g::voxelEncodeUnit(0.3f) + g::voxelEncodeUnit(0.9f), 2), 0.6f, 1e-3f);
     EXPECT_NEAR(g::voxelDecodeEmission(g::voxelEncodeEmission(12.5f), 1), 12.5f, 1e-2f);
@@ -130,8 +134,8 @@ TEST(VoxelCosine, OneSidedTwoSidedAndAmbiguous) {
     const vec3 l(0.0f, 0.0f, 1.0f);
     EXPECT_NEAR(g::voxelCosine(vec3(0.0f, 0.0f, 1.0f), l), 1.0f, 1e-6f);
     EXPECT_NEAR(g::voxelCosine(vec3(0.0f, 0.0f, -1.0f), l), 0.0f, 1e-6f);  // lit from behind: dark
-    EXPECT_NEAR(g::voxelCosine(vec3(0.0f), l), 0.5f, 1e-6f);                // no direction left
-    const float thinWall = g::voxelCosine(vec3(0.0f, 0.0f, -0.1f), l);      // both sides, barely agreeing
+    EXPECT_NEAR(g::voxelCosine(vec3(0.0f), l), 0.5f, 1e-6f);               // no direction left
+    const float thinWall = g::voxelCosine(vec3(0.0f, 0.0f, -0.1f), l);     // both sides, barely agreeing
     EXPECT_GT(thinWall, 0.8f);
     EXPECT_TRUE(std::isfinite(thinWall));
 }
@@ -147,8 +151,8 @@ TEST(VoxelMips, PremultipliedAverage) {
 
 TEST(VoxelPasses, CornellTimingsListVoxelPasses) {
     const auto dir = test::freshOutputDir("voxel_passes");
-    const test::RunResult run = test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames", "4",
-                                              "--voxels", "32", "--validate", "--out", dir.string()});
+    const test::RunResult run = test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames",
+                                              "4", "--voxels", "32", "--validate", "--out", dir.string()});
     ASSERT_TRUE(run.exited()) << run.describe();
     ASSERT_EQ(run.exitCode, 0) << run.describe();
     std::ifstream file(dir / "timings.json");
@@ -166,7 +170,8 @@ TEST(VoxelPasses, CornellTimingsListVoxelPasses) {
 
 TEST(VoxelPasses, BadResolutionIsAUsageError) {
     const auto dir = test::freshOutputDir("voxel_bad");
-    const test::RunResult run = test::runVct({"render", "--frames", "1", "--voxels", "48", "--out", dir.string()});
+    const test::RunResult run =
+        test::runVct({"render", "--frames", "1", "--voxels", "48", "--out", dir.string()});
     ASSERT_TRUE(run.exited()) << run.describe();
     EXPECT_EQ(run.exitCode, 2) << run.describe();
 }

@@ -17,7 +17,9 @@ InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid)
                                       sizeof(gpu::InjectPushConstants));
 }
 
-void InjectPass::execute(const FrameContext& frame) { inject(frame, false); }
+void InjectPass::execute(const FrameContext& frame) {
+    inject(frame, false);
+}
 
 void InjectPass::inject(const FrameContext& frame, bool addBounce) {
     pipeline_.bind(frame.cmd);

@@ -10,7 +10,7 @@
 namespace vct {
 
 class InjectPass : public Pass {
-public:
+  public:
     InjectPass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "inject"; }
     void execute(const FrameContext& frame) override;
@@ -18,7 +18,7 @@ public:
     void inject(const FrameContext& frame, bool addBounce);
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
-private:
+  private:
     VoxelGrid& grid_;
     ResourceTable resources_;
     vk::Pipeline pipeline_;

@@ -10,12 +10,12 @@
 namespace vct {
 
 class ResamplePass : public Pass {
-public:
+  public:
     ResamplePass(const vk::Context& context, const VoxelSource& voxels);
     const char* name() const override { return "resample"; }
     void execute(const FrameContext& frame) override;
 
-private:
+  private:
     ResourceTable resources_;
     vk::Pipeline pipeline_;
 };

@@ -16,13 +16,13 @@ struct VoxelSource {
 };
 
 class TracePass : public Pass {
-public:
+  public:
     // Trace scale 1 writes the full-res indirect targets directly (no upsample pass follows).
     TracePass(const vk::Context& context, uint32_t traceScale, const VoxelSource& voxels);
     const char* name() const override { return "trace"; }
     void execute(const FrameContext& frame) override;
 
-private:
+  private:
     // Trace scale 1: the full-res result itself (no upsample pass runs); else the low-res one.
     Target output_;
     ResourceTable resources_;

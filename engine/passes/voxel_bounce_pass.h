@@ -15,7 +15,7 @@
 namespace vct {
 
 class VoxelBouncePass : public Pass {
-public:
+  public:
     // `bounces` ≥ 2: the number of bounces the indirect light of a pixel carries (1 needs no pass).
     VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject, VoxelMipsPass& mips,
                     uint32_t bounces);
@@ -23,7 +23,7 @@ public:
     void execute(const FrameContext& frame) override;
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
-private:
+  private:
     VoxelGrid& grid_;
     InjectPass& inject_;
     VoxelMipsPass& mips_;

@@ -43,7 +43,8 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
         const uint32_t size = std::max(1u, grid_.resolution() >> level);
         const uint32_t groups = (size + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
         // Six direction slabs side by side along x (lib/voxel.glsl).
-        const uint32_t groupsX = (size * uint32_t(glsl::VOXEL_SLAB_COUNT) + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
+        const uint32_t groupsX =
+            (size * uint32_t(glsl::VOXEL_SLAB_COUNT) + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
         vkCmdDispatch(cmd, groupsX, groups, groups);
     }
 }

@@ -9,13 +9,13 @@
 namespace vct {
 
 class VoxelMipsPass : public Pass {
-public:
+  public:
     VoxelMipsPass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "mips"; }
     void execute(const FrameContext& frame) override;
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
-private:
+  private:
     VoxelGrid& grid_;
     ResourceTable resources_;
     vk::Pipeline pipeline_;

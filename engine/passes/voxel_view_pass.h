@@ -11,7 +11,7 @@
 namespace vct {
 
 class VoxelViewPass : public Pass {
-public:
+  public:
     VoxelViewPass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "voxel_view"; }
     void execute(const FrameContext& frame) override;
@@ -22,7 +22,7 @@ public:
     // Radiance seen through the grid, RGBA16F (rgb; a = 1), at the size given to prepare().
     vk::Image& output() { return output_; }
 
-private:
+  private:
     const vk::Context& context_;
     VoxelGrid& grid_;
     vk::Image output_;  // before resources_, which names it

@@ -62,7 +62,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.6).
         std::unique_ptr<Pass> bounce;
         if (settings.bounces > 1)
-            bounce = std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces);
+            bounce =
+                std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces);
         passes_.push_back(std::move(inject));
         passes_.push_back(std::move(mips));
         if (bounce) passes_.push_back(std::move(bounce));
@@ -272,20 +273,27 @@ struct TexelLayout {
 
 TexelLayout texelLayout(VkFormat format) {
     switch (format) {
-        case VK_FORMAT_R32G32B32A32_SFLOAT: return {4, TexelLayout::Float32};
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+            return {4, TexelLayout::Float32};
         case VK_FORMAT_R32_SFLOAT:
-        case VK_FORMAT_D32_SFLOAT: return {1, TexelLayout::Float32};
-        case VK_FORMAT_R16G16B16A16_SFLOAT: return {4, TexelLayout::Float16};
-        case VK_FORMAT_R16G16_SFLOAT: return {2, TexelLayout::Float16};
-        case VK_FORMAT_R8G8B8A8_UNORM: return {4, TexelLayout::Unorm8};
-        default: throw Error("readback of this image format is not supported");
+        case VK_FORMAT_D32_SFLOAT:
+            return {1, TexelLayout::Float32};
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+            return {4, TexelLayout::Float16};
+        case VK_FORMAT_R16G16_SFLOAT:
+            return {2, TexelLayout::Float16};
+        case VK_FORMAT_R8G8B8A8_UNORM:
+            return {4, TexelLayout::Unorm8};
+        default:
+            throw Error("readback of this image format is not supported");
     }
 }
 
 }  // namespace
 
 vk::Buffer Renderer::copyToHost(vk::Image& image) {
-    vk::Buffer staging(context_, VkDeviceSize(image.width()) * image.height() * vk::bytesPerPixel(image.format()),
+    vk::Buffer staging(context_,
+                       VkDeviceSize(image.width()) * image.height() * vk::bytesPerPixel(image.format()),
                        VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::HostVisible);
     context_.submitAndWait([&](VkCommandBuffer cmd) {
         // Put the image back the way the passes left it, so the next frame's barriers stay right.

@@ -31,7 +31,8 @@ struct CameraPath;
 // Frame `index` of a headless run at a fixed 1/60 s step from t = 0, seen from the scene's camera (or from
 // `path` at the same time, with the scene camera's lens where the path sets none): a cut on the first frame
 // (no history), timed from frame `warmup` on.
-FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup, const CameraPath* path = nullptr);
+FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup,
+                          const CameraPath* path = nullptr);
 
 // Optional extra work after the passes (the window's blit to the swapchain) and its synchronisation.
 struct FrameSubmit {
@@ -44,7 +45,7 @@ struct FrameSubmit {
 class VoxelViewPass;
 
 class Renderer {
-public:
+  public:
     Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings);
     ~Renderer();
     Renderer(const Renderer&) = delete;
@@ -87,7 +88,7 @@ public:
     };
     IndirectLight readIndirect();
 
-private:
+  private:
     vk::Buffer copyToHost(vk::Image& image);
     void writeFrameUniforms(const FrameInput& input);
     void createSamplers();

@@ -8,9 +8,8 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-
 #include <glm/glm.hpp>
+#include <string>
 
 namespace vct {
 
@@ -52,8 +51,8 @@ struct RenderSettings {
     // Bounces of indirect light (1: light from directly lit surfaces; N: the voxels also send on light that
     // has bounced N − 1 times, docs/design.md §5.6).
     uint32_t bounces = kDefaultBounces;
-    uint32_t traceScale = 4;       // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
-    std::string voxelCache;        // OpenVDB file holding the static voxelization (vct voxelize); empty: compute it
+    uint32_t traceScale = 4;  // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
+    std::string voxelCache;  // OpenVDB file holding the static voxelization (vct voxelize); empty: compute it
     // Diagnostic: run every pass every frame, also those whose output did not change (shadow, voxel grid,
     // G-buffer and direct light of a static scene and camera); the image must be the same as without (the test
     // of skipping them).
@@ -61,15 +60,16 @@ struct RenderSettings {
 
     // ---- spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6.7) ----
     enum class Weights { Bilinear, Normal, Sg };  // kWeightsNames in this order
-    Weights weights = Weights::Sg;  // bilateral guide: none, depth × normal, depth × SG lobe
-    float beta = 20.0f;             // SG lobe weight exponent β
-    float kappa = 100.0f;           // SG smoothing kernel sharpness κ
-    float sigmaN = 0.1f;            // normal weight σ_n (σ_n² = 0.01)
-    float diffuseSharpness = 2.0f;  // sg diffuse lobe sharpness λ_d (SG fit of the cosine lobe; the Fig. 6 study)
-    float gamma = 0.8f;             // temporal history decay γ
-    bool temporal = true;           // reproject and accumulate last frame's result
+    Weights weights = Weights::Sg;                // bilateral guide: none, depth × normal, depth × SG lobe
+    float beta = 20.0f;                           // SG lobe weight exponent β
+    float kappa = 100.0f;                         // SG smoothing kernel sharpness κ
+    float sigmaN = 0.1f;                          // normal weight σ_n (σ_n² = 0.01)
+    float diffuseSharpness =
+        2.0f;              // sg diffuse lobe sharpness λ_d (SG fit of the cosine lobe; the Fig. 6 study)
+    float gamma = 0.8f;    // temporal history decay γ
+    bool temporal = true;  // reproject and accumulate last frame's result
     float tau = kDefaultResampleThreshold;  // re-trace pixels whose sum of weights is below τ
-    bool adaptive = true;           // adaptive re-tracing of low-weight pixels at full resolution
+    bool adaptive = true;                   // adaptive re-tracing of low-weight pixels at full resolution
     // Cap A_max on the accumulated history weight, in pixel-own samples (A_max / kExactSampleWeight).
     float historyCap = kHistoryWeightCap / kExactSampleWeight;
     // Write the per-pixel sum of weights image (FrameTargets::weightSum) for --aux and the weights / resample

@@ -37,6 +37,8 @@ const float CONE_MAX_OPACITY = 0.95f;
 // Starting 2 voxels out along n would cut the self-occlusion to −3.5 % but put the origin inside such occluders.
 const float CONE_START_OFFSET = 1.0f;
 const float CONE_START_DISTANCE = 1.0f;
+// Samples a cone takes beyond the grid's edge before it stops (cone_trace.glsl: why).
+const int CONE_STEPS_PAST_GRID = 2;
 // coneSurfaceFootprint: how wide a footprint may be for its height above the surface the cone left.
 const float CONE_SURFACE_CLEARANCE = 0.5f;
 // Widest specular cone: half-angle 45°. Wider lobes are as blurry as the diffuse cones, and a wider cone
@@ -120,7 +122,7 @@ VCT_INLINE float diffuseConeWeight(int i) { return i == 0 ? 0.25f : 0.15f; }
 // a mirror ray, whose footprint is still one voxel (coneDiameter).
 VCT_INLINE float specularConeTanHalf(float alpha) {
     float t = 0.643594253f * clamp(alpha, 0.0f, 1.0f);  // sqrt(√2 − 1)
-    float denominator = 1.0f - t * t;  // ≥ 0.585 for α ≤ 1
+    float denominator = 1.0f - t * t;                   // ≥ 0.585 for α ≤ 1
     return min(2.0f * t / denominator, SPECULAR_CONE_MAX_TAN_HALF);
 }
 

@@ -133,8 +133,8 @@ struct DrawPushConstants {
 #define VCT_BINDING_FRAME 0  // FrameUniforms, in every pass that needs it
 
 // upsample's specialization constants (one pipeline per configuration), after VCT_SPEC_TRACE_SCALE (2 or 4)
-#define VCT_UPSAMPLE_SPEC_WEIGHTS 1   // VCT_WEIGHTS_*
-#define VCT_UPSAMPLE_SPEC_TEMPORAL 2  // bool: reproject the history
+#define VCT_UPSAMPLE_SPEC_WEIGHTS 1     // VCT_WEIGHTS_*
+#define VCT_UPSAMPLE_SPEC_TEMPORAL 2    // bool: reproject the history
 #define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 3  // bool: write the sum-of-weights image (views, --aux)
 
 // resample (full-res cone tracing of the listed pixels)
@@ -148,9 +148,9 @@ struct ResampleListHeader {
 };
 
 // voxelize (triangles → fixed-point accumulators) and its resolve (accumulators → albedo/normal/emission)
-#define VCT_VOXEL_GROUP_SIZE 64        // voxelize: triangles per workgroup
-#define VCT_VOXEL_TILE 4               // resolve / inject / mips: 4×4×4 voxels per workgroup
-#define VCT_VOXEL_ACCUM_STRIDE 10      // uints per voxel: albedo rgb, normal xyz, emission rgb, count
+#define VCT_VOXEL_GROUP_SIZE 64    // voxelize: triangles per workgroup
+#define VCT_VOXEL_TILE 4           // resolve / inject / mips: 4×4×4 voxels per workgroup
+#define VCT_VOXEL_ACCUM_STRIDE 10  // uints per voxel: albedo rgb, normal xyz, emission rgb, count
 
 // voxel view (`vct render --view voxels`: the grid ray-marched at one mip, on demand after the frame)
 struct VoxelViewPushConstants {

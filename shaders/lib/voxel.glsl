@@ -24,7 +24,9 @@ VCT_INLINE vec4 voxelGridFit(vec3 bmin, vec3 bmax, float n) {
 
 VCT_INLINE vec3 voxelFromWorld(vec3 p, vec4 originSize) { return (p - vec3(originSize)) / originSize.w; }
 VCT_INLINE vec3 worldFromVoxel(vec3 v, vec4 originSize) { return vec3(originSize) + v * originSize.w; }
-VCT_INLINE vec3 voxelCenterWorld(ivec3 i, vec4 originSize) { return worldFromVoxel(vec3(i) + 0.5f, originSize); }
+VCT_INLINE vec3 voxelCenterWorld(ivec3 i, vec4 originSize) {
+    return worldFromVoxel(vec3(i) + 0.5f, originSize);
+}
 // Normalized texture coordinate of a world position (what the trace pass samples with).
 VCT_INLINE vec3 voxelUvw(vec3 p, vec4 originSize, float n) { return voxelFromWorld(p, originSize) / n; }
 VCT_INLINE uint voxelLinearIndex(ivec3 i, int n) { return uint(i.x + n * (i.y + n * i.z)); }
@@ -112,7 +114,9 @@ VCT_INLINE uint voxelEncodeEmission(float x) {
     return uint(clamp(x, 0.0f, VOXEL_EMISSION_MAX) * VOXEL_EMISSION_SCALE + 0.5f);
 }
 // Averages of `count` samples (count > 0).
-VCT_INLINE float voxelDecodeUnit(uint sum, uint count) { return float(sum) / (VOXEL_UNIT_SCALE * float(count)); }
+VCT_INLINE float voxelDecodeUnit(uint sum, uint count) {
+    return float(sum) / (VOXEL_UNIT_SCALE * float(count));
+}
 VCT_INLINE float voxelDecodeSigned(uint sum, uint count) {
     return float(int(sum)) / (VOXEL_UNIT_SCALE * float(count));
 }

@@ -1,0 +1,87 @@
+// Small scenes built in code for the tests (closed rooms, quads, lights): what the path tracer's analytic
+// cases and the voxel GI's furnace and leak cases are made of.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace vct::test::scenes {
+
+// Appends a quad centred at c spanning ±u, ±v whose front (counter-clockwise) side faces cross(u, v).
+inline void addQuad(vct::Scene& scene, glm::vec3 c, glm::vec3 u, glm::vec3 v, uint32_t material) {
+    const glm::vec3 n = glm::normalize(glm::cross(u, v));
+    const uint32_t base = uint32_t(scene.vertices.size());
+    const glm::vec3 corners[4] = {c - u - v, c + u - v, c + u + v, c - u + v};
+    const glm::vec2 uvs[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    vct::Primitive primitive;
+    primitive.firstIndex = uint32_t(scene.indices.size());
+    primitive.indexCount = 6;
+    primitive.vertexOffset = int32_t(base);
+    primitive.vertexCount = 4;
+    primitive.material = material;
+    for (int i = 0; i < 4; ++i) {
+        scene.vertices.push_back({corners[i], n, uvs[i], glm::vec4(glm::normalize(u), 1.0f)});
+        primitive.bounds.extend(corners[i]);
+    }
+    for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) scene.indices.push_back(i);
+    scene.primitives.push_back(primitive);
+    scene.meshes[0].primitives.push_back(uint32_t(scene.primitives.size() - 1));
+}
+
+inline vct::Scene emptyScene(const std::string& name, const vct::Material& material) {
+    vct::Scene scene;
+    scene.name = name;
+    scene.materials.push_back(material);
+    scene.meshes.push_back({name, {}});
+    vct::Node node;
+    node.name = name;
+    node.mesh = 0;
+    scene.nodes.push_back(node);
+    scene.roots = {0};
+    return scene;
+}
+
+inline vct::Material diffuseMaterial(float albedo, float emission) {
+    vct::Material m;
+    m.name = "grey";
+    m.baseColorFactor = glm::vec4(glm::vec3(albedo), 1.0f);
+    m.metallicFactor = 0.0f;
+    m.roughnessFactor = 1.0f;
+    m.emissiveFactor = glm::vec3(emission);
+    return m;
+}
+
+// Adds a light of `type` and `intensity` on a new root node and returns that node (to place or turn it).
+inline vct::Node& addLight(vct::Scene& scene, const std::string& name, vct::LightType type, float intensity) {
+    vct::Light light;
+    light.name = name;
+    light.type = type;
+    light.intensity = intensity;
+    scene.lights.push_back(light);
+    vct::Node node;
+    node.name = name;
+    node.light = int(scene.lights.size() - 1);
+    scene.nodes.push_back(node);
+    scene.roots.push_back(int(scene.nodes.size() - 1));
+    return scene.nodes.back();
+}
+
+// A closed cube [−1, 1]³ seen from inside: every face's front side faces inwards.
+inline vct::Scene furnaceRoom(float albedo, float emission) {
+    vct::Scene scene = emptyScene("furnace", diffuseMaterial(albedo, emission));
+    for (int axis = 0; axis < 3; ++axis)
+        for (float side : {-1.0f, 1.0f}) {
+            glm::vec3 e(0.0f);
+            e[axis] = side;
+            const glm::vec3 inward = -e;
+            const glm::vec3 u = std::abs(inward.y) < 0.9f
+                                    ? glm::normalize(glm::cross(inward, glm::vec3(0, 1, 0)))
+                                    : glm::vec3(1, 0, 0);
+            addQuad(scene, e, u, glm::cross(inward, u), 0);
+        }
+    return scene;
+}
+
+}  // namespace vct::test::scenes
