@@ -36,8 +36,8 @@ double meanLuminance(const vct::ImageRgba32f& image, const std::vector<bool>* ma
 // Renders `scene` (a file) with vct at t = 0, every pixel traced; returns the output directory.
 fs::path renderVct(const std::string& name, const std::string& scene, std::vector<std::string> extra) {
     const fs::path dir = vct::test::freshOutputDir("gi_truth/" + name);
-    std::vector<std::string> args = {"render", "--scene",       scene, "--size", "96x54", "--frames", "1",
-                                     "--trace-scale", "1", "--aux", "--out", dir.string()};
+    std::vector<std::string> args = {"render", "--scene",       scene, "--size", "96x54", "--frames",
+                                     "1",      "--trace-scale", "1",   "--aux",  "--out", dir.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = vct::test::runVct(args);
     EXPECT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
@@ -127,8 +127,8 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
 
     // All bounces against --bounces 8: measured 0.86 of the full GI's indirect light (the voxels carry diffuse
     // transport only; one bounce gives 0.36).
-    const nlohmann::json all =
-        compareWith(cornellReference("all"), renderVct("cornell_b8", "cornell", {"--voxels", "64", "--bounces", "8"}));
+    const nlohmann::json all = compareWith(
+        cornellReference("all"), renderVct("cornell_b8", "cornell", {"--voxels", "64", "--bounces", "8"}));
     const double allWhole = all["image"]["indirect"]["ratio"].get<double>();
     std::printf("8 bounces against all bounces: %.3f\n", allWhole);
     EXPECT_GE(allWhole, 0.8);
