@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// bounce: the light each occupied voxel receives through the grid (docs/design.md §5.6), for the next inject to
+// bounce: the light each occupied voxel receives through the grid (docs/design.md §5.7), for the next inject to
 // send on as albedo × it. The 6 diffuse cones of a surface pixel (lib/cone_trace.glsl's traceDiffuse), from the
 // voxel's centre about its averaged normal: the cosine-weighted mean incoming radiance, the Lambertian bounce's
 // albedo/π · E. Voxels whose surfaces disagree on a side (|n̄| short: both faces of a thin wall) gather about

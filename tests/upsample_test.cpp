@@ -31,7 +31,8 @@ double mse(const fs::path& reference, const fs::path& image) {
 }
 
 // No NaN or Inf in any channel, and no black (zero-luminance) pixel: inside the closed cornell room every
-// surface sees lit walls, so its indirect light is positive.
+// surface sees lit walls, so its diffuse indirect light is positive (used for diffuse and final; a sharp
+// reflection may see only the unlit ceiling).
 void expectFiniteAndNotBlack(const fs::path& file, const std::string& what) {
     const vct::ImageRgba32f image = vct::readExr(file);
     EXPECT_EQ(vct::test::countNonFinite(image.pixels), 0u) << what;

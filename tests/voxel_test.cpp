@@ -140,11 +140,28 @@ TEST(VoxelCosine, OneSidedTwoSidedAndAmbiguous) {
     EXPECT_TRUE(std::isfinite(thinWall));
 }
 
-TEST(VoxelMips, PremultipliedAverage) {
+// One mip texel of a direction slab (voxel_mips.comp): each pair of children along the slab's direction
+// composited front over back, the four pairs averaged, premultiplied.
+TEST(VoxelMips, PremultipliedAverageOfPairsCompositedFrontToBack) {
     const vec4 lit(2.0f, 1.0f, 0.0f, 1.0f), empty(0.0f);
-    const vec4 m = g::voxelAverage8(lit, empty, empty, empty, empty, empty, empty, empty);
-    EXPECT_NEAR(m.a, 0.125f, 1e-6f);
+    // One lit voxel among eight: the average keeps its colour and a quarter of the opacity per pair covered.
+    const vec4 m = g::voxelAverage4(g::voxelOver(lit, empty), g::voxelOver(empty, empty),
+                                    g::voxelOver(empty, empty), g::voxelOver(empty, empty));
+    EXPECT_NEAR(m.a, 0.25f, 1e-6f);
     EXPECT_NEAR(m.r / m.a, 2.0f, 1e-5f);  // un-premultiplied colour is the lit voxel's
+    // An opaque voxel in front hides the one behind; behind empty space, the back one shows.
+    const vec4 dark(0.0f, 0.0f, 0.0f, 1.0f);
+    EXPECT_EQ(g::voxelOver(dark, lit), dark);
+    EXPECT_EQ(g::voxelOver(empty, lit), lit);
+    // A one-voxel wall across the direction stays opaque at the next mip; one along it covers half.
+    EXPECT_NEAR(g::voxelAverage4(g::voxelOver(dark, empty), g::voxelOver(dark, empty),
+                                 g::voxelOver(dark, empty), g::voxelOver(dark, empty))
+                    .a,
+                1.0f, 1e-6f);
+    EXPECT_NEAR(g::voxelAverage4(g::voxelOver(dark, dark), g::voxelOver(dark, dark),
+                                 g::voxelOver(empty, empty), g::voxelOver(empty, empty))
+                    .a,
+                0.5f, 1e-6f);
 }
 
 // ---- the passes on the GPU (lavapipe): cornell with a 32³ grid, validation on ----

@@ -26,7 +26,7 @@ void InjectPass::inject(const FrameContext& frame, bool addBounce) {
     resources_.bind(frame, pipeline_);
     const gpu::InjectPushConstants push{glm::uvec4(addBounce ? 1u : 0u, 0u, 0u, 0u)};
     pipeline_.pushConstants(frame.cmd, &push, sizeof(push));
-    const uint32_t groups = (grid_.resolution() + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
+    const uint32_t groups = voxelTileCount(grid_.resolution());
     vkCmdDispatch(frame.cmd, groups, groups, groups);
 }
 

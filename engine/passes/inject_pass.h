@@ -1,6 +1,6 @@
 // inject: direct light (main light shadow-mapped, other lights unshadowed) and emission into the occupied
 // voxels → mip 0 of the grid's premultiplied radiance + opacity texture (docs/design.md §5.2); the bounce pass
-// runs it again with the gathered light added (multiple bounces, §5.6).
+// runs it again with the gathered light added (multiple bounces, §5.7).
 #pragma once
 
 #include "render/pass.h"

@@ -19,7 +19,7 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
 }
 
 void VoxelBouncePass::execute(const FrameContext& frame) {
-    const uint32_t groups = (grid_.resolution() + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
+    const uint32_t groups = voxelTileCount(grid_.resolution());
     for (uint32_t i = 0; i < iterations_; ++i) {
         // Gather from the grid as it stands (its mips included)...
         pipeline_.bind(frame.cmd);

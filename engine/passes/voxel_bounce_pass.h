@@ -1,4 +1,4 @@
-// bounce: multiple bounces of indirect light in the voxel grid (docs/design.md §5.6). After the frame's inject
+// bounce: multiple bounces of indirect light in the voxel grid (docs/design.md §5.7). After the frame's inject
 // and mips hold the directly lit voxels, each of bounces − 1 iterations lets every occupied voxel gather the
 // light arriving at it through the grid with the 6 diffuse cones (voxel_bounce.comp), then re-injects direct
 // light + albedo × that (the inject pass, adding the gathered light) and rebuilds the mips: iteration k leaves

@@ -41,11 +41,9 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
             .storage(kDest, radiance.mipView(level))
             .push(frame.context, cmd, pipeline_);
         const uint32_t size = std::max(1u, grid_.resolution() >> level);
-        const uint32_t groups = (size + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
+        const uint32_t groups = voxelTileCount(size);
         // Six direction slabs side by side along x (lib/voxel.glsl).
-        const uint32_t groupsX =
-            (size * uint32_t(glsl::VOXEL_SLAB_COUNT) + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
-        vkCmdDispatch(cmd, groupsX, groups, groups);
+        vkCmdDispatch(cmd, voxelTileCount(size * uint32_t(glsl::VOXEL_SLAB_COUNT)), groups, groups);
     }
 }
 

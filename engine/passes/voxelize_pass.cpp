@@ -125,7 +125,7 @@ void VoxelizePass::execute(const FrameContext& frame) {
     gpu::VoxelizePushConstants push{};
     push.params = glm::uvec4(0, moving ? 1u : 0u, 0, 0);
     resolve_.pushConstants(cmd, &push, sizeof(push));
-    const uint32_t groups = (grid_.resolution() + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
+    const uint32_t groups = voxelTileCount(grid_.resolution());
     vkCmdDispatch(cmd, groups, groups, groups);
 }
 

@@ -53,4 +53,9 @@ inline uint32_t tileCount(uint32_t pixels) {
     return (pixels + VCT_TILE_SIZE - 1) / VCT_TILE_SIZE;
 }
 
+// Dispatch size along one axis for a compute pass over voxels (or voxel texels) in VCT_VOXEL_TILE tiles.
+inline uint32_t voxelTileCount(uint32_t voxels) {
+    return (voxels + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
+}
+
 }  // namespace vct

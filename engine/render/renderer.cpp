@@ -59,7 +59,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         passes_.push_back(std::make_unique<VoxelizePass>(context, *voxelGrid_));
         auto inject = std::make_unique<InjectPass>(context, *voxelGrid_);
         auto mips = std::make_unique<VoxelMipsPass>(context, *voxelGrid_);
-        // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.6).
+        // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.7).
         std::unique_ptr<Pass> bounce;
         if (settings.bounces > 1)
             bounce =

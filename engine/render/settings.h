@@ -20,7 +20,7 @@ constexpr uint32_t kAnisotropyFromDevice = ~0u;
 // Default τ (RenderSettings::tau): re-trace where the weights kept less than this share of one full
 // neighbourhood, the history counted in pixel-own samples (a neighbourhood's worth each).
 constexpr float kDefaultResampleThreshold = 0.25f;
-// Bounces of indirect light by default (RenderSettings::bounces; docs/design.md §5.6 for why this many).
+// Bounces of indirect light by default (RenderSettings::bounces; docs/design.md §5.7 for why this many).
 constexpr uint32_t kDefaultBounces = 1;
 
 // Weight of a sample traced at the pixel itself in the accumulated history, in units of one fully agreeing
@@ -49,7 +49,7 @@ struct RenderSettings {
     bool gi = true;                // false: the constant ambient term instead of cone-traced indirect light
     uint32_t voxelResolution = 0;  // N for the N³ grid (32..256); 0 = chosen from the scene
     // Bounces of indirect light (1: light from directly lit surfaces; N: the voxels also send on light that
-    // has bounced N − 1 times, docs/design.md §5.6).
+    // has bounced N − 1 times, docs/design.md §5.7).
     uint32_t bounces = kDefaultBounces;
     uint32_t traceScale = 4;  // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
     std::string voxelCache;  // OpenVDB file holding the static voxelization (vct voxelize); empty: compute it

@@ -94,7 +94,8 @@ VCT_INLINE vec3 closestPointBarycentric(vec3 p, vec3 a, vec3 b, vec3 c) {
     return vec3(1.0f - v - w, v, w);
 }
 
-// voxelFacing: cosines above this count as facing (0: exactly sideways, as a floor towards ±x, does not).
+// voxelFacing: cosines above this count as facing. Slightly below 0, so that exactly sideways (a floor towards
+// ±x) counts: with it excluded cornell's walls got 0.46–0.70 of their true indirect light, with it 0.73–1.03.
 const float VOXEL_FACING_MIN_COSINE = -1e-3f;
 
 // ---- fixed-point accumulation (atomicAdd on uint buffers) ----
@@ -168,9 +169,9 @@ VCT_INLINE float voxelSlabU(float u, int slab, float texels) {
     return (float(slab) + inside) / float(VOXEL_SLAB_COUNT);
 }
 
-// Share of a voxel's outgoing radiance that leaves towards unit `towards`: 1 on the side its surfaces face, 0
-// behind and beside them (a lit floor sends nothing sideways into its own cones, nor down), blending to 1 (two
-// sided) as the averaged normal nbar shortens (|nbar| < 1: surfaces in the voxel disagree, e.g. both sides of
+// Share of a voxel's outgoing radiance that leaves towards unit `towards`: 1 on the side its surfaces face and
+// sideways (a floor seen edge-on from afar is lit; its own cones no longer see it, coneSurfaceFootprint), 0
+// behind them (a lit floor sends nothing down), blending to 1 (two sided) as the averaged normal nbar shortens (|nbar| < 1: surfaces in the voxel disagree, e.g. both sides of
 // a thin wall), as voxelCosine does for the light arriving.
 VCT_INLINE float voxelFacing(vec3 nbar, vec3 towards) {
     float r = length(nbar);
@@ -184,10 +185,5 @@ VCT_INLINE float voxelFacing(vec3 nbar, vec3 towards) {
 // across the direction stays opaque at every mip, one along it covers its share of the footprint.
 VCT_INLINE vec4 voxelOver(vec4 front, vec4 back) { return front + (1.0f - saturate(front.a)) * back; }
 VCT_INLINE vec4 voxelAverage4(vec4 a, vec4 b, vec4 c, vec4 d) { return 0.25f * ((a + b) + (c + d)); }
-
-// Premultiplied 2×2×2 average of eight RGBA samples (rgb = radiance × opacity, a = opacity).
-VCT_INLINE vec4 voxelAverage8(vec4 a, vec4 b, vec4 c, vec4 d, vec4 e, vec4 f, vec4 g, vec4 h) {
-    return 0.125f * (((a + b) + (c + d)) + ((e + f) + (g + h)));
-}
 
 #endif  // VCT_VOXEL_GLSL
