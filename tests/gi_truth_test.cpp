@@ -46,7 +46,8 @@ fs::path renderVct(const std::string& name, const std::string& scene, std::vecto
     return dir;
 }
 
-// A closed emissive room (albedo ρ, emission L_e = 1) with a camera inside, written as a .glb.
+// A closed emissive room (albedo ρ, emission L_e = 1) with a camera inside, written as a .glb in a directory
+// of its own: ctest runs the tests in parallel, and a shared directory would be emptied under another test.
 std::string furnaceFile(const std::string& name, float albedo) {
     vct::Scene scene = furnaceRoom(albedo, 1.0f);
     scene.cameras.push_back(vct::Camera{"inside", 1.2f, 0.01f, 10.0f, 0.0f});
@@ -57,7 +58,7 @@ std::string furnaceFile(const std::string& name, float albedo) {
     camera.rotation = glm::angleAxis(0.4f, glm::vec3(0, 1, 0));
     scene.nodes.push_back(camera);
     scene.roots.push_back(int(scene.nodes.size() - 1));
-    const fs::path path = vct::test::freshOutputDir("gi_truth/scenes") / (name + ".glb");
+    const fs::path path = vct::test::freshOutputDir("gi_truth/scene_" + name) / (name + ".glb");
     vct::writeGlb(scene, path);
     return path.string();
 }
