@@ -19,8 +19,8 @@ layout(set = 0, binding = 2, rgba8) uniform readonly image3D albedoImage;
 layout(set = 0, binding = 3, rgba16f) uniform readonly image3D normalImage;
 layout(set = 0, binding = 4, rgba16f) uniform readonly image3D emissionImage;
 layout(set = 0, binding = 5) uniform sampler2DShadow shadowMap;
-layout(set = 0, binding = 6,
-       rgba16f) uniform writeonly image3D radianceImage;  // mip 0 of the radiance texture (6 slabs)
+// Mip 0 of the radiance texture (6 slabs), cleared before the dispatch; only occupied voxels are written.
+layout(set = 0, binding = 6, rgba16f) uniform image3D radianceImage;
 // The light the voxels gathered from the grid (voxel_bounce.comp): cosine-weighted mean incoming radiance.
 layout(set = 0, binding = 7, rgba16f) uniform readonly image3D bounceImage;
 
@@ -45,11 +45,8 @@ void main() {
     const int n = int(frame.voxels.resolution);
     if (any(greaterThanEqual(voxel, ivec3(n)))) return;
     const vec4 albedoOpacity = imageLoad(albedoImage, voxel);
-    if (albedoOpacity.a <= 0.0) {
-        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
-            imageStore(radianceImage, slabTexel(voxel, slab, n), vec4(0.0));
-        return;
-    }
+    // Empty: left as the clear before the dispatch made it (inject_pass.cpp).
+    if (albedoOpacity.a <= 0.0) return;
     const vec3 nbar = imageLoad(normalImage, voxel).xyz;
     const vec3 emission = imageLoad(emissionImage, voxel).rgb;
     const float voxelSize = frame.voxels.voxelSize;

@@ -152,6 +152,53 @@ TEST(Cone, SpecularApertureIsFiniteAndMonotonic) {
     EXPECT_FLOAT_EQ(specularConeTanHalf(1.0f), SPECULAR_CONE_MAX_TAN_HALF);
 }
 
+// The share of a GGX lobe the specular cone stands for (lib/cone.glsl, sgShareInCone, specularConeShare): the
+// closed form against a quadrature of the SG over the cone and the sphere, its limits, and that rougher lobes
+// leave more to the diffuse cones.
+TEST(Cone, RoughLobeShareInTheSpecularConeMatchesItsIntegral) {
+    const auto numeric = [](float invLambda, float tanHalf) {
+        const double lambda = 1.0 / invLambda, cone = std::atan(double(tanHalf));
+        double inside = 0.0, all = 0.0;
+        const int steps = 20000;
+        for (int i = 0; i < steps; ++i) {
+            const double theta = (i + 0.5) * M_PI / steps;
+            const double g = std::exp(lambda * (std::cos(theta) - 1.0)) * std::sin(theta);
+            all += g;
+            if (theta < cone) inside += g;
+        }
+        return inside / all;
+    };
+    for (float invLambda : {0.01f, 0.1f, 0.5f, 1.0f, 4.0f})
+        for (float tanHalf : {0.1f, 0.5f, 1.0f})
+            EXPECT_NEAR(sgShareInCone(invLambda, tanHalf), numeric(invLambda, tanHalf), 2e-3)
+                << invLambda << " " << tanHalf;
+    EXPECT_EQ(sgShareInCone(0.0f, 0.0f), 1.0f);  // a mirror: all of it along the ray
+    EXPECT_NEAR(sgShareInCone(1e7f, 1.0f), 0.5f * (1.0f - std::sqrt(0.5f)),
+                1e-6f);  // uniform: the cone's area
+    // The specular cone stands for the whole lobe until its aperture is clamped, then for less and less of it:
+    // cornell's walls (α = 0.81 seen at n·v = 0.7) keep 0.74 (the comment in lib/cone.glsl).
+    EXPECT_EQ(specularConeShare(0.0f, 0.7f), 1.0f);
+    EXPECT_EQ(specularConeShare(0.3f, 0.7f), 1.0f);
+    EXPECT_NEAR(specularConeShare(0.81f, 0.7f), 0.74f, 0.01f);
+    float previous = 1.0f;
+    for (float r = 0.05f; r <= 1.0f; r += 0.05f)
+        for (float nov : {0.0f, 0.3f, 1.0f}) {
+            const float share = specularConeShare(alphaFromPerceptual(r), nov);
+            EXPECT_TRUE(std::isfinite(share) && share > 0.0f && share <= 1.0f) << r << " " << nov;
+            if (nov == 1.0f) {
+                EXPECT_LE(share, previous + 1e-6f) << r;
+                previous = share;
+            }
+        }
+    // Diffuse-cone weights: finite and ≥ 0 for a mirror lobe far from every cone and for grazing directions.
+    const glm::vec3 n(0, 1, 0);
+    for (float invLambda : {0.0f, 1e-8f, 1.0f, 1e8f})
+        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
+            const float w = sgDiffuseConeWeight(glm::vec3(1, 0, 0), invLambda, n, diffuseConeDirection(n, i));
+            EXPECT_TRUE(std::isfinite(w) && w >= 0.0f) << invLambda;
+        }
+}
+
 TEST(Cone, NoNaNAtRoughnessExtremesAndGrazingOrBackFacingViews) {
     GridSample grid = [](glm::vec3 p, float) {
         return p.y < 0.0f ? glm::vec4(0.5f, 0.5f, 0.5f, 1.0f) : glm::vec4(0.0f);

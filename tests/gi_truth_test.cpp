@@ -46,21 +46,25 @@ fs::path renderVct(const std::string& name, const std::string& scene, std::vecto
     return dir;
 }
 
-// A closed emissive room (albedo ρ, emission L_e = 1) with a camera inside, written as a .glb in a directory
-// of its own: ctest runs the tests in parallel, and a shared directory would be emptied under another test.
-std::string furnaceFile(const std::string& name, float albedo) {
-    vct::Scene scene = furnaceRoom(albedo, 1.0f);
+// Writes `scene` with a camera at `position` turned by `yaw` about y as a .glb in a directory of its own
+// (ctest runs the tests in parallel, and a shared directory would be emptied under another test).
+std::string sceneFile(const std::string& name, vct::Scene scene, glm::vec3 position, float yaw) {
     scene.cameras.push_back(vct::Camera{"inside", 1.2f, 0.01f, 10.0f, 0.0f});
     vct::Node camera;
     camera.name = "inside";
     camera.camera = 0;
-    camera.translation = glm::vec3(0.2f, -0.1f, 0.6f);
-    camera.rotation = glm::angleAxis(0.4f, glm::vec3(0, 1, 0));
+    camera.translation = position;
+    camera.rotation = glm::angleAxis(yaw, glm::vec3(0, 1, 0));
     scene.nodes.push_back(camera);
     scene.roots.push_back(int(scene.nodes.size() - 1));
     const fs::path path = vct::test::freshOutputDir("gi_truth/scene_" + name) / (name + ".glb");
     vct::writeGlb(scene, path);
     return path.string();
+}
+
+// A closed emissive room (albedo ρ, emission L_e = 1) with a camera inside.
+std::string furnaceFile(const std::string& name, float albedo) {
+    return sceneFile(name, furnaceRoom(albedo, 1.0f), glm::vec3(0.2f, -0.1f, 0.6f), 0.4f);
 }
 
 TEST(VoxelGi, EmissiveFurnaceGathersItsRadianceAtEveryResolution) {
@@ -134,6 +138,28 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
     std::printf("8 bounces against all bounces: %.3f\n", allWhole);
     EXPECT_GE(allWhole, 0.8);
     EXPECT_LE(allWhole, 1.15);
+}
+
+TEST(VoxelGi, LightLeakingThroughAOneVoxelWallIsBounded) {
+    // Two rooms sharing a wall of zero thickness (tests/scene_util.h, twoRooms): the left one lit by its
+    // emissive ceiling, the right one dark, so every bit of indirect light in the right room leaked through
+    // the wall. Each camera stands in its room's far half looking at the shared wall (yaw ±90°).
+    const vct::Scene rooms = twoRooms(0.5f);
+    const std::string litFile = sceneFile("rooms_lit", rooms, glm::vec3(-1.6f, 0.0f, 0.0f), -1.5708f);
+    const std::string darkFile = sceneFile("rooms_dark", rooms, glm::vec3(1.6f, 0.0f, 0.0f), 1.5708f);
+    for (const char* voxels : {"32", "64"}) {
+        const auto diffuseIn = [&](const std::string& name, const std::string& file) {
+            const fs::path dir = renderVct(name + "_" + voxels, file, {"--voxels", voxels});
+            return meanLuminance(vct::readExr(dir / "diffuse_indirect.exr"));
+        };
+        const double lit = diffuseIn("rooms_lit", litFile), dark = diffuseIn("rooms_dark", darkFile);
+        const double leak = dark / lit;
+        std::printf("two rooms at %s^3: lit room %.4f, dark room %.4f: leak %.4f (exact 0)\n", voxels, lit,
+                    dark, leak);
+        EXPECT_GT(lit, 0.1) << "the lit room must be lit for the ratio to mean anything";
+        EXPECT_LE(leak, 1.0) << voxels;
+        EXPECT_TRUE(std::isfinite(leak));
+    }
 }
 
 }  // namespace

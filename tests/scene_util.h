@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "scene/scene.h"
 
@@ -81,6 +82,38 @@ inline vct::Scene furnaceRoom(float albedo, float emission) {
                                     : glm::vec3(1, 0, 0);
             addQuad(scene, e, u, glm::cross(inward, u), 0);
         }
+    return scene;
+}
+
+// Appends the six inward faces of the box [lo, hi] with `material`.
+inline void addClosedBox(vct::Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
+    const glm::vec3 c = 0.5f * (lo + hi), h = 0.5f * (hi - lo);
+    for (int axis = 0; axis < 3; ++axis)
+        for (float side : {-1.0f, 1.0f}) {
+            glm::vec3 e(0.0f);
+            e[axis] = side;
+            const glm::vec3 inward = -e;
+            const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+            glm::vec3 u(0.0f), v(0.0f);
+            u[a] = h[a];
+            v[b] = h[b];
+            // Order u, v so that cross(u, v) faces inwards.
+            if (glm::dot(glm::cross(u, v), inward) < 0.0f) std::swap(u, v);
+            addQuad(scene, c + e * h, u, v, material);
+        }
+}
+
+// Two closed rooms of albedo ρ side by side, sharing a wall of zero thickness at x = 0 (one quad facing each
+// room): the left room [−2, 0] × [−1, 1]² has an emissive ceiling (radiance 1), the right one [0, 2] × [−1, 1]²
+// no light at all. Any light in the right room has leaked through that wall: the exact answer is 0.
+inline vct::Scene twoRooms(float albedo) {
+    vct::Scene scene = emptyScene("two rooms", diffuseMaterial(albedo, 0.0f));
+    scene.materials.push_back(diffuseMaterial(albedo, 1.0f));
+    scene.materials.back().name = "emitter";
+    addClosedBox(scene, {0.0f, -1.0f, -1.0f}, {2.0f, 1.0f, 1.0f}, 0);
+    addClosedBox(scene, {-2.0f, -1.0f, -1.0f}, {0.0f, 1.0f, 1.0f}, 0);
+    for (vct::Primitive& primitive : scene.primitives)
+        if (primitive.bounds.min.y > 0.99f && primitive.bounds.max.x < 0.01f) primitive.material = 1;
     return scene;
 }
 

@@ -21,6 +21,9 @@ class InjectPass : public Pass {
   private:
     VoxelGrid& grid_;
     ResourceTable resources_;
+    // Mip 0 of the radiance as the clear before the dispatch writes it (one image cannot be a transfer
+    // destination and a storage image in one table).
+    ResourceTable clear_;
     vk::Pipeline pipeline_;
 };
 

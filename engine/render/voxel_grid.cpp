@@ -85,7 +85,9 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     };
     // TRANSFER_SRC so that later tools (OpenVDB export, tests) can read them back.
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    radiance_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, mipCount_, storage | VK_IMAGE_USAGE_SAMPLED_BIT,
+    // Transfer destination: inject clears mip 0 before writing the occupied voxels only.
+    radiance_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, mipCount_,
+                       storage | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                        uint32_t(glsl::VOXEL_SLAB_COUNT));
     albedo_ = volume(VK_FORMAT_R8G8B8A8_UNORM, 1, storage);
     normal_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);

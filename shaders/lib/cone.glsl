@@ -120,10 +120,54 @@ VCT_INLINE float diffuseConeWeight(int i) { return i == 0 ? 0.25f : 0.15f; }
 // direction, so the cone's half-angle is 2·θ_h, with tan(2θ_h) = 2t/(1 − t²), t = 0.644·α (the small-α form,
 // within 10% of the exact half-width up to α ≈ 0.45). Clamped to SPECULAR_CONE_MAX_TAN_HALF. α = 0 gives 0:
 // a mirror ray, whose footprint is still one voxel (coneDiameter).
-VCT_INLINE float specularConeTanHalf(float alpha) {
+VCT_INLINE float specularLobeTanHalf(float alpha) {
     float t = 0.643594253f * clamp(alpha, 0.0f, 1.0f);  // sqrt(√2 − 1)
     float denominator = 1.0f - t * t;                   // ≥ 0.585 for α ≤ 1
-    return min(2.0f * t / denominator, SPECULAR_CONE_MAX_TAN_HALF);
+    return 2.0f * t / denominator;
+}
+VCT_INLINE float specularConeTanHalf(float alpha) {
+    return min(specularLobeTanHalf(alpha), SPECULAR_CONE_MAX_TAN_HALF);
+}
+
+// Inverse sharpness 1/λ of the GGX lobe as a spherical Gaussian G(ω) = exp(λ(ω·ξ − 1)) about the mirror
+// direction ξ: the NDF as an SG about n with λ_h = 2/α², warped into the reflected direction with
+// λ = λ_h / (4 n·v), i.e. 1/λ = 2α²·max(n·v, ε) (Wang et al. 2009). The n·v floor keeps grazing and
+// back-facing views (normal maps) of rough surfaces from turning into mirror lobes.
+const float SG_MIN_NOV = 1e-4f;
+VCT_INLINE float specularLobeInverseSharpness(float alpha, float nov) {
+    const float a = clamp(alpha, 0.0f, 1.0f);
+    return 2.0f * a * a * max(nov, SG_MIN_NOV);
+}
+
+// Share of an SG lobe of inverse sharpness 1/λ (over the sphere) that falls inside a cone of half-angle θ
+// about its axis: ∫_cone G / ∫_sphere G = (1 − e^{−λ(1 − cos θ)}) / (1 − e^{−2λ}). 1 for a mirror (1/λ = 0),
+// (1 − cos θ)/2 as λ → 0 (a uniform lobe).
+VCT_INLINE float sgShareInCone(float invLambda, float tanHalfAngle) {
+    const float oneMinusCos = 1.0f - inversesqrt(1.0f + tanHalfAngle * tanHalfAngle);
+    if (invLambda <= 1e-6f) return 1.0f;
+    if (invLambda >= 1e6f) return 0.5f * oneMinusCos;
+    const float lambda = 1.0f / invLambda;
+    return saturate((1.0f - exp(-lambda * oneMinusCos)) / (1.0f - exp(-2.0f * lambda)));
+}
+
+// How much of the specular lobe the (clamped) specular cone stands for. A cone as wide as the lobe
+// (specularLobeTanHalf) stands for all of it, as in Crassin et al.; clamped to 45° it loses the part of the
+// lobe between the two apertures, which the diffuse cones estimate instead (cone_trace.glsl, traceSurface).
+// 1 whenever the clamp is not reached; cornell's walls (α = 0.81 seen at n·v = 0.7) keep 0.74.
+VCT_INLINE float specularConeShare(float alpha, float nov) {
+    const float invLambda = specularLobeInverseSharpness(alpha, nov);
+    const float lobeTan = specularLobeTanHalf(alpha);
+    if (lobeTan <= SPECULAR_CONE_MAX_TAN_HALF) return 1.0f;
+    return saturate(sgShareInCone(invLambda, SPECULAR_CONE_MAX_TAN_HALF) /
+                    max(sgShareInCone(invLambda, lobeTan), 1e-6f));
+}
+
+// Weight of diffuse cone direction ω in the estimate of a lobe (unit axis ξ, inverse sharpness 1/λ) from the
+// diffuse cones: the SG at ω times the cosine n·ω (the lobe as it meets the surface). The exponent is
+// clamped so that a sharp lobe far from every cone gives 0, not a NaN from 0 · ∞.
+VCT_INLINE float sgDiffuseConeWeight(vec3 xi, float invLambda, vec3 n, vec3 omega) {
+    const float exponent = (dot(omega, xi) - 1.0f) / max(invLambda, 1e-6f);
+    return exp(max(exponent, -80.0f)) * max(dot(n, omega), 0.0f);
 }
 
 // Mirror direction of unit v about unit n, reflect(−v, n) = 2(n·v)n − v, with n·v clamped to ≥ 0: back-facing

@@ -85,12 +85,31 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 }
 
 // Both cone sets from surface point p with unit normal n, seen along unit v (towards the camera).
+// Specular: the GGX lobe as an SG (lib/cone.glsl). The share of it that the specular cone stands for is read
+// from that cone; the rest, which a rough lobe spreads beyond the widest cone, from the diffuse cones weighted
+// by the lobe at their directions. A single cone capped at 45° saw only the lobe's centre: on cornell's rough
+// walls (α = 0.81) it reflected the dark front wall and ceiling where the path-traced truth also sees the
+// lit floor.
 IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness) {
     const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
     const float alpha = alphaFromPerceptual(perceptualRoughness);
-    return IndirectSample(
-        traceDiffuse(voxels, p, n),
-        traceCone(voxels, p, n, origin, specularConeDirection(n, v), specularConeTanHalf(alpha)).rgb);
+    const vec3 xi = specularConeDirection(n, v);
+    const float invLambda = specularLobeInverseSharpness(alpha, dot(n, v));
+    const float tanHalf = specularConeTanHalf(alpha);
+    vec3 diffuse = vec3(0.0), lobe = vec3(0.0);
+    float lobeWeight = 0.0;
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
+        const vec3 dir = diffuseConeDirection(n, i);
+        const vec3 l = traceCone(voxels, p, n, origin, dir, DIFFUSE_CONE_TAN_HALF).rgb;
+        diffuse += diffuseConeWeight(i) * l;
+        const float w = sgDiffuseConeWeight(xi, invLambda, n, dir);
+        lobe += w * l;
+        lobeWeight += w;
+    }
+    const float inCone = lobeWeight > 0.0 ? specularConeShare(alpha, dot(n, v)) : 1.0;
+    vec3 specular = inCone * traceCone(voxels, p, n, origin, xi, tanHalf).rgb;
+    if (inCone < 1.0) specular += (1.0 - inCone) * lobe / lobeWeight;
+    return IndirectSample(diffuse, specular);
 }
 
 IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D normalRoughnessTexture,

@@ -25,17 +25,13 @@ const float SG_MAX_KAPPA = 65504.0f;
 const float NORMAL_WEIGHT_DEFAULT_SIGMA2 = 0.01f;
 // Diffuse lobe sharpness λ_d: the cosine lobe max(n·ω, 0) is best fitted by an SG of sharpness ≈ 2.
 const float SG_DIFFUSE_SHARPNESS = 2.0f;
-// n·v floor in the specular lobe. The warped lobe sharpens as n·v → 0 (1/λ ∝ n·v); the floor keeps grazing and
-// back-facing views (normal maps) of rough surfaces from turning into mirror lobes.
-const float SG_MIN_NOV = 1e-4f;
 
-// Specular lobe of a pixel (docs/design.md §6.2): the GGX NDF as an SG around n with λ_h = 2/α², warped into the
-// reflected direction ξ = 2(n·v)n − v with λ = λ_h / (4 n·v), i.e. 1/λ = 2α²·max(n·v, ε).
+// Specular lobe of a pixel (docs/design.md §6.2): the GGX NDF as an SG warped into the reflected direction
+// ξ = 2(n·v)n − v (lib/cone.glsl, specularLobeInverseSharpness).
 // n, v unit; alpha the effective (Toksvig, AA) GGX roughness α = perceptual².
 VCT_INLINE vec4 specularLobe(vec3 n, vec3 v, float alpha) {
     // The axis is the specular cone's (lib/cone.glsl), so the lobe compared is the one the trace sampled.
-    const float a = clamp(alpha, 0.0f, 1.0f);
-    return vec4(specularConeDirection(n, v), 2.0f * a * a * max(dot(n, v), SG_MIN_NOV));
+    return vec4(specularConeDirection(n, v), specularLobeInverseSharpness(alpha, dot(n, v)));
 }
 
 // Diffuse lobe: the clamped cosine around n, one fixed sharpness.

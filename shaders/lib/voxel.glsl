@@ -158,8 +158,20 @@ VCT_INLINE vec3 voxelSlabDirection(int slab) {
 VCT_INLINE int voxelSlabFor(vec3 dir, int axis) { return 2 * axis + (dir[axis] < 0.0f ? 1 : 0); }
 
 // How much of the three slabs along `dir` a sample takes: dir² per axis (sums to 1 for a unit dir), the share
-// of each face in what a cone along dir sees.
-VCT_INLINE vec3 voxelSlabWeights(vec3 dir) { return dir * dir; }
+// of each face in what a cone along dir sees. A face seen at a grazing angle (weight below
+// VOXEL_SLAB_MIN_WEIGHT, i.e. under 18° from the cone's direction) is dropped and the others renormalised:
+// every slab read is a trilinear sample between two mips (16 texels), the largest part of a cone step's
+// cost, and such a face adds little that its neighbours do not already show.
+const float VOXEL_SLAB_MIN_WEIGHT = 0.1f;
+VCT_INLINE vec3 voxelSlabWeights(vec3 dir) {
+    const vec3 w = dir * dir;
+    const vec3 kept =
+        vec3(w.x >= VOXEL_SLAB_MIN_WEIGHT ? w.x : 0.0f, w.y >= VOXEL_SLAB_MIN_WEIGHT ? w.y : 0.0f,
+             w.z >= VOXEL_SLAB_MIN_WEIGHT ? w.z : 0.0f);
+    // At least one of three weights summing to 1 is ≥ 1/3, so the sum is never 0 for a unit dir.
+    const float sum = kept.x + kept.y + kept.z;
+    return sum > 0.0f ? kept / sum : w;
+}
 
 // The u coordinate (0..1 across the whole 6N width) of point u (0..1 across one volume) in `slab`, at a mip of
 // `texels` texels per slab: kept half a texel inside the slab, so that filtering never reads the slab beside
