@@ -152,9 +152,7 @@ void saveCameraPath(const CameraPath& path, const std::filesystem::path& file) {
         root["keys"].push_back({{"time", key.time},
                                 {"position", {key.position.x, key.position.y, key.position.z}},
                                 {"target", {key.target.x, key.target.y, key.target.z}}});
-    std::ofstream out(file);
-    out << root.dump(2) << "\n";
-    if (!out) throw Error("cannot write camera path '" + file.string() + "'");
+    writeFileReplacing(file, root.dump(2) + "\n");
 }
 
 CameraKey cameraKey(const CameraView& camera, float timeSeconds) {

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "app/demo/demo_controls.h"
 #include "core/error.h"
+#include "scene/input_limits.h"
 
 namespace vct {
 
@@ -24,6 +24,23 @@ std::string optionText(const nlohmann::ordered_json& value, const std::string& w
         return s.str();
     }
     throw Error(where + ": expected a string, number or boolean, got " + value.dump());
+}
+
+// A script's screenshots stay in the directory the demo runs in: a relative path without "..", whose
+// directory exists (checked at load time, not after the frames it took to get there).
+void screenshotProblem(const std::string& file, const std::string& where) {
+    const std::filesystem::path path(file);
+    if (file.empty() || path.is_absolute())
+        throw Error(where + ": screenshot '" + file +
+                    "' must be a relative path (a script writes only under the directory it runs in)");
+    for (const std::filesystem::path& part : path)
+        if (part == "..")
+            throw Error(where + ": screenshot '" + file +
+                        "' leaves the directory the demo runs in ('..' is not allowed in a script)");
+    std::error_code error;
+    if (path.has_parent_path() && !std::filesystem::is_directory(path.parent_path(), error))
+        throw Error(where + ": screenshot '" + file + "': directory '" + path.parent_path().string() +
+                    "' does not exist");
 }
 
 }  // namespace
@@ -45,7 +62,14 @@ DemoScript parseDemoScript(const std::string& text, const std::string& source) {
         if (!entry.is_object() || !entry.contains("frame") || !entry["frame"].is_number_unsigned())
             throw Error(where + ": expected {\"frame\": N, ...} with N >= 0");
         ScriptStep step;
-        step.frame = entry["frame"].get<uint32_t>();
+        // Read wide: a frame of 2^32 + 1 must not run at frame 1.
+        const uint64_t frame = entry["frame"].get<uint64_t>();
+        if (frame > kMaxScriptFrame)
+            throw Error(where + ": frame " + std::to_string(frame) +
+                        " is beyond the last frame a script may "
+                        "name (" +
+                        std::to_string(kMaxScriptFrame) + ")");
+        step.frame = uint32_t(frame);
         for (const auto& [key, value] : entry.items()) {
             if (key == "frame" || key == "ui") continue;
             if (key == "set") {
@@ -54,7 +78,9 @@ DemoScript parseDemoScript(const std::string& text, const std::string& source) {
                     step.options.emplace_back(name, optionText(v, where));
             } else if (key == "screenshot") {
                 const bool ui = entry.contains("ui") && entry["ui"].is_boolean() && entry["ui"].get<bool>();
-                step.options.emplace_back(ui ? "screenshot-ui" : "screenshot", optionText(value, where));
+                const std::string file = optionText(value, where);
+                screenshotProblem(file, where);
+                step.options.emplace_back(ui ? "screenshot-ui" : "screenshot", file);
             } else {
                 throw Error(where + ": unknown key '" + key + "' (expected frame, set, screenshot, ui)");
             }
@@ -74,11 +100,10 @@ DemoScript parseDemoScript(const std::string& text, const std::string& source) {
 }
 
 DemoScript loadDemoScript(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    if (!in) throw Error("cannot read script '" + file.string() + "'");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parseDemoScript(text.str(), file.string());
+    // The one checked open: a FIFO or /dev/zero is refused, not read until memory runs out.
+    const FileRead read = readRegularFile(file, uint64_t(1) << 24);
+    if (!read.error.empty()) throw Error("cannot read script '" + file.string() + "': " + read.error);
+    return parseDemoScript(std::string(read.bytes.begin(), read.bytes.end()), file.string());
 }
 
 }  // namespace vct

@@ -7,7 +7,9 @@
 //    {"frame": 9, "set": {"camera-cut": true}}]
 //
 // "set" values are what the command line takes ("sg", 4, "on"; JSON true/false mean on/off). A step applies
-// before its frame is rendered; a screenshot is taken after it. The file is checked whole at load time.
+// before its frame is rendered; a screenshot is taken after it. The file is checked whole at load time:
+// screenshots are relative paths without "..", in directories that exist (a script writes nothing outside
+// the directory the demo runs in); frames are at most kMaxScriptFrame.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,9 @@
 #include <vector>
 
 namespace vct {
+
+// The last frame a script may name (as --frames).
+inline constexpr uint64_t kMaxScriptFrame = 100000000;
 
 struct ScriptStep {
     uint32_t frame = 0;
