@@ -380,6 +380,12 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
         auto r = radiance->getAccessor();
         for (const VoxelSample& v : data.voxels) {
             if (!inGrid(v.ijk, n)) throw outside(v.ijk);
+            // A reader refuses these: never write what cannot be read back.
+            if (!finite3(v.albedo) || !finite3(v.normal) || !finite3(v.emission) || !finite3(v.radiance) ||
+                !std::isfinite(v.opacity))
+                throw Error("cannot write voxel file " + quoted(path) + ": voxel (" +
+                            std::to_string(v.ijk.x) + ", " + std::to_string(v.ijk.y) + ", " +
+                            std::to_string(v.ijk.z) + ") holds a non-finite value");
             const openvdb::Coord c = coord(v.ijk);
             a.setValueOn(c, vec3s(v.albedo));
             nr.setValueOn(c, vec3s(v.normal));
