@@ -222,15 +222,16 @@ VoxelStream openFile(const std::filesystem::path& path) {
         throw Error(name + ": " + file.error());
     }
     if (file.size() < kTrailerBytes)
-        throw Error(name + " is not a vct voxel file (" + byteSizeText(file.size()) + ": truncated?)");
+        throw Error(name + " is not a vct voxel file (" + byteSizeText(file.size()) +
+                    ", too short for its checksum trailer: truncated?)");
     std::vector<unsigned char> trailer;
     if (std::string problem = file.readAt(file.size() - kTrailerBytes, kTrailerBytes, trailer);
         !problem.empty())
         throw Error(name + ": " + problem);
     if (std::memcmp(trailer.data(), kTrailerMagic, 8) != 0)
         throw Error(name +
-                    " has no vct checksum trailer (truncated, not written by vct voxelize, or by a "
-                    "version before checksums: re-run vct voxelize)");
+                    " is not a vct voxel file (no checksum trailer: truncated, not written by vct "
+                    "voxelize, or by a version before checksums: re-run vct voxelize)");
     const uint64_t payloadBytes = getU64(trailer.data() + 8);
     if (payloadBytes != file.size() - kTrailerBytes)
         throw Error(name + " declares " + byteSizeText(payloadBytes) + " of voxel data but holds " +

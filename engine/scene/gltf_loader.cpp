@@ -895,6 +895,38 @@ void checkInstancedTriangles(const Scene& scene) {
                     std::to_string(kMaxInstancedTriangles) + " a frame may draw");
 }
 
+// Animations may carry geometry far outside the bounds at t = 0 that normalizeScale brought into range (a key
+// at 3e38): the voxel grid spans where geometry goes, and past this its math leaves float (NaN in the
+// indirect light). Sampled as the voxel grid samples it, and at the keys.
+void checkAnimatedExtent(const Scene& scene) {
+    constexpr double kMaxAnimatedExtent = 1e6;
+    float duration = 0.0f;
+    std::vector<float> times;
+    for (const Animation& animation : scene.animations) {
+        duration = std::max(duration, animation.duration);
+        for (const AnimationChannel& channel : animation.channels)
+            times.insert(times.end(), channel.times.begin(), channel.times.end());
+    }
+    if (!(duration > 0.0f)) return;
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    if (times.size() > 256) times.resize(256);
+    for (int k = 1; k <= 32; ++k) times.push_back(duration * float(k) / 32.0f);
+    Aabb box = scene.bounds();
+    for (float t : times)
+        for (const Instance& instance : scene.instances(t))
+            for (uint32_t p : scene.meshes[size_t(instance.mesh)].primitives)
+                if (p < scene.primitives.size())
+                    box.extend(scene.primitives[p].bounds.transformed(instance.world));
+    if (box.empty()) return;
+    const glm::dvec3 size = glm::dvec3(box.max) - glm::dvec3(box.min);
+    const double extent = std::max(size.x, std::max(size.y, size.z));
+    if (!(extent <= kMaxAnimatedExtent))
+        throw Error("its animations move geometry across " + numberText(extent) + " units, more than the " +
+                    numberText(kMaxAnimatedExtent) +
+                    " float math is kept in (at the scale of the scene at t = 0)");
+}
+
 // loadGltf without the file name in its errors (loadGltf adds it to every one, whatever threw).
 Scene importGltf(const std::string& path) {
     FileRead file = readRegularFile(path);
@@ -947,6 +979,7 @@ Scene importGltf(const std::string& path) {
     // Check the data before anything derives a camera or light from it (NaN bounds would spread).
     scene.validate();
     scene.normalizeScale();
+    checkAnimatedExtent(scene);
     scene.addDefaultsIfMissing();
     return scene;
 }
