@@ -476,16 +476,17 @@ TEST(HostileOutputs, AFullDiskIsAnErrorAndLeavesNoPartialFile) {
 // its frames fit the frame counter (2^32 + 1 ran at frame 1). Checked at load time.
 TEST(HostileDemoScript, OutputsAndFramesAreCheckedAtLoad) {
     const fs::path dir = caseDir();
+    fs::create_directories(dir / "shots");
     const std::pair<std::string, std::string> scripts[] = {
-        {R"([{"frame": 1, "screenshot": "/tmp/vct-escape.png"}])", "relative path"},
-        {R"([{"frame": 1, "screenshot": "../escape.png"}])", "'..'"},
-        {R"([{"frame": 1, "screenshot": "a/../../escape.png"}])", "'..'"},
+        {R"([{"frame": 1, "screenshot": "/tmp/vct-escape.png"}])", "outside the script's directory"},
+        {R"([{"frame": 1, "screenshot": "../escape.png"}])", "outside the script's directory"},
+        {R"([{"frame": 1, "screenshot": "shots/../../escape.png"}])", "outside the script's directory"},
         {R"([{"frame": 1, "screenshot": "no-such-dir/a.png"}])", "does not exist"},
         {R"([{"frame": 4294967297, "screenshot": "a.png"}])", "4294967297"},
     };
     for (const auto& [text, mention] : scripts) {
         try {
-            parseDemoScript(text, "script.json");
+            parseDemoScript(text, "script.json", dir);
             ADD_FAILURE() << "accepted: " << text;
         } catch (const Error& e) {
             const std::string message = e.what();
@@ -493,7 +494,15 @@ TEST(HostileDemoScript, OutputsAndFramesAreCheckedAtLoad) {
             EXPECT_NE(message.find(mention), std::string::npos) << message;
         }
     }
-    EXPECT_EQ(parseDemoScript(R"([{"frame": 3, "screenshot": "a.png"}])", "ok.json").lastFrame(), 3u);
+    // Inside it (relative to it, or absolute): accepted, resolved against the script's directory.
+    const DemoScript ok = parseDemoScript(R"([{"frame": 3, "screenshot": "shots/a.png"}])", "ok.json", dir);
+    EXPECT_EQ(ok.lastFrame(), 3u);
+    EXPECT_EQ(ok.steps[0].options[0].second, (dir / "shots/a.png").string());
+    const std::string inside = R"([{"frame": 3, "screenshot": ")" + (dir / "b.png").string() + R"("}])";
+    EXPECT_NO_THROW(parseDemoScript(inside, "ok.json", dir));
+    // The flag lifts the confinement, not the check of the directory.
+    EXPECT_NO_THROW(
+        parseDemoScript(R"([{"frame": 1, "screenshot": "../escape.png"}])", "ok.json", dir, true));
     // Through the program: /dev/zero is refused at once (it was read until memory ran out).
     expectGraceful({"demo", "--script", "/dev/zero"}, dir / "none", {Outcome::MustFail, {"/dev/zero"}, 1});
 }
