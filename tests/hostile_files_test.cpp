@@ -544,6 +544,51 @@ TEST(HostileContract, EveryFailureIsOneBoundedEscapedLine) {
     EXPECT_EQ(r.err.find('\x07'), std::string::npos);
 }
 
+// Class 8: camera paths whose depth range float cannot resolve, or that excludes the whole scene at a key
+// (they rendered empty images): refused naming the path and the key.
+struct CameraPathCase {
+    std::string name;
+    json path;
+    std::string mention;
+};
+
+class HostileCameraPath : public ::testing::TestWithParam<CameraPathCase> {};
+
+TEST_P(HostileCameraPath, IsRefused) {
+    const fs::path dir = caseDir();
+    const fs::path scene = writeGltf(dir, triangleScene());
+    json path = GetParam().path;
+    path["keys"] = {{{"time", 0}, {"position", {0.3, 0.3, 2}}, {"target", {0.3, 0.3, 0}}},
+                    {{"time", 1}, {"position", {0.3, 0.3, 3}}, {"target", {0.3, 0.3, 0}}}};
+    test::writeTextFile(dir / "path.json", path.dump());
+    expectGraceful(renderArgs(scene, dir / "out", {"--camera-path", (dir / "path.json").string()}),
+                   dir / "out", {Outcome::MustFail, {"path.json", GetParam().mention}, 1});
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Lenses, HostileCameraPath,
+    ::testing::Values(CameraPathCase{"NearTinyFarGiven", {{"znear", 1e-30}, {"zfar", 100}}, "float depth"},
+                      CameraPathCase{"NearTinyFarFromScene", {{"znear", 1e-30}}, "depth range"},
+                      CameraPathCase{"FarBeforeTheScene", {{"znear", 1e-4}, {"zfar", 0.01}}, "excludes"},
+                      CameraPathCase{"NearBeyondTheScene", {{"znear", 50}, {"zfar", 100}}, "excludes"}),
+    [](const auto& param) { return param.param.name; });
+
+// Class 5 (voxelize): a light whose 1/d^2 would overflow is refused before the radiance grid is written.
+TEST(HostileOutputs, VoxelizeRefusesLightThatWouldOverflow) {
+    const fs::path dir = caseDir();
+    GltfScene bright = triangleScene();
+    bright.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    bright.doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 1e38}}};
+    bright.doc["nodes"].push_back(
+        {{"translation", {0.2, 0.2, 0.001}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    bright.doc["scenes"][0]["nodes"].push_back(1);
+    const fs::path scene = writeGltf(dir, bright);
+    expectGraceful(
+        {"voxelize", "--scene", scene.string(), "--voxels", "32", "--out", (dir / "grid.vdb").string()},
+        dir / "none", {Outcome::MustFail, {"scene.gltf", "light"}, 1});
+    EXPECT_FALSE(fs::exists(dir / "grid.vdb"));
+}
+
 // Lenient list: a GLB container of another version is refused (glTF 2.0 is version 2).
 TEST(HostileContract, GlbVersionOtherThanTwoIsRefused) {
     const fs::path dir = caseDir();

@@ -696,6 +696,38 @@ std::vector<GltfCase> lenientCases() {
                               {"samplers", {{{"input", keys}, {"output", keys + 1}}}}}};
                      },
                      fails({"shear"})});
+    // An image extension used (not required) beside a PNG source falls back to the PNG; an image nobody uses
+    // may be undecodable; a required unsupported extension is refused naming it.
+    auto webp = [](GltfScene& s, bool required) {
+        s.doc["images"].push_back({{"uri", "texture.webp"}});
+        s.doc["textures"][0]["extensions"] = {{"EXT_texture_webp", {{"source", 1}}}};
+        s.doc["extensionsUsed"] = {"EXT_texture_webp"};
+        if (required) s.doc["extensionsRequired"] = {"EXT_texture_webp"};
+        s.extraFiles = [](const fs::path& dir) {
+            test::writeTextFile(dir / "texture.webp", "RIFF\x10\0\0\0WEBPVP8 ");
+        };
+    };
+    cases.push_back({"ImageExtensionWithPngFallback",
+                     [webp](GltfScene& s) { webp(s, false); },
+                     {Outcome::MustRender, {}, 0, true}});
+    cases.push_back(
+        {"ImageExtensionRequired", [webp](GltfScene& s) { webp(s, true); }, fails({"EXT_texture_webp"})});
+    cases.push_back({"UnusedUndecodableImage",
+                     [](GltfScene& s) {
+                         s.doc["images"].push_back({{"uri", "broken.png"}});
+                         s.extraFiles = [](const fs::path& dir) {
+                             test::writeTextFile(dir / "broken.png", "not a png");
+                         };
+                     },
+                     {Outcome::MustRender, {}, 0, true}});
+    cases.push_back({"UsedUndecodableImage",
+                     [](GltfScene& s) {
+                         s.doc["images"][0]["uri"] = "broken.png";
+                         s.extraFiles = [](const fs::path& dir) {
+                             test::writeTextFile(dir / "broken.png", "not a png");
+                         };
+                     },
+                     fails({"broken.png", "decoded"})});
     cases.push_back({"SceneIndexOutOfRange", [](GltfScene& s) { s.doc["scene"] = 5; }, fails({"scene"})});
     cases.push_back({"UnknownLightType",
                      [](GltfScene& s) {

@@ -260,6 +260,8 @@ class GltfImporter {
                                 : !image.name.empty() ? image.name
                                                       : "image " + std::to_string(src.source);
         if (image.image.empty() || image.width <= 0 || image.height <= 0) {
+            if (auto it = refused_.find("#image " + std::to_string(src.source)); it != refused_.end())
+                fail("texture " + std::to_string(gltfIndex) + ": " + it->second);
             for (const auto& [file, why] : refused_)
                 if (!image.uri.empty() &&
                     std::filesystem::path(file).filename() == std::filesystem::path(image.uri).filename())
@@ -687,6 +689,11 @@ struct LoadContext {
     uint64_t texelsLeft = kMaxSceneTexels;  // what all images of the file may decode to together
 };
 
+std::string imageKey(int index) {
+    return "#image " +
+           std::to_string(index);  // not a file name: what LoadContext::refused holds for an image
+}
+
 bool fileExists(const std::string& path, void*) {
     struct stat info {};
     return stat(path.c_str(), &info) == 0;  // stat, not open: a FIFO must never be opened blocking
@@ -720,15 +727,19 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 // decodes with stb as tinygltf would (8- or 16-bit, the file's channel count).
 bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
-    const LoadContext& context = *static_cast<const LoadContext*>(user);
+    LoadContext& context = *static_cast<LoadContext*>(user);
     std::string name = "image " + std::to_string(index);
     if (!image->name.empty()) name += " '" + image->name + "'";
     if (image->bufferView < 0 && !context.lastRead.empty() &&
         context.lastReadBytes == size_t(std::max(size, 0)))
         name += " (" + context.lastRead + ")";
+    // An image that cannot be used fails the load only if a texture uses it (the importer reports it then): a
+    // file may list images it never uses, or ones an extension replaces with a PNG fallback (a WebP image
+    // beside the texture's PNG source).
+    (void)err;
     auto refuse = [&](const std::string& why) {
-        if (err) *err += name + ": " + why + "\n";
-        return false;
+        static_cast<LoadContext*>(user)->refused[imageKey(index)] = name + ": " + why;
+        return true;
     };
     if (image->bufferView >= 0) {
         const tinygltf::Model& model = *context.model;
@@ -756,7 +767,7 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
         return refuse("is " + std::to_string(width) + "x" + std::to_string(height) +
                       ": with the file's other images more than the " + std::to_string(kMaxSceneTexels) +
                       " pixels one file's images may have together");
-    const_cast<LoadContext&>(context).texelsLeft -= uint64_t(width) * uint64_t(height);
+    context.texelsLeft -= uint64_t(width) * uint64_t(height);
     const bool sixteen = stbi_is_16_bit_from_memory(bytes, size);
     std::unique_ptr<void, void (*)(void*)> pixels(
         sixteen ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &width, &height, &channels, 0))
