@@ -394,11 +394,11 @@ TEST(DemoWindow, SplitViewSidesAreTheirConfigurationsFrames) {
     const std::filesystem::path dir = test::freshOutputDir("demo/split");
     auto runWith = [&](const std::string& name, const nlohmann::json& set) {
         const nlohmann::json steps = {{{"frame", 0}, {"set", set}},
-                                      {{"frame", 12}, {"screenshot", (dir / (name + ".png")).string()}}};
+                                      {{"frame", 12}, {"screenshot", name + ".png"}}};  // beside the script
         std::filesystem::create_directories(dir / name);
         const test::RunResult run = runDemo({"--script", writeScript(dir / name, steps).string()});
         expectClean(run);
-        return std::make_pair(readPng(dir / (name + ".png")), run.out);
+        return std::make_pair(readPng(dir / name / (name + ".png")), run.out);
     };
     const auto [sg, outSg] = runWith("sg", {{"weights", "sg"}});
     const auto [normal, outNormal] = runWith("normal", {{"weights", "normal"}});

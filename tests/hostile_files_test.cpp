@@ -6,13 +6,18 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <climits>
+#include <csignal>
 #include <fstream>
 #include <iterator>
 
+#include "app/demo/demo_script.h"
+#include "core/error.h"
 #include "hostile_util.h"
 #include "io/vdb_io.h"
 #include "render/voxel_grid.h"
 #include "scene/gltf_loader.h"
+#include "scene/input_limits.h"
 
 namespace vct::hostile {
 namespace {
@@ -151,6 +156,7 @@ TEST(HostileVoxelCache, ActiveTilesOutsideTheGridFailFast) {
         openvdb::io::File out(tiled.string());
         out.write(*grids, *meta);
         out.close();
+        sealVoxelFile(tiled);  // a checksum of its own: what is tested is the tiles, not the integrity check
         const test::RunResult r = expectGraceful(cacheArgs(c, dir, tiled), dir / "out",
                                                  {Outcome::MustFail, {tiled.filename().string()}, 1});
         EXPECT_LT(r.seconds, 20.0) << r.describe();
@@ -271,6 +277,329 @@ TEST(HostileOutputs, PlantedSymlinksAreReplacedNotFollowed) {
                    dir / "out", {Outcome::MustRender, {}, 0});
     EXPECT_EQ(readText(dir / "victim.vdb"), "precious");
     EXPECT_FALSE(fs::is_symlink(dir / "out" / "grid.vdb"));
+}
+
+// ---- second sweep (issue 21) ----
+
+// Class 1: flipped bits anywhere in a cache (OpenVDB's header, its grids, our trailer) are caught by the
+// checksum before OpenVDB parses anything: in process (a crash would end the test binary) at 200 positions,
+// and end to end through vct render.
+TEST(HostileVoxelCache, FlippedBitsAreRefusedBeforeOpenVdbParses) {
+    const fs::path dir = caseDir();
+    const CacheScene c = cacheScene(dir);
+    writeVoxelFile(dir / "cache.vdb", c.file);
+    const std::string bytes = readText(dir / "cache.vdb");
+    ASSERT_GT(bytes.size(), 1000u);
+    size_t refused = 0;
+    for (size_t k = 0; k < 200; ++k) {
+        std::string flipped = bytes;
+        const size_t at = k < 24 ? bytes.size() - 1 - k : (k * 7919) % bytes.size();
+        flipped[at] = char(flipped[at] ^ (1 << (k % 8)));
+        const fs::path path = dir / "flipped.vdb";
+        test::writeTextFile(path, flipped);
+        try {
+            readVoxelFile(path, false);
+            ADD_FAILURE() << "a flipped bit at byte " << at << " was accepted";
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find("flipped.vdb"), std::string::npos) << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+            EXPECT_LT(message.size(), 400u) << message;
+            refused += message.find("checksum") != std::string::npos ? 1 : 0;
+        }
+    }
+    EXPECT_GE(refused, 170u) << "most flips are in the payload: the checksum must be what catches them";
+    for (size_t at : {size_t(40), bytes.size() / 2}) {
+        std::string flipped = bytes;
+        flipped[at] = char(flipped[at] ^ 0x10);
+        const fs::path path = dir / ("flip" + std::to_string(at) + ".vdb");
+        test::writeTextFile(path, flipped);
+        expectGraceful(cacheArgs(c, dir, path), dir / "out",
+                       {Outcome::MustFail, {path.filename().string(), "damaged"}, 1});
+    }
+}
+
+// Class 4: a 2 GiB sparse file given as a cache is refused from its last bytes, not read whole.
+TEST(HostileVoxelCache, HugeSparseFileIsRefusedWithoutReadingIt) {
+    const fs::path dir = caseDir();
+    const CacheScene c = cacheScene(dir);
+    const fs::path sparse = dir / "sparse.vdb";
+    test::writeTextFile(sparse, "");
+    ASSERT_EQ(truncate(sparse.c_str(), off_t(kMaxInputFileBytes)), 0);
+    const test::RunResult r =
+        expectGraceful(cacheArgs(c, dir, sparse), dir / "out", {Outcome::MustFail, {"sparse.vdb"}, 1});
+    EXPECT_LT(r.seconds, 15.0) << r.describe();
+    fs::remove(sparse);
+}
+
+// Class 9: caches whose metadata or values no voxelize run of this scene can give.
+struct ForgedCache {
+    std::string name;
+    std::function<void(VoxelFile&)> forge;
+    std::string mention;
+};
+
+class HostileForgedCache : public ::testing::TestWithParam<ForgedCache> {};
+
+TEST_P(HostileForgedCache, IsRefused) {
+    const fs::path dir = caseDir();
+    CacheScene c = cacheScene(dir);
+    GetParam().forge(c.file);
+    writeVoxelFile(dir / "forged.vdb", c.file);
+    expectGraceful(cacheArgs(c, dir, dir / "forged.vdb"), dir / "out",
+                   {Outcome::MustFail, {"forged.vdb", GetParam().mention}, 1});
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Values, HostileForgedCache,
+    ::testing::Values(
+        ForgedCache{"NoSceneHash", [](VoxelFile& f) { f.info.sceneHash = 0; }, "vct_scene_hash"},
+        ForgedCache{"EmissionSumIntMax", [](VoxelFile& f) { f.staticAccum[0].accum[6] = INT_MAX; },
+                    "emission sum"},
+        ForgedCache{"AlbedoSumBeyondCount", [](VoxelFile& f) { f.staticAccum[1].accum[0] = 1024; },
+                    "albedo sum"},
+        ForgedCache{"NegativeCount", [](VoxelFile& f) { f.staticAccum[2].accum[9] = uint32_t(-5); },
+                    "static_count"},
+        ForgedCache{"NormalSumBeyondCount", [](VoxelFile& f) { f.staticAccum[3].accum[4] = uint32_t(-2000); },
+                    "normal sum"}),
+    [](const auto& param) { return param.param.name; });
+
+// Class 2: every input and output path of every command goes through the one checked open: a FIFO is refused
+// at once (it used to block forever).
+struct FifoCase {
+    std::string name;
+    std::function<std::vector<std::string>(const fs::path& dir, const fs::path& fifo)> args;
+};
+
+class HostileFifo : public ::testing::TestWithParam<FifoCase> {};
+
+TEST_P(HostileFifo, IsRefusedWithoutBlocking) {
+    const fs::path dir = caseDir();
+    writeGltf(dir, triangleScene());
+    writeExr(dir / "image.exr", 2, 2, std::vector<float>(16, 0.5f));
+    const fs::path fifo = dir / "fifo.exr";
+    makeFifo(fifo);
+    const test::RunResult r =
+        expectGraceful(GetParam().args(dir, fifo), dir / "none", {Outcome::MustFail, {"fifo.exr"}, 0});
+    EXPECT_LT(r.seconds, 10.0) << r.describe();
+    struct stat info {};
+    ASSERT_EQ(lstat(fifo.c_str(), &info), 0);
+    EXPECT_TRUE(S_ISFIFO(info.st_mode)) << "the FIFO was replaced";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Commands, HostileFifo,
+    ::testing::Values(FifoCase{"CompareReference",
+                               [](const fs::path& d, const fs::path& f) {
+                                   return std::vector<std::string>{"compare", "--reference", f.string(),
+                                                                   "--image", (d / "image.exr").string()};
+                               }},
+                      FifoCase{"CompareImage",
+                               [](const fs::path& d, const fs::path& f) {
+                                   return std::vector<std::string>{"compare", "--reference",
+                                                                   (d / "image.exr").string(), "--image",
+                                                                   f.string()};
+                               }},
+                      FifoCase{"CompareErrorMap",
+                               [](const fs::path& d, const fs::path& f) {
+                                   return std::vector<std::string>{"compare",
+                                                                   "--reference",
+                                                                   (d / "image.exr").string(),
+                                                                   "--image",
+                                                                   (d / "image.exr").string(),
+                                                                   "--error-map",
+                                                                   f.string()};
+                               }},
+                      FifoCase{"ExportSceneOut",
+                               [](const fs::path& d, const fs::path& f) {
+                                   fs::rename(f, d / "fifo.exr.glb");  // the name must end in .glb
+                                   makeFifo(f);
+                                   return std::vector<std::string>{"export-scene", "--scene",
+                                                                   (d / "scene.gltf").string(), "--out",
+                                                                   (d / "fifo.exr.glb").string()};
+                               }},
+                      FifoCase{"DemoScript",
+                               [](const fs::path&, const fs::path& f) {
+                                   return std::vector<std::string>{"demo", "--script", f.string()};
+                               }},
+                      FifoCase{"BenchmarkReportScenes",
+                               [](const fs::path& d, const fs::path& f) {
+                                   return std::vector<std::string>{
+                                       "benchmark",           "--mode",   "report",
+                                       "--report-scenes",     f.string(), "--out",
+                                       (d / "bench").string()};
+                               }}),
+    [](const auto& param) { return param.param.name; });
+
+// Class 6: export-scene replaces a planted symlink instead of writing through it.
+TEST(HostileOutputs, ExportSceneReplacesAPlantedSymlink) {
+    const fs::path dir = caseDir();
+    const fs::path scene = writeGltf(dir, triangleScene());
+    test::writeTextFile(dir / "victim", "precious");
+    fs::create_symlink(dir / "victim", dir / "out.glb");
+    expectGraceful({"export-scene", "--scene", scene.string(), "--out", (dir / "out.glb").string()},
+                   dir / "none", {Outcome::MustRender, {}, 0});
+    EXPECT_EQ(readText(dir / "victim"), "precious");
+    EXPECT_FALSE(fs::is_symlink(dir / "out.glb"));
+    EXPECT_GT(fs::file_size(dir / "out.glb"), 1000u);
+}
+
+// Class 6: a full disk (here: a file size limit, EFBIG for every write past 1 kB) is an error, not "wrote"
+// and a truncated file; nothing is left under the final name.
+TEST(HostileOutputs, AFullDiskIsAnErrorAndLeavesNoPartialFile) {
+    const fs::path dir = caseDir();
+    const fs::path scene = writeGltf(dir, triangleScene());
+    const std::vector<std::pair<std::vector<std::string>, fs::path>> runs = {
+        {{"export-scene", "--scene", scene.string(), "--out", (dir / "out.glb").string()}, dir / "out.glb"},
+        {{"voxelize", "--scene", scene.string(), "--voxels", "32", "--out", (dir / "grid.vdb").string()},
+         dir / "grid.vdb"},
+    };
+    for (const auto& [args, output] : runs) {
+        std::vector<std::string> shell = {"-c", "trap '' XFSZ; ulimit -f 2; exec \"$0\" \"$@\"", VCT_BINARY};
+        shell.insert(shell.end(), args.begin(), args.end());
+        const test::RunResult r = test::runProcess("/bin/sh", shell, kTimeout);
+        SCOPED_TRACE(args[0]);
+        EXPECT_EQ(r.exitCode, 1) << r.describe();
+        std::string err = r.err;
+        if (!err.empty() && err.back() == '\n') err.pop_back();
+        EXPECT_EQ(err.find('\n'), std::string::npos) << r.describe();
+        EXPECT_NE(err.find(output.filename().string()), std::string::npos) << r.describe();
+        EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.describe();
+        EXPECT_FALSE(fs::exists(output)) << "a partial file under the final name";
+        for (const fs::directory_entry& entry : fs::directory_iterator(dir))
+            EXPECT_NE(entry.path().filename().string().rfind(".", 0), 0u)
+                << "a temporary file was left: " << entry.path();
+    }
+}
+
+// Class 6/10: a demo script's screenshots stay in the directory the demo runs in, in directories that exist;
+// its frames fit the frame counter (2^32 + 1 ran at frame 1). Checked at load time.
+TEST(HostileDemoScript, OutputsAndFramesAreCheckedAtLoad) {
+    const fs::path dir = caseDir();
+    fs::create_directories(dir / "shots");
+    const std::pair<std::string, std::string> scripts[] = {
+        {R"([{"frame": 1, "screenshot": "/tmp/vct-escape.png"}])", "outside the script's directory"},
+        {R"([{"frame": 1, "screenshot": "../escape.png"}])", "outside the script's directory"},
+        {R"([{"frame": 1, "screenshot": "shots/../../escape.png"}])", "outside the script's directory"},
+        {R"([{"frame": 1, "screenshot": "no-such-dir/a.png"}])", "does not exist"},
+        {R"([{"frame": 4294967297, "screenshot": "a.png"}])", "4294967297"},
+    };
+    for (const auto& [text, mention] : scripts) {
+        try {
+            parseDemoScript(text, "script.json", dir);
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find("script.json"), std::string::npos) << message;
+            EXPECT_NE(message.find(mention), std::string::npos) << message;
+        }
+    }
+    // Inside it (relative to it, or absolute): accepted, resolved against the script's directory.
+    const DemoScript ok = parseDemoScript(R"([{"frame": 3, "screenshot": "shots/a.png"}])", "ok.json", dir);
+    EXPECT_EQ(ok.lastFrame(), 3u);
+    EXPECT_EQ(ok.steps[0].options[0].second, (dir / "shots/a.png").string());
+    const std::string inside = R"([{"frame": 3, "screenshot": ")" + (dir / "b.png").string() + R"("}])";
+    EXPECT_NO_THROW(parseDemoScript(inside, "ok.json", dir));
+    // The flag lifts the confinement, not the check of the directory.
+    EXPECT_NO_THROW(
+        parseDemoScript(R"([{"frame": 1, "screenshot": "../escape.png"}])", "ok.json", dir, true));
+    // Through the program: /dev/zero is refused at once (it was read until memory ran out).
+    expectGraceful({"demo", "--script", "/dev/zero"}, dir / "none", {Outcome::MustFail, {"/dev/zero"}, 1});
+}
+
+// Class 10: the one-line contract for flags and inputs that used to break it.
+TEST(HostileContract, EveryFailureIsOneBoundedEscapedLine) {
+    const fs::path dir = caseDir();
+    const fs::path scene = writeGltf(dir, triangleScene());
+    // No arguments: one line (it printed 11), exit 2.
+    expectGraceful({}, dir / "none", {Outcome::MustFail, {"usage"}, 2});
+    // --size whose pixels no device memory holds: refused with the flag, before any Vulkan work.
+    test::RunResult r = expectGraceful(renderArgs(scene, dir / "out", {"--size", "16384x16384"}), dir / "out",
+                                       {Outcome::MustFail, {"--size"}, 2});
+    EXPECT_EQ(r.out.find("device:"), std::string::npos) << r.describe();
+    // compare with NaN or Inf in an input: the file and the pixel (it exited 1 with nothing on stderr).
+    std::vector<float> pixels(16, 0.5f);
+    writeExr(dir / "ok.exr", 2, 2, pixels);
+    pixels[5] = std::numeric_limits<float>::quiet_NaN();
+    writeExr(dir / "nan.exr", 2, 2, pixels);
+    pixels[5] = std::numeric_limits<float>::infinity();
+    writeExr(dir / "inf.exr", 2, 2, pixels);
+    for (const char* bad : {"nan.exr", "inf.exr"}) {
+        expectGraceful({"compare", "--reference", (dir / "ok.exr").string(), "--image", (dir / bad).string()},
+                       dir / "none", {Outcome::MustFail, {bad}, 1});
+        expectGraceful({"compare", "--reference", (dir / bad).string(), "--image", (dir / "ok.exr").string()},
+                       dir / "none", {Outcome::MustFail, {bad}, 1});
+    }
+    // A 40 MB invalid data uri is not echoed whole, and control characters never reach the terminal raw.
+    GltfScene huge = triangleScene();
+    huge.doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + std::string(40 << 20, '!');
+    const fs::path hugeDir = dir / "huge";
+    fs::create_directories(hugeDir);
+    r = expectGraceful(renderArgs(writeGltf(hugeDir, huge), dir / "out"), dir / "out",
+                       {Outcome::MustFail, {"scene.gltf"}, 1});
+    EXPECT_LT(r.err.size(), 1000u) << r.err.substr(0, 2000);
+    const fs::path escape = dir / "bad\x1b[31mname\x07.gltf";
+    r = expectGraceful(renderArgs(escape, dir / "out"), dir / "out", {Outcome::MustFail, {"\\x1b[31m"}, 0});
+    EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << "an escape sequence reached the terminal";
+    EXPECT_EQ(r.err.find('\x07'), std::string::npos);
+}
+
+// Class 8: camera paths whose depth range float cannot resolve, or that excludes the whole scene at a key
+// (they rendered empty images): refused naming the path and the key.
+struct CameraPathCase {
+    std::string name;
+    json path;
+    std::string mention;
+};
+
+class HostileCameraPath : public ::testing::TestWithParam<CameraPathCase> {};
+
+TEST_P(HostileCameraPath, IsRefused) {
+    const fs::path dir = caseDir();
+    const fs::path scene = writeGltf(dir, triangleScene());
+    json path = GetParam().path;
+    path["keys"] = {{{"time", 0}, {"position", {0.3, 0.3, 2}}, {"target", {0.3, 0.3, 0}}},
+                    {{"time", 1}, {"position", {0.3, 0.3, 3}}, {"target", {0.3, 0.3, 0}}}};
+    test::writeTextFile(dir / "path.json", path.dump());
+    expectGraceful(renderArgs(scene, dir / "out", {"--camera-path", (dir / "path.json").string()}),
+                   dir / "out", {Outcome::MustFail, {"path.json", GetParam().mention}, 1});
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Lenses, HostileCameraPath,
+    ::testing::Values(CameraPathCase{"NearTinyFarGiven", {{"znear", 1e-30}, {"zfar", 100}}, "float depth"},
+                      CameraPathCase{"NearTinyFarFromScene", {{"znear", 1e-30}}, "depth range"},
+                      CameraPathCase{"FarBeforeTheScene", {{"znear", 1e-4}, {"zfar", 0.01}}, "excludes"},
+                      CameraPathCase{"NearBeyondTheScene", {{"znear", 50}, {"zfar", 100}}, "excludes"}),
+    [](const auto& param) { return param.param.name; });
+
+// Class 5 (voxelize): a light whose 1/d^2 would overflow is refused before the radiance grid is written.
+TEST(HostileOutputs, VoxelizeRefusesLightThatWouldOverflow) {
+    const fs::path dir = caseDir();
+    GltfScene bright = triangleScene();
+    bright.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    bright.doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 1e38}}};
+    bright.doc["nodes"].push_back(
+        {{"translation", {0.2, 0.2, 0.001}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    bright.doc["scenes"][0]["nodes"].push_back(1);
+    const fs::path scene = writeGltf(dir, bright);
+    expectGraceful(
+        {"voxelize", "--scene", scene.string(), "--voxels", "32", "--out", (dir / "grid.vdb").string()},
+        dir / "none", {Outcome::MustFail, {"scene.gltf", "light"}, 1});
+    EXPECT_FALSE(fs::exists(dir / "grid.vdb"));
+}
+
+// Lenient list: a GLB container of another version is refused (glTF 2.0 is version 2).
+TEST(HostileContract, GlbVersionOtherThanTwoIsRefused) {
+    const fs::path dir = caseDir();
+    for (uint32_t version : {1u, 3u}) {
+        const fs::path glb = writeGlb(dir, triangleScene());
+        std::string bytes = readText(glb);
+        bytes[4] = char(version);
+        test::writeTextFile(glb, bytes);
+        expectGraceful(renderArgs(glb, dir / "out"), dir / "out",
+                       {Outcome::MustFail, {"scene.glb", "version"}, 1});
+    }
 }
 
 }  // namespace

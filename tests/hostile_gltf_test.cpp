@@ -355,6 +355,388 @@ std::vector<GltfCase> imageBombCases() {
     return cases;
 }
 
+// ---- second sweep (issue 21) ----
+
+// Class 7: integers past int32 that tinygltf would narrow (2^32 + 1 -> 1: "mesh": 4294967297 drew mesh 1),
+// negative and fractional indices: each refused naming the value.
+std::vector<GltfCase> narrowingCases() {
+    std::vector<GltfCase> cases;
+    const uint64_t wrap = (uint64_t(1) << 32) + 1;
+    const std::pair<const char*, std::function<void(GltfScene&, json)>> fields[] = {
+        {"Mesh", [](GltfScene& s, json v) { s.doc["nodes"][0]["mesh"] = v; }},
+        {"Material", [](GltfScene& s, json v) { s.doc["meshes"][0]["primitives"][0]["material"] = v; }},
+        {"Accessor",
+         [](GltfScene& s, json v) { s.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = v; }},
+        {"BufferView", [](GltfScene& s, json v) { s.doc["accessors"][0]["bufferView"] = v; }},
+        {"Buffer", [](GltfScene& s, json v) { s.doc["bufferViews"][0]["buffer"] = v; }},
+        {"Scene", [](GltfScene& s, json v) { s.doc["scene"] = v; }},
+        {"SceneNode", [](GltfScene& s, json v) { s.doc["scenes"][0]["nodes"][0] = v; }},
+        {"TextureSource", [](GltfScene& s, json v) { s.doc["textures"][0]["source"] = v; }},
+        {"Children",
+         [](GltfScene& s, json v) {
+             s.doc["nodes"].push_back({{"name", "parent"}, {"children", {v}}});
+             s.doc["scenes"][0]["nodes"].push_back(1);
+         }},
+        {"SparseCount",
+         [](GltfScene& s, json v) {
+             s.doc["accessors"][0]["sparse"] = {{"count", v},
+                                                {"indices", {{"bufferView", 0}, {"componentType", 5125}}},
+                                                {"values", {{"bufferView", 0}}}};
+         }},
+        {"SparseByteOffset",
+         [](GltfScene& s, json v) {
+             s.doc["accessors"][0]["sparse"] = {
+                 {"count", 1},
+                 {"indices", {{"bufferView", 0}, {"byteOffset", v}, {"componentType", 5125}}},
+                 {"values", {{"bufferView", 0}}}};
+         }},
+    };
+    for (const auto& [field, set] : fields) {
+        cases.push_back({std::string("Wraps") + field, [set = set, wrap](GltfScene& s) { set(s, wrap); },
+                         fails({"4294967297"})});
+        for (bool glb : {false, true})
+            if (glb == (std::string(field) == "Mesh"))  // one GLB: the check reads its JSON chunk too
+                cases.push_back({std::string("Wraps") + field + "Glb",
+                                 [set = set, wrap](GltfScene& s) { set(s, wrap); }, fails({"4294967297"}),
+                                 true});
+    }
+    cases.push_back({"NegativeMesh", [](GltfScene& s) { s.doc["nodes"][0]["mesh"] = -2; }, fails({"-2"})});
+    cases.push_back(
+        {"FractionalMesh", [](GltfScene& s) { s.doc["nodes"][0]["mesh"] = 0.5; }, fails({"0.5"})});
+    // The node graph: a cycle (0 <-> 1), a mesh without primitives.
+    cases.push_back({"NodeCycle",
+                     [](GltfScene& s) {
+                         s.doc["nodes"][0]["children"] = {1};
+                         s.doc["nodes"].push_back({{"name", "other"}, {"mesh", 0}, {"children", {0}}});
+                     },
+                     fails({"cycle"})});
+    cases.push_back({"NodeCycleOfThree",
+                     [](GltfScene& s) {
+                         s.doc["nodes"][0]["children"] = {1};
+                         s.doc["nodes"].push_back({{"name", "b"}, {"children", {2}}});
+                         s.doc["nodes"].push_back({{"name", "c"}, {"children", {0}}});
+                     },
+                     fails({"cycle"})});
+    cases.push_back({"MeshWithoutPrimitives",
+                     [](GltfScene& s) { s.doc["meshes"][0]["primitives"] = json::array(); },
+                     fails({"primitive"})});
+    return cases;
+}
+
+// Classes 3 and 4: small files that reuse their data until they would take gigabytes or minutes: each is
+// refused by a whole-file budget before it is built.
+void addSampler(GltfScene& s, size_t keys) {
+    const size_t offset = s.bin.size();
+    for (size_t k = 0; k < keys; ++k) appendFloats(s.bin, {float(k) / 60.0f});
+    for (size_t k = 0; k < keys; ++k) appendFloats(s.bin, {0.0f, float(k % 2) * 0.01f, 0.0f});
+    s.doc["buffers"][0]["byteLength"] = s.bin.size();
+    s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", keys * 16}});
+    const size_t view = s.doc["bufferViews"].size() - 1;
+    s.doc["accessors"].push_back({{"bufferView", view},
+                                  {"componentType", 5126},
+                                  {"count", keys},
+                                  {"type", "SCALAR"},
+                                  {"min", {0.0}},
+                                  {"max", {double(float(keys - 1) / 60.0f)}}});
+    s.doc["accessors"].push_back({{"bufferView", view},
+                                  {"byteOffset", keys * 4},
+                                  {"componentType", 5126},
+                                  {"count", keys},
+                                  {"type", "VEC3"}});
+}
+std::vector<GltfCase> amplificationCases() {
+    std::vector<GltfCase> cases;
+    // 2 000 nodes instancing one 100k-triangle mesh (indexed over 3 vertices: 1.2 MB).
+    cases.push_back({"InstancedTriangles",
+                     [](GltfScene& s) {
+                         const size_t offset = s.bin.size(), indices = 300000;
+                         for (size_t i = 0; i < indices; ++i) {
+                             const uint32_t v = uint32_t(i % 3);
+                             unsigned char b[4];
+                             std::memcpy(b, &v, 4);
+                             s.bin.insert(s.bin.end(), b, b + 4);
+                         }
+                         s.doc["buffers"][0]["byteLength"] = s.bin.size();
+                         s.doc["bufferViews"].push_back(
+                             {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", indices * 4}});
+                         s.doc["accessors"].push_back({{"bufferView", s.doc["bufferViews"].size() - 1},
+                                                       {"componentType", 5125},
+                                                       {"count", indices},
+                                                       {"type", "SCALAR"}});
+                         s.doc["meshes"][0]["primitives"][0]["indices"] = s.doc["accessors"].size() - 1;
+                         for (int n = 0; n < 2000; ++n) {
+                             s.doc["nodes"].push_back({{"mesh", 0}, {"translation", {n * 0.001, 0, 0}}});
+                             s.doc["scenes"][0]["nodes"].push_back(s.doc["nodes"].size() - 1);
+                         }
+                     },
+                     fails({"instance", "triangles"})});
+    // Primitives sharing one accessor without a bufferView (zeros): the budget is the file's, not each's.
+    cases.push_back(
+        {"SharedZeroFilledAccessor",
+         [](GltfScene& s) {
+             s.doc["accessors"].push_back({{"componentType", 5126}, {"count", 3000}, {"type", "VEC3"}});
+             const size_t zeros = s.doc["accessors"].size() - 1;
+             json prims = json::array();
+             for (int p = 0; p < 3000; ++p) prims.push_back({{"attributes", {{"POSITION", zeros}}}});
+             s.doc["meshes"][0]["primitives"] = prims;
+         },
+         fails({"without a bufferView"})});
+    // 120 primitives reusing 40k vertices (4.8M built from 0.5 MB): the vertex budget, charged first.
+    cases.push_back({"SharedVertices",
+                     [](GltfScene& s) {
+                         const size_t offset = s.bin.size(), count = 40002;
+                         for (size_t i = 0; i < count; ++i)
+                             appendFloats(s.bin, {float(i % 3 == 1), float(i % 3 == 2), float(i) * 1e-5f});
+                         s.doc["buffers"][0]["byteLength"] = s.bin.size();
+                         s.doc["bufferViews"].push_back(
+                             {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", count * 12}});
+                         s.doc["accessors"].push_back({{"bufferView", s.doc["bufferViews"].size() - 1},
+                                                       {"componentType", 5126},
+                                                       {"count", count},
+                                                       {"type", "VEC3"},
+                                                       {"min", {0, 0, 0}},
+                                                       {"max", {1, 1, double(float(count - 1) * 1e-5f)}}});
+                         const size_t shared = s.doc["accessors"].size() - 1;
+                         json prims = json::array();
+                         for (int p = 0; p < 120; ++p)
+                             prims.push_back({{"attributes", {{"POSITION", shared}}}});
+                         s.doc["meshes"][0]["primitives"] = prims;
+                     },
+                     fails({"budget", "vertices"})});
+    // 2 500 animation channels sharing one sampler of 2 000 keys (5M keys copied from 48 kB).
+    cases.push_back(
+        {"SharedAnimationSampler",
+         [](GltfScene& s) {
+             addSampler(s, 2000);
+             const size_t keys = s.doc["accessors"].size() - 2;
+             json channels = json::array();
+             for (int c = 0; c < 2500; ++c)
+                 channels.push_back({{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}});
+             s.doc["animations"] = {
+                 {{"channels", channels}, {"samplers", {{{"input", keys}, {"output", keys + 1}}}}}};
+         },
+         fails({"animation keys"})});
+    return cases;
+}
+
+// Class 5: light that overflows the shaders' 1/d^2 (refused), light below the cap (a finite image), and
+// materials whose emission or occlusion would make radiance negative (refused).
+std::vector<GltfCase> radianceCases() {
+    std::vector<GltfCase> cases;
+    const json tooBright[] = {
+        {{"type", "point"}, {"intensity", 1e38}},
+        {{"type", "point"}, {"color", {1e38, 1, 1}}},
+        {{"type", "spot"}, {"intensity", 3e37}, {"spot", json::object()}},
+        {{"type", "point"}, {"intensity", 1e21}},
+    };
+    for (size_t i = 0; i < std::size(tooBright); ++i)
+        cases.push_back({"LightTooBright" + std::to_string(i),
+                         [light = tooBright[i]](GltfScene& s) {
+                             addLight(s, light, {{"translation", {0.2, 0.2, 0.001}}});
+                         },
+                         fails({"light", "intensity"})});
+    // Just below the cap, a millimetre from the triangle: bright, but every value of every EXR finite.
+    cases.push_back(
+        {"PointLightBelowTheCap",
+         [](GltfScene& s) {
+             addLight(s, {{"type", "point"}, {"intensity", 1e19}}, {{"translation", {0.2, 0.2, 0.001}}});
+         },
+         {Outcome::MustRender, {}, 0, true}});
+    const std::pair<const char*, std::function<void(json&)>> materials[] = {
+        {"NegativeEmissiveFactor",
+         [](json& m) {
+             m["emissiveFactor"] = {-1, 0, 0};
+         }},
+        {"NegativeEmissiveStrength",
+         [](json& m) {
+             m["emissiveFactor"] = {1, 1, 1};
+             m["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", -5}}}};
+         }},
+        {"OcclusionStrengthHuge",
+         [](json& m) {
+             m["occlusionTexture"] = {{"index", 0}, {"strength", 1e30}};
+         }},
+        {"NegativeBaseColor",
+         [](json& m) {
+             m["pbrMetallicRoughness"]["baseColorFactor"] = {-1, 1, 1, 1};
+         }},
+    };
+    for (const auto& [name, set] : materials)
+        cases.push_back({name,
+                         [set = set](GltfScene& s) {
+                             set(s.doc["materials"][0]);
+                             s.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+                         },
+                         fails({"material"})});
+    return cases;
+}
+
+// Class 8: lenses glTF calls invalid (they rendered empty images) are refused; the overflow of an animation
+// between two finite keys ends in a line or a finite image.
+std::vector<GltfCase> lensCases() {
+    std::vector<GltfCase> cases;
+    const json lenses[] = {
+        {{"yfov", 0}, {"znear", 0.01}},
+        {{"yfov", -1}, {"znear", 0.01}},
+        {{"yfov", 0.8}, {"znear", 0}},
+        {{"yfov", 0.8}, {"znear", -1}},
+        {{"yfov", 0.8}, {"znear", 0.01}, {"zfar", -1}},
+        {{"yfov", 0.8}, {"znear", 10}, {"zfar", 1}},
+        {{"yfov", 0.8}, {"znear", 1}, {"zfar", 1}},
+    };
+    for (size_t i = 0; i < std::size(lenses); ++i)
+        cases.push_back({"InvalidLens" + std::to_string(i),
+                         [lens = lenses[i]](GltfScene& s) { addCamera(s, lens); }, fails({"camera"})});
+    cases.push_back({"SpanOfFltMax",
+                     [](GltfScene& s) {
+                         const float m = std::numeric_limits<float>::max();
+                         s.bin.clear();
+                         appendFloats(s.bin, {-m, -m, 0, m, -m, 0, -m, m, 0});
+                         appendFloats(s.bin, {0, 1, 1, 1, 0, 0});
+                         s.doc["accessors"][0]["min"] = {-m, -m, 0};
+                         s.doc["accessors"][0]["max"] = {m, m, 0};
+                     },
+                     rendersOrFails()});
+    // To float's limit in 50 ms: the voxel grid spans where the geometry goes (NaN in the indirect light).
+    cases.push_back(
+        {"AnimationToFloatLimit",
+         [](GltfScene& s) {
+             const size_t offset = s.bin.size();
+             appendFloats(s.bin, {0.0f, 0.05f, 0, 0, 0, 3e38f, 0, 0});
+             s.doc["buffers"][0]["byteLength"] = s.bin.size();
+             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 32}});
+             const size_t view = s.doc["bufferViews"].size() - 1;
+             s.doc["accessors"].push_back({{"bufferView", view},
+                                           {"componentType", 5126},
+                                           {"count", 2},
+                                           {"type", "SCALAR"},
+                                           {"min", {0}},
+                                           {"max", {0.05}}});
+             s.doc["accessors"].push_back({{"bufferView", view},
+                                           {"byteOffset", 8},
+                                           {"componentType", 5126},
+                                           {"count", 2},
+                                           {"type", "VEC3"}});
+             const size_t keys = s.doc["accessors"].size() - 2;
+             json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}};
+             json sampler = {{"input", keys}, {"output", keys + 1}};
+             s.doc["animations"] =
+                 json::array({{{"channels", json::array({channel})}, {"samplers", json::array({sampler})}}});
+         },
+         fails({"animations"})});
+    return cases;
+}
+
+// The lenient list: what the glTF validator calls invalid is refused with one line.
+std::vector<GltfCase> lenientCases() {
+    std::vector<GltfCase> cases;
+    auto sparse = [](GltfScene& s, std::vector<uint32_t> indices, int componentType) {
+        const size_t offset = s.bin.size();
+        for (uint32_t i : indices) {
+            unsigned char b[4];
+            std::memcpy(b, &i, 4);
+            s.bin.insert(s.bin.end(), b, b + 4);
+        }
+        appendFloats(s.bin, {0.1f, 0.1f, 0, 0.2f, 0.2f, 0});
+        s.doc["buffers"][0]["byteLength"] = s.bin.size();
+        s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 8}});
+        s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset + 8}, {"byteLength", 24}});
+        const size_t view = s.doc["bufferViews"].size() - 2;
+        s.doc["accessors"][0]["sparse"] = {
+            {"count", 2},
+            {"indices", {{"bufferView", view}, {"componentType", componentType}}},
+            {"values", {{"bufferView", view + 1}}}};
+    };
+    cases.push_back({"SparseIndicesDecreasing",
+                     [sparse](GltfScene& s) {
+                         sparse(s, {2, 1}, 5125);
+                     },
+                     fails({"increasing"})});
+    cases.push_back({"SparseIndicesDuplicate",
+                     [sparse](GltfScene& s) {
+                         sparse(s, {1, 1}, 5125);
+                     },
+                     fails({"increasing"})});
+    cases.push_back({"SparseIndicesSigned",
+                     [sparse](GltfScene& s) {
+                         sparse(s, {1, 2}, 5124);
+                     },
+                     fails({"sparse"})});
+    for (int type : {5126, 5122, 5120})
+        cases.push_back(
+            {"IndexComponentType" + std::to_string(type),
+             [type](GltfScene& s) {
+                 const size_t offset = s.bin.size();
+                 for (int i = 0; i < 3; ++i) appendFloats(s.bin, {0.0f});
+                 s.doc["buffers"][0]["byteLength"] = s.bin.size();
+                 s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 12}});
+                 s.doc["accessors"].push_back({{"bufferView", s.doc["bufferViews"].size() - 1},
+                                               {"componentType", type},
+                                               {"count", 3},
+                                               {"type", "SCALAR"}});
+                 s.doc["meshes"][0]["primitives"][0]["indices"] = s.doc["accessors"].size() - 1;
+             },
+             fails({"indices", std::to_string(type)})});
+    cases.push_back(
+        {"UnknownInterpolation",
+         [](GltfScene& s) {
+             addSampler(s, 2);
+             const size_t keys = s.doc["accessors"].size() - 2;
+             s.doc["animations"] = {
+                 {{"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}}},
+                  {"samplers", {{{"input", keys}, {"output", keys + 1}, {"interpolation", "SMOOTH"}}}}}};
+         },
+         fails({"SMOOTH"})});
+    cases.push_back({"UnknownAnimationPath",
+                     [](GltfScene& s) {
+                         addSampler(s, 2);
+                         const size_t keys = s.doc["accessors"].size() - 2;
+                         s.doc["animations"] = {
+                             {{"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "shear"}}}}}},
+                              {"samplers", {{{"input", keys}, {"output", keys + 1}}}}}};
+                     },
+                     fails({"shear"})});
+    // An image extension used (not required) beside a PNG source falls back to the PNG; an image nobody uses
+    // may be undecodable; a required unsupported extension is refused naming it.
+    auto webp = [](GltfScene& s, bool required) {
+        s.doc["images"].push_back({{"uri", "texture.webp"}});
+        s.doc["textures"][0]["extensions"] = {{"EXT_texture_webp", {{"source", 1}}}};
+        s.doc["extensionsUsed"] = {"EXT_texture_webp"};
+        if (required) s.doc["extensionsRequired"] = {"EXT_texture_webp"};
+        s.extraFiles = [](const fs::path& dir) {
+            test::writeTextFile(dir / "texture.webp", "RIFF\x10\0\0\0WEBPVP8 ");
+        };
+    };
+    cases.push_back({"ImageExtensionWithPngFallback",
+                     [webp](GltfScene& s) { webp(s, false); },
+                     {Outcome::MustRender, {}, 0, true}});
+    cases.push_back(
+        {"ImageExtensionRequired", [webp](GltfScene& s) { webp(s, true); }, fails({"EXT_texture_webp"})});
+    cases.push_back({"UnusedUndecodableImage",
+                     [](GltfScene& s) {
+                         s.doc["images"].push_back({{"uri", "broken.png"}});
+                         s.extraFiles = [](const fs::path& dir) {
+                             test::writeTextFile(dir / "broken.png", "not a png");
+                         };
+                     },
+                     {Outcome::MustRender, {}, 0, true}});
+    cases.push_back({"UsedUndecodableImage",
+                     [](GltfScene& s) {
+                         s.doc["images"][0]["uri"] = "broken.png";
+                         s.extraFiles = [](const fs::path& dir) {
+                             test::writeTextFile(dir / "broken.png", "not a png");
+                         };
+                     },
+                     fails({"broken.png", "decoded"})});
+    cases.push_back({"SceneIndexOutOfRange", [](GltfScene& s) { s.doc["scene"] = 5; }, fails({"scene"})});
+    cases.push_back({"UnknownLightType",
+                     [](GltfScene& s) {
+                         addLight(s, {{"type", "area"}, {"intensity", 2}});
+                     },
+                     fails({"area"})});
+    return cases;
+}
+
 class HostileGltf : public ::testing::TestWithParam<GltfCase> {};
 
 TEST_P(HostileGltf, EndsInOneLineOrAFiniteImage) {
@@ -379,6 +761,11 @@ INSTANTIATE_TEST_SUITE_P(Lights, HostileGltf, ::testing::ValuesIn(lightCases()),
 INSTANTIATE_TEST_SUITE_P(Cameras, HostileGltf, ::testing::ValuesIn(cameraCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(Textures, HostileGltf, ::testing::ValuesIn(textureCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(ImageBombs, HostileGltf, ::testing::ValuesIn(imageBombCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Narrowing, HostileGltf, ::testing::ValuesIn(narrowingCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Amplification, HostileGltf, ::testing::ValuesIn(amplificationCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Radiance, HostileGltf, ::testing::ValuesIn(radianceCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Lenses, HostileGltf, ::testing::ValuesIn(lensCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Lenient, HostileGltf, ::testing::ValuesIn(lenientCases()), caseName);
 
 // Class 11: a scene of any finite size without a camera is framed by the default camera: it renders, finite,
 // and the triangle covers pixels (albedo.exr is black where nothing was drawn).
@@ -396,6 +783,11 @@ TEST_P(HostileSceneScale, DefaultCameraFramesTheScene) {
     expectGraceful(renderArgs(path, dir / "out"), dir / "out", {Outcome::MustRender, {}, 0});
     EXPECT_GT(coveredPixels(dir / "out"), 32u * 18u / 20u) << "the triangle is hardly in view";
 }
+
+// Class 8 (issue 21): at float's limits too (the rescale went into node matrices as 2^-127, subnormal, and
+// drew nothing).
+INSTANTIATE_TEST_SUITE_P(FloatLimits, HostileSceneScale, ::testing::Values(3e38f, 1e-38f, 1e-44f),
+                         [](const auto& param) { return "Limit" + std::to_string(param.index); });
 
 INSTANTIATE_TEST_SUITE_P(Scales, HostileSceneScale,
                          ::testing::Values(1e-5f, 1e-10f, 1e-20f, 1e-30f, 1e20f, 1e30f),

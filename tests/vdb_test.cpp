@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -49,6 +50,7 @@ VoxelFile syntheticFile(uint32_t n) {
     file.info.voxelSize = 0.13333334f;
     file.info.scene = "synthetic scene.glb";
     file.info.time = 0.0f;
+    file.info.sceneHash = 0x8000000000000001ull;  // the top bit too
     uint32_t state = 12345;
     auto next = [&] { return state = state * 1664525u + 1013904223u; };
     auto unit = [&] { return float(next() >> 8) / float(1u << 24); };
@@ -67,9 +69,17 @@ VoxelFile syntheticFile(uint32_t n) {
         if (index % 2 == 0) {
             StaticAccumVoxel s;
             s.ijk = ijk;
-            for (uint32_t& word : s.accum) word = next();
+            // Sums a voxelize pass can give for the count (the reader checks), bits up to the top one.
+            const uint32_t count = 1 + next() % 5000;
+            for (int c = 0; c < 3; ++c) {
+                s.accum[size_t(c)] = next() % (1023 * count + 1);
+                s.accum[size_t(3 + c)] =
+                    uint32_t(int32_t(next() % (2046 * count + 1)) - int32_t(1023 * count));
+                s.accum[size_t(6 + c)] =
+                    next() % uint32_t(std::min<uint64_t>(UINT32_MAX, 1048576ull * count));
+            }
             s.accum[3] = 0xFFFFFC01u;  // -1023: a normal sum pointing down
-            s.accum[9] = 1 + next() % 1000;
+            s.accum[9] = count;
             file.staticAccum.push_back(s);
         }
     }
@@ -126,6 +136,7 @@ TEST(VdbIo, EmptyGridRoundTrips) {
     file.info.resolution = 32;
     file.info.voxelSize = 1.0f;
     file.info.scene = "empty";
+    file.info.sceneHash = 7;
     writeVoxelFile(dir / "empty.vdb", file);
     EXPECT_EQ(readVoxelFile(dir / "empty.vdb"), file);
 }
@@ -148,8 +159,8 @@ TEST(VdbIo, BadFilesThrowOneLineErrors) {
     const fs::path dir = caseDir();
     expectError([&] { readVoxelFile(dir / "missing.vdb"); }, "does not exist");
     test::writeTextFile(dir / "garbage.vdb", "this is not an OpenVDB file\n");
-    expectError([&] { readVoxelFile(dir / "garbage.vdb"); }, "not a readable OpenVDB file");
-    expectError([&] { readVoxelFileInfo(dir / "garbage.vdb"); }, "not a readable OpenVDB file");
+    expectError([&] { readVoxelFile(dir / "garbage.vdb"); }, "not a vct voxel file");
+    expectError([&] { readVoxelFileInfo(dir / "garbage.vdb"); }, "not a vct voxel file");
     expectError([&] { readVoxelFile(dir); }, "is a directory");
 
     // A vct file cut short: the header survives, the grids do not.
@@ -290,8 +301,7 @@ TEST(VoxelCache, BadCachesFailWithOneLine) {
     const fs::path dir = caseDir();
     expectRenderFailure(dir, {"--voxel-cache", (dir / "missing.vdb").string()}, 1, "does not exist");
     test::writeTextFile(dir / "garbage.vdb", "garbage, not OpenVDB");
-    expectRenderFailure(dir, {"--voxel-cache", (dir / "garbage.vdb").string()}, 1,
-                        "not a readable OpenVDB file");
+    expectRenderFailure(dir, {"--voxel-cache", (dir / "garbage.vdb").string()}, 1, "not a vct voxel file");
 
     // vct files made for another grid (written here: no GPU voxelization needed).
     VoxelFile other;
@@ -299,6 +309,7 @@ TEST(VoxelCache, BadCachesFailWithOneLine) {
     other.info.origin = glm::vec3(-5.0f);
     other.info.voxelSize = 0.3f;
     other.info.scene = "elsewhere";
+    other.info.sceneHash = 1;
     writeVoxelFile(dir / "other.vdb", other);
     expectRenderFailure(dir, {"--voxels", "64", "--voxel-cache", (dir / "other.vdb").string()}, 1,
                         "holds a 32^3 grid but this run uses 64^3");

@@ -8,6 +8,7 @@
 #include "app/cli/commands.h"
 #include "app/demo/demo_command.h"
 #include "core/error.h"
+#include "scene/input_limits.h"
 
 namespace {
 
@@ -25,19 +26,18 @@ const char* kUsage =
     "  export-scene  write a scene (built-in or loaded) as glTF 2.0 binary (.glb)\n\n"
     "Run 'vct COMMAND --help' for a command's options.\n";
 
-// Messages are one line whatever their source (tinygltf, the driver, ...).
+// Messages are one line whatever their source (tinygltf, the driver, ...), of bounded length (a 40 MB data
+// uri quoted by a library stays out of the terminal), with control characters escaped (a file name holding
+// an escape sequence cannot drive the terminal).
 std::string oneLine(std::string text) {
     for (char& c : text)
         if (c == '\n' || c == '\r') c = ' ';
     while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text;
+    return vct::printableText(text, 600);
 }
 
 int dispatch(int argc, char** argv) {
-    if (argc < 2) {
-        std::fputs(kUsage, stderr);
-        return 2;
-    }
+    if (argc < 2) throw vct::UsageError("no command given (usage: vct COMMAND [options]; see vct --help)");
     const std::string command = argv[1];
     if (command == "--help" || command == "-h" || command == "help") {
         std::fputs(kUsage, stdout);

@@ -6,6 +6,10 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <istream>
 #include <mutex>
 #include <sstream>
 #include <system_error>
@@ -81,6 +85,10 @@ void fromVec3i(const openvdb::Vec3i& v, uint32_t* u) {
     for (int c = 0; c < 3; ++c) u[c] = std::bit_cast<uint32_t>(v[c]);
 }
 
+bool finite3(glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
 bool inGrid(glm::ivec3 ijk, uint32_t n) {
     return glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) &&
            glm::all(glm::lessThan(ijk, glm::ivec3(int(n))));
@@ -132,49 +140,133 @@ VoxelFileInfo readInfo(const openvdb::MetaMap& meta, const std::filesystem::path
     info.resolution = uint32_t(n);
     info.origin = vec3(requireMeta<openvdb::Vec3s>(meta, "vct_grid_origin", path));
     info.voxelSize = requireMeta<float>(meta, "vct_voxel_size", path);
-    if (!(info.voxelSize > 0.0f))
+    if (!(info.voxelSize > 0.0f) || !std::isfinite(info.voxelSize))
         throw Error("voxel file " + quoted(path) + ": bad vct_voxel_size " + std::to_string(info.voxelSize));
     info.scene = requireMeta<std::string>(meta, "vct_scene", path);
     info.time = requireMeta<float>(meta, "vct_time", path);
-    if (openvdb::Int64Metadata::ConstPtr hash = meta.getMetadata<openvdb::Int64Metadata>("vct_scene_hash"))
-        info.sceneHash = std::bit_cast<uint64_t>(hash->value());
+    // Required: without it only the scene's file name could tell another scene's cache from this one's.
+    info.sceneHash = std::bit_cast<uint64_t>(requireMeta<int64_t>(meta, "vct_scene_hash", path));
+    if (info.sceneHash == 0) throw Error("voxel file " + quoted(path) + " has a zero vct_scene_hash");
+    if (!finite3((info.origin)) || !std::isfinite(info.time))
+        throw Error("voxel file " + quoted(path) + ": its grid origin or time is not finite");
     return info;
 }
 
-// A whole voxel file in memory. OpenVDB reads lengths from the file and trusts them: past the end of a
-// truncated file its reads fail silently and leave garbage sizes (gigabytes allocated, minutes spent). So the
-// file is read by us (a regular file only: a FIFO must not block) and parsed from a stream that throws at the
-// first read past its end.
+// The integrity trailer after the OpenVDB data (vdb_io.h): magic, payload length, FNV-1a 64 of the payload.
+constexpr char kTrailerMagic[8] = {'v', 'c', 't', 's', 'u', 'm', '0', '1'};
+constexpr uint64_t kTrailerBytes = 24;
+
+uint64_t payloadChecksum(const unsigned char* data, size_t size) {
+    uint64_t hash = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < size; ++i) hash = (hash ^ data[i]) * 0x100000001b3ull;
+    return hash;
+}
+
+void putU64(unsigned char* out, uint64_t v) {
+    for (int i = 0; i < 8; ++i) out[i] = (unsigned char)(v >> (8 * i));
+}
+uint64_t getU64(const unsigned char* in) {
+    uint64_t v = 0;
+    for (int i = 7; i >= 0; --i) v = (v << 8) | in[i];
+    return v;
+}
+
+std::string trailerFor(const unsigned char* payload, size_t size) {
+    unsigned char trailer[kTrailerBytes];
+    std::memcpy(trailer, kTrailerMagic, 8);
+    putU64(trailer + 8, size);
+    putU64(trailer + 16, payloadChecksum(payload, size));
+    return std::string(reinterpret_cast<const char*>(trailer), kTrailerBytes);
+}
+
+// An istream over bytes in memory, without copying them; seekable as OpenVDB may ask.
+class MemoryBuffer : public std::streambuf {
+  public:
+    MemoryBuffer(const unsigned char* data, size_t size) {
+        char* begin = const_cast<char*>(reinterpret_cast<const char*>(data));
+        setg(begin, begin, begin + size);
+    }
+
+  protected:
+    pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
+        const off_type base = dir == std::ios_base::beg   ? 0
+                              : dir == std::ios_base::cur ? off_type(gptr() - eback())
+                                                          : off_type(egptr() - eback());
+        const off_type to = base + off;
+        if (to < 0 || to > off_type(egptr() - eback())) return pos_type(off_type(-1));
+        setg(eback(), eback() + to, egptr());
+        return pos_type(to);
+    }
+    pos_type seekpos(pos_type pos, std::ios_base::openmode mode) override {
+        return seekoff(off_type(pos), std::ios_base::beg, mode);
+    }
+};
+
+// A whole voxel file in memory. OpenVDB does not defend itself against a damaged file (lengths trusted,
+// garbage sizes allocated, a flipped bit can crash it), so nothing reaches it before (1) the one checked open
+// (a regular file: a FIFO must not block), (2) the trailer: present, its payload length the file's, and (3)
+// the payload's checksum. The payload is then parsed from a stream that throws at the first read past its
+// end.
 struct VoxelStream {
     openvdb::MetaMap::Ptr meta;
     openvdb::GridPtrVecPtr grids;
 };
 
 VoxelStream openFile(const std::filesystem::path& path) {
-    FileRead file = readRegularFile(path);
-    if (!file.error.empty()) {
+    const std::string name = "voxel file " + quoted(path);
+    const InputFile file(path);
+    if (!file.error().empty()) {
         std::error_code error;
-        if (file.error == "no such file") throw Error("voxel file " + quoted(path) + " does not exist");
-        if (std::filesystem::is_directory(path, error))
-            throw Error("voxel file " + quoted(path) + " is a directory");
-        throw Error("voxel file " + quoted(path) + ": " + file.error);
+        if (file.error() == "no such file") throw Error(name + " does not exist");
+        if (std::filesystem::is_directory(path, error)) throw Error(name + " is a directory");
+        throw Error(name + ": " + file.error());
     }
-    std::istringstream in(std::string(file.bytes.begin(), file.bytes.end()));
-    file.bytes = {};
+    if (file.size() < kTrailerBytes)
+        throw Error(name + " is not a vct voxel file (" + byteSizeText(file.size()) +
+                    ", too short for its checksum trailer: truncated?)");
+    std::vector<unsigned char> trailer;
+    if (std::string problem = file.readAt(file.size() - kTrailerBytes, kTrailerBytes, trailer);
+        !problem.empty())
+        throw Error(name + ": " + problem);
+    if (std::memcmp(trailer.data(), kTrailerMagic, 8) != 0)
+        throw Error(name +
+                    " is not a vct voxel file (no checksum trailer: truncated, not written by vct "
+                    "voxelize, or by a version before checksums: re-run vct voxelize)");
+    const uint64_t payloadBytes = getU64(trailer.data() + 8);
+    if (payloadBytes != file.size() - kTrailerBytes)
+        throw Error(name + " declares " + byteSizeText(payloadBytes) + " of voxel data but holds " +
+                    byteSizeText(file.size() - kTrailerBytes) + " (truncated or appended to)");
+    std::vector<unsigned char> payload;
+    if (std::string problem = file.readAt(0, payloadBytes, payload); !problem.empty())
+        throw Error(name + ": " + problem);
+    if (payloadChecksum(payload.data(), payload.size()) != getU64(trailer.data() + 16))
+        throw Error(name + " is damaged (its checksum does not match its contents)");
+
+    MemoryBuffer buffer(payload.data(), payload.size());
+    std::istream in(&buffer);
     in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
     try {
         openvdb::io::Stream stream(in, /*delayLoad=*/false);
         return {stream.getMetadata(), stream.getGrids()};
     } catch (const std::ios_base::failure&) {
-        throw Error("voxel file " + quoted(path) +
-                    " is not a readable OpenVDB file (it ends early: truncated?)");
+        throw Error(name + " is not a readable OpenVDB file (it ends early: truncated?)");
     } catch (const std::bad_alloc&) {
-        throw Error("voxel file " + quoted(path) +
-                    " is not a readable OpenVDB file (it declares sizes beyond memory)");
+        throw Error(name + " is not a readable OpenVDB file (it declares sizes beyond memory)");
     } catch (const std::exception& e) {
-        throw Error("voxel file " + quoted(path) + " is not a readable OpenVDB file (" + what(e) + ")");
+        throw Error(name + " is not a readable OpenVDB file (" + what(e) + ")");
     }
 }
+
+// OpenVDB's own writer, seekable (grid offsets, as io::File writes them) into memory: io::File does not check
+// its writes (a full disk gave a truncated file and "wrote"), the checked writer does.
+struct MemoryArchive : openvdb::io::Archive {
+    std::string bytes(const openvdb::GridPtrVec& grids, const openvdb::MetaMap& meta) const {
+        std::ostringstream out(std::ios::binary);
+        out.exceptions(std::ios::failbit | std::ios::badbit);
+        Archive::write(out, grids, /*seekable=*/true, meta);
+        return std::move(out).str();
+    }
+};
 
 template <typename GridT>
 typename GridT::Ptr readGrid(const VoxelStream& file, const char* name, uint32_t n,
@@ -289,6 +381,12 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
         auto r = radiance->getAccessor();
         for (const VoxelSample& v : data.voxels) {
             if (!inGrid(v.ijk, n)) throw outside(v.ijk);
+            // A reader refuses these: never write what cannot be read back.
+            if (!finite3(v.albedo) || !finite3(v.normal) || !finite3(v.emission) || !finite3(v.radiance) ||
+                !std::isfinite(v.opacity))
+                throw Error("cannot write voxel file " + quoted(path) + ": voxel (" +
+                            std::to_string(v.ijk.x) + ", " + std::to_string(v.ijk.y) + ", " +
+                            std::to_string(v.ijk.z) + ") holds a non-finite value");
             const openvdb::Coord c = coord(v.ijk);
             a.setValueOn(c, vec3s(v.albedo));
             nr.setValueOn(c, vec3s(v.normal));
@@ -321,27 +419,34 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
         openvdb::StringMetadata("albedo, normal, emission, opacity, radiance: the frame at vct_time; "
                                 "static_*: the static geometry's exact voxelize accumulator (the "
                                 "voxel cache read by vct render --voxel-cache)"));
-    // Under a fresh name, renamed over `path`: a symlink planted there is replaced, not followed.
+    // Through the checked writer: a symlink planted there is replaced, not followed; a full disk is an error.
     const std::filesystem::path dir =
         path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     std::error_code error;
     if (!std::filesystem::is_directory(dir, error))
         throw Error("cannot write voxel file " + quoted(path) + ": directory '" + dir.string() +
                     "' does not exist");
-    writeReplacing(path, [&](const std::filesystem::path& temporary) {
-        try {
-            openvdb::io::File file(temporary.string());
-            file.write(grids, fileMeta);
-            file.close();
-        } catch (const std::exception& e) {
-            throw Error("cannot write voxel file " + quoted(path) + " (" + what(e) + ")");
-        }
-    });
+    std::string bytes;
+    try {
+        bytes = MemoryArchive().bytes(grids, fileMeta);
+    } catch (const std::exception& e) {
+        throw Error("cannot write voxel file " + quoted(path) + " (" + what(e) + ")");
+    }
+    bytes += trailerFor(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size());
+    writeFileReplacing(path, bytes);
 
     std::vector<VoxelGridSummary> summary;
     for (const openvdb::GridBase::Ptr& grid : grids)
         summary.push_back({grid->getName(), grid->valueType(), uint64_t(grid->activeVoxelCount())});
     return summary;
+}
+
+void sealVoxelFile(const std::filesystem::path& path) {
+    const FileRead file = readRegularFile(path);
+    if (!file.error.empty()) throw Error("cannot seal voxel file " + quoted(path) + ": " + file.error);
+    std::string bytes(file.bytes.begin(), file.bytes.end());
+    bytes += trailerFor(file.bytes.data(), file.bytes.size());
+    writeFileReplacing(path, bytes);
 }
 
 VoxelFileInfo readVoxelFileInfo(const std::filesystem::path& path) {
@@ -350,6 +455,28 @@ VoxelFileInfo readVoxelFileInfo(const std::filesystem::path& path) {
 }
 
 namespace {
+
+// The voxelize pass's fixed-point scales (shaders/lib/voxel.glsl): albedo and normals x 1023, emission x 256
+// clamped to 4096 per sample. A cached voxel whose sums no sample count can give is damaged or forged: it
+// would inject light (or NaN after the division) the scene does not have.
+constexpr uint64_t kUnitScale = 1023;
+constexpr uint64_t kEmissionPerSample = 4096 * 256;
+constexpr uint64_t kMaxSamplesPerVoxel = uint64_t(1) << 22;  // where the albedo sums would wrap
+
+std::string accumProblem(const StaticAccumVoxel& v) {
+    const uint64_t count = v.accum[9];
+    if (count == 0 || count > kMaxSamplesPerVoxel)
+        return "static_count " + std::to_string(int32_t(v.accum[9])) + ", expected 1.." +
+               std::to_string(kMaxSamplesPerVoxel);
+    for (int c = 0; c < 3; ++c) {
+        if (uint64_t(v.accum[size_t(c)]) > kUnitScale * count) return "albedo sum above 1023 x static_count";
+        if (uint64_t(std::abs(int64_t(std::bit_cast<int32_t>(v.accum[size_t(3 + c)])))) > kUnitScale * count)
+            return "normal sum beyond 1023 x static_count";
+        if (uint64_t(v.accum[size_t(6 + c)]) > std::min<uint64_t>(UINT32_MAX, kEmissionPerSample * count))
+            return "emission sum above 4096 x 256 x static_count";
+    }
+    return {};
+}
 
 VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
     const VoxelStream file = openFile(path);
@@ -374,6 +501,12 @@ VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
             fromVec3i(nr.getValue(x), &v.accum[3]);
             fromVec3i(e.getValue(x), &v.accum[6]);
             v.accum[9] = std::bit_cast<uint32_t>(c.getValue(x));
+            if (std::string bad = accumProblem(v); !bad.empty()) {
+                std::ostringstream message;
+                message << "voxel file " << quoted(path) << ": voxel (" << ijk.x << ", " << ijk.y << ", "
+                        << ijk.z << ") holds values the voxelize pass cannot produce (" << bad << ")";
+                throw Error(message.str());
+            }
             data.staticAccum.push_back(v);
         }
     }
@@ -397,6 +530,15 @@ VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
             v.normal = vec3(nr.getValue(x));
             v.emission = vec3(e.getValue(x));
             v.radiance = vec3(r.getValue(x));
+            if (!finite3((v.albedo)) || !finite3((v.normal)) || !finite3((v.emission)) ||
+                !finite3((v.radiance)) || !std::isfinite(v.opacity) ||
+                glm::any(glm::lessThan(v.radiance, glm::vec3(0.0f))) ||
+                glm::any(glm::lessThan(v.emission, glm::vec3(0.0f)))) {
+                std::ostringstream message;
+                message << "voxel file " << quoted(path) << ": voxel (" << ijk.x << ", " << ijk.y << ", "
+                        << ijk.z << ") holds a non-finite or negative value";
+                throw Error(message.str());
+            }
             data.voxels.push_back(v);
         }
     }

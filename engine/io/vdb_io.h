@@ -21,6 +21,9 @@
 // Transform (every grid): linear, voxel size s, translated so that index (i,j,k) maps to the voxel's centre,
 // world = origin + (ijk + 0.5)·s — OpenVDB's cell-centred convention, so other tools place the voxels right;
 // origin is the grid's min corner (VoxelGrid::origin()) and active indices lie in [0, N)³.
+// Integrity: the OpenVDB data is followed by a 24-byte trailer, "vctsum01", the data's length and its FNV-1a
+// 64 hash (little-endian u64s), checked before OpenVDB parses anything (OpenVDB trusts what it reads: a
+// flipped bit could crash it). OpenVDB tools ignore the trailer.
 // Metadata (file and every grid): vct_format, vct_scene, vct_resolution, vct_grid_origin (Vec3s, min corner),
 // vct_voxel_size, vct_index_to_world, vct_time, vct_scene_hash; each grid also gets vct_description (one of
 // the lines above).
@@ -101,10 +104,14 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
 
 // Reads a file written by writeVoxelFile. `frame` false skips the albedo..radiance grids (the cache needs
 // only the static_* ones). Throws vct::Error with a one-line message naming the path for a missing file, a
-// file that is not a regular file or is larger than kMaxInputFileBytes, a file that is not OpenVDB (or is
-// truncated), an OpenVDB file without vct's metadata or grids, or active values (voxels or tiles) outside the
-// grid.
+// file that is not a regular file or is larger than kMaxInputFileBytes, a file without its integrity trailer
+// or whose checksum does not match, a file that is not OpenVDB, an OpenVDB file without vct's metadata (the
+// scene hash included) or grids, active values (voxels or tiles) outside the grid, or values the voxelize
+// pass cannot produce (accumulator sums beyond their sample count, non-finite or negative light).
 VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame = true);
+
+// Appends the integrity trailer to an OpenVDB file written by other means (tests, tools that edit a cache).
+void sealVoxelFile(const std::filesystem::path& path);
 
 // Only the metadata (cheap: no grid is read). Same errors as readVoxelFile.
 VoxelFileInfo readVoxelFileInfo(const std::filesystem::path& path);

@@ -1,5 +1,6 @@
 #include "scene/camera_path.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
@@ -7,6 +8,7 @@
 
 #include "core/error.h"
 #include "scene/input_limits.h"
+#include "scene/scene.h"
 
 namespace vct {
 
@@ -115,6 +117,9 @@ CameraPath loadCameraPath(const std::filesystem::path& file) {
         if (path.znear && !(*path.znear > 0.0f)) throw Error("\"znear\" is not positive");
         if (path.zfar && !(*path.zfar > path.znear.value_or(0.0f)))
             throw Error("\"zfar\" is not beyond znear");
+        if (path.znear && path.zfar && *path.zfar / *path.znear > kMaxCameraDepthRatio)
+            throw Error("\"zfar\" / \"znear\" is " + numberText(*path.zfar / *path.znear) +
+                        ", more than the " + numberText(kMaxCameraDepthRatio) + " float depth resolves");
         if (!root.contains("keys") || !root["keys"].is_array() || root["keys"].empty())
             throw Error("\"keys\" is missing or empty");
         if (root["keys"].size() > 100000) throw Error("more than 100000 keys");
@@ -152,9 +157,35 @@ void saveCameraPath(const CameraPath& path, const std::filesystem::path& file) {
         root["keys"].push_back({{"time", key.time},
                                 {"position", {key.position.x, key.position.y, key.position.z}},
                                 {"target", {key.target.x, key.target.y, key.target.z}}});
-    std::ofstream out(file);
-    out << root.dump(2) << "\n";
-    if (!out) throw Error("cannot write camera path '" + file.string() + "'");
+    writeFileReplacing(file, root.dump(2) + "\n");
+}
+
+void checkCameraPathForScene(const CameraPath& path, const Scene& scene, const std::filesystem::path& file) {
+    const std::string name = "camera path '" + file.string() + "': ";
+    const Aabb box = scene.bounds();
+    if (box.empty()) return;
+    for (size_t k = 0; k < path.keys.size(); ++k) {
+        const CameraKey& key = path.keys[k];
+        const CameraView view = path.evaluate(key.time, sceneCamera(scene, key.time));
+        const std::string where = name + "key " + std::to_string(k) + ": ";
+        if (!(view.znear > 0.0f) || !(view.zfar > view.znear) ||
+            view.zfar / view.znear > kMaxCameraDepthRatio)
+            throw Error(where + "depth range " + numberText(view.znear) + " .. " + numberText(view.zfar) +
+                        " is not 0 < znear < zfar <= " + numberText(kMaxCameraDepthRatio) + " x znear");
+        // Nearest and farthest distance from the camera to the scene's box.
+        const glm::vec3 nearest = glm::clamp(key.position, box.min, box.max);
+        const double dmin = glm::length(glm::dvec3(key.position) - glm::dvec3(nearest));
+        double dmax = 0.0;
+        for (int c = 0; c < 8; ++c) {
+            const glm::dvec3 corner(c & 1 ? box.max.x : box.min.x, c & 2 ? box.max.y : box.min.y,
+                                    c & 4 ? box.max.z : box.min.z);
+            dmax = std::max(dmax, glm::length(corner - glm::dvec3(key.position)));
+        }
+        if (double(view.znear) >= dmax || double(view.zfar) <= dmin)
+            throw Error(where + "its depth range " + numberText(view.znear) + " .. " + numberText(view.zfar) +
+                        " excludes the whole scene (" + numberText(dmin) + " .. " + numberText(dmax) +
+                        " away): the image would be empty");
+    }
 }
 
 CameraKey cameraKey(const CameraView& camera, float timeSeconds) {

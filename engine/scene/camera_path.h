@@ -39,8 +39,16 @@ struct CameraPath {
     CameraView evaluate(float timeSeconds, const CameraView& lens) const;
 };
 
+struct Scene;
+
+// The largest zfar / znear a path may ask for (float depth resolves no more; as glTF cameras are fitted).
+inline constexpr float kMaxCameraDepthRatio = 1e6f;
+
 // Reads and checks a path file; throws Error naming the file and the problem.
 CameraPath loadCameraPath(const std::filesystem::path& file);
+// Checks a path against the scene it is played in: at every key the depth range (the path's lens, else the
+// scene camera's) is one float can resolve and does not exclude the whole scene. Throws Error naming `file`.
+void checkCameraPathForScene(const CameraPath& path, const Scene& scene, const std::filesystem::path& file);
 // Writes a path file (the demo's recorder); throws Error when the file cannot be written.
 void saveCameraPath(const CameraPath& path, const std::filesystem::path& file);
 // A key looking from the camera's position along its view direction (the demo records these).

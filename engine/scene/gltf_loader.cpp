@@ -12,6 +12,8 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/error.h"
 #include "scene/input_limits.h"
@@ -102,19 +104,25 @@ const unsigned char* viewData(const tinygltf::Model& model, int viewIndex, uint6
 // `zeroFillLimit`: most elements an accessor without a bufferView may have (its values are zeros plus sparse
 // ones, so nothing in the file pays for them).
 AccessorData readAccessor(const tinygltf::Model& model, int index, const std::string& what,
-                          uint64_t zeroFillLimit) {
+                          uint64_t& zeroFillLeft) {
     if (index < 0 || size_t(index) >= model.accessors.size()) fail(what + ": accessor index out of range");
     const tinygltf::Accessor& acc = model.accessors[size_t(index)];
     std::string name = what + " (accessor " + std::to_string(index) + ")";
     int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
     int components = tinygltf::GetNumComponentsInType(uint32_t(acc.type));
     if (componentSize <= 0 || components <= 0) fail(name + " has an unknown component type or type");
+    // Without a bufferView nothing in the file pays for the elements: what all such reads of one file may
+    // create together is bounded by the file's size (each read counts: 3 000 primitives sharing one such
+    // accessor are 3 000 of them).
     const uint64_t limit =
-        acc.bufferView >= 0 ? kMaxAccessorElements : std::min(kMaxAccessorElements, zeroFillLimit);
+        acc.bufferView >= 0 ? kMaxAccessorElements : std::min(kMaxAccessorElements, zeroFillLeft);
     if (acc.count > limit)
         fail(name + " has " + std::to_string(acc.count) + " elements, more than the " +
              std::to_string(limit) +
-             (acc.bufferView >= 0 ? " allowed" : " an accessor without a bufferView may have in this file"));
+             (acc.bufferView >= 0 ? " allowed"
+                                  : " accessors without a bufferView may still have in this file (their "
+                                    "elements are budgeted by the file's size)"));
+    if (acc.bufferView < 0) zeroFillLeft -= acc.count;
     size_t elementSize = size_t(componentSize) * size_t(components);
     // Ranges first: nothing is allocated for data the file does not hold.
     size_t stride = 0;
@@ -131,7 +139,11 @@ AccessorData readAccessor(const tinygltf::Model& model, int index, const std::st
                  std::to_string(acc.count));
         n = size_t(sparse.count);
         indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(sparse.indices.componentType));
-        if (indexSize <= 0) fail(name + ": sparse indices have an unknown component type");
+        if (sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            fail(name + ": sparse indices have component type " +
+                 std::to_string(sparse.indices.componentType) + ", not an unsigned integer type");
         indexStride = size_t(indexSize);
         // int offsets in tinygltf: a negative one becomes huge and fails the range check.
         ip = viewData(model, sparse.indices.bufferView, uint64_t(int64_t(sparse.indices.byteOffset)), n,
@@ -151,6 +163,9 @@ AccessorData readAccessor(const tinygltf::Model& model, int index, const std::st
     for (size_t s = 0; s < n; ++s) {
         auto target = size_t(readComponent(ip + s * indexStride, sparse.indices.componentType, false));
         if (target >= acc.count) fail(name + ": sparse index " + std::to_string(target) + " is out of range");
+        if (s > 0 &&
+            target <= size_t(readComponent(ip + (s - 1) * indexStride, sparse.indices.componentType, false)))
+            fail(name + ": sparse indices are not strictly increasing (index " + std::to_string(s) + ")");
         for (int c = 0; c < components; ++c)
             data.values[target * size_t(components) + size_t(c)] = readComponent(
                 vp + s * valueStride + size_t(c * componentSize), acc.componentType, acc.normalized);
@@ -179,7 +194,11 @@ class GltfImporter {
     // `refused`: files the loader would not read, and why (named in the error of a texture that needs one).
     GltfImporter(const tinygltf::Model& model, uint64_t inputBytes,
                  const std::map<std::string, std::string>& refused)
-        : model_(model), zeroFillLimit_(std::max<uint64_t>(4096, inputBytes)), refused_(refused) {}
+        : model_(model),
+          zeroFillLeft_(std::max<uint64_t>(4096, inputBytes)),
+          elementsLeft_(std::min(kMaxSceneElements, std::max(kMinElementBudget, inputBytes))),
+          keysLeft_(std::min(kMaxSceneElements, std::max(kMinElementBudget, inputBytes))),
+          refused_(refused) {}
 
     Scene run() {
         // KHR_mesh_quantization needs nothing more than readAccessor's normalized/integer support.
@@ -203,8 +222,19 @@ class GltfImporter {
     }
 
   private:
-    AccessorData accessor(int index, const std::string& what) const {
-        return readAccessor(model_, index, what, zeroFillLimit_);
+    AccessorData accessor(int index, const std::string& what) {
+        return readAccessor(model_, index, what, zeroFillLeft_);
+    }
+
+    // Whole-file budgets, charged before allocating: what one file may make us build in total, however
+    // often it reuses one accessor or image (the file's size bounds it, within the fixed caps).
+    static void charge(uint64_t& left, uint64_t amount, const std::string& what, const char* unit) {
+        if (amount > left)
+            fail(what + " would take the file past its budget of " + unit + " (" + std::to_string(amount) +
+                 " more, " + std::to_string(left) +
+                 " left: the file reuses its data too often or is "
+                 "too large)");
+        left -= amount;
     }
 
     void note(const std::string& text) {
@@ -230,12 +260,16 @@ class GltfImporter {
                                 : !image.name.empty() ? image.name
                                                       : "image " + std::to_string(src.source);
         if (image.image.empty() || image.width <= 0 || image.height <= 0) {
+            if (auto it = refused_.find("#image " + std::to_string(src.source)); it != refused_.end())
+                fail("texture " + std::to_string(gltfIndex) + ": " + it->second);
             for (const auto& [file, why] : refused_)
                 if (!image.uri.empty() &&
                     std::filesystem::path(file).filename() == std::filesystem::path(image.uri).filename())
                     fail("texture image '" + imageName + "': " + why);
             fail("texture image '" + imageName + "' is missing or could not be decoded");
         }
+        charge(texelsLeft_, uint64_t(image.width) * uint64_t(image.height),
+               "texture image '" + imageName + "'", "decoded texels");
         Texture tex;
         tex.name = imageName;
         tex.kind = kind;
@@ -293,9 +327,24 @@ class GltfImporter {
         m.metallicFactor = float(pbr.metallicFactor);
         m.roughnessFactor = float(pbr.roughnessFactor);
         if (src.emissiveFactor.size() == 3) m.emissiveFactor = glm::make_vec3(src.emissiveFactor.data());
+        const std::string where = "material '" + m.name + "'";
+        // Light cannot be negative: glTF bounds these factors to [0, 1] (strength to >= 0).
+        if (src.emissiveFactor.size() == 3 &&
+            !(src.emissiveFactor[0] >= 0.0 && src.emissiveFactor[1] >= 0.0 && src.emissiveFactor[2] >= 0.0))
+            fail(where + ": emissiveFactor has a negative (or NaN) component");
         if (auto strength =
-                extensionNumber(src.extensions, "KHR_materials_emissive_strength", "emissiveStrength"))
+                extensionNumber(src.extensions, "KHR_materials_emissive_strength", "emissiveStrength")) {
+            if (!(*strength >= 0.0) || !std::isfinite(*strength))
+                fail(where + ": emissiveStrength " + numberText(*strength) +
+                     " is not finite and non-negative");
             m.emissiveFactor *= float(*strength);
+        }
+        if (pbr.baseColorFactor.size() == 4)
+            for (double c : pbr.baseColorFactor)
+                if (!(c >= 0.0)) fail(where + ": baseColorFactor has a negative (or NaN) component");
+        if (!(src.occlusionTexture.strength >= 0.0 && src.occlusionTexture.strength <= 1.0))
+            fail(where + ": occlusionTexture.strength " + numberText(src.occlusionTexture.strength) +
+                 " is not in [0, 1]");
         m.normalScale = float(src.normalTexture.scale);
         m.occlusionStrength = float(src.occlusionTexture.strength);
         m.alphaCutoff = float(src.alphaCutoff);
@@ -350,6 +399,7 @@ class GltfImporter {
         const tinygltf::Mesh& src = model_.meshes[meshIndex];
         Mesh out;
         out.name = src.name.empty() ? "mesh " + std::to_string(meshIndex) : src.name;
+        if (src.primitives.empty()) fail("mesh '" + out.name + "' has no primitives (glTF requires one)");
         for (size_t p = 0; p < src.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = src.primitives[p];
             std::string where = "mesh '" + out.name + "' primitive " + std::to_string(p);
@@ -359,6 +409,15 @@ class GltfImporter {
                 return it == prim.attributes.end() ? -1 : it->second;
             };
             if (attribute("POSITION") < 0) fail(where + " has no POSITION attribute");
+            {
+                const int index = attribute("POSITION");
+                if (index >= 0 && size_t(index) < model_.accessors.size())
+                    charge(elementsLeft_, model_.accessors[size_t(index)].count, where,
+                           "vertices and indices");
+                if (prim.indices >= 0 && size_t(prim.indices) < model_.accessors.size())
+                    charge(elementsLeft_, model_.accessors[size_t(prim.indices)].count, where,
+                           "vertices and indices");
+            }
             AccessorData pos = accessor(attribute("POSITION"), where + " POSITION");
             if (pos.components < 3) fail(where + " POSITION is not a vec3");
             std::vector<Vertex> verts(pos.count);
@@ -386,6 +445,15 @@ class GltfImporter {
 
             std::vector<uint32_t> idx;
             if (prim.indices >= 0) {
+                if (size_t(prim.indices) < model_.accessors.size()) {
+                    const tinygltf::Accessor& ia = model_.accessors[size_t(prim.indices)];
+                    if (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                        ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                        ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                        fail(where + " indices have component type " + std::to_string(ia.componentType) +
+                             ", not an unsigned integer type");
+                    if (ia.type != TINYGLTF_TYPE_SCALAR) fail(where + " indices are not scalars");
+                }
                 AccessorData a = accessor(prim.indices, where + " indices");
                 for (double v : a.values) idx.push_back(uint32_t(v));
             } else {
@@ -429,9 +497,19 @@ class GltfImporter {
             cam.yfov = 0.785398f;
             cam.znear = std::max(float(src.orthographic.znear), 0.01f);
             cam.zfar = std::max(float(src.orthographic.zfar), cam.znear * 2.0f);
-        } else {
-            cam.yfov = src.perspective.yfov > 0.0 ? float(src.perspective.yfov) : 0.8f;
-            cam.znear = src.perspective.znear > 0.0 ? float(src.perspective.znear) : 0.05f;
+        } else if (src.type == "perspective") {
+            // What glTF requires of a perspective camera; nothing is guessed (an empty image would follow).
+            const tinygltf::PerspectiveCamera& lens = src.perspective;
+            const std::string where = "camera '" + src.name + "'";
+            if (!(lens.yfov > 0.0 && lens.yfov < 3.14159265))
+                fail(where + ": yfov " + numberText(lens.yfov) + " is not in (0, pi)");
+            if (!(lens.znear > 0.0) || !std::isfinite(lens.znear))
+                fail(where + ": znear " + numberText(lens.znear) + " is not finite and positive");
+            if (lens.zfar < 0.0 || (lens.zfar > 0.0 && !(lens.zfar > lens.znear)))
+                fail(where + ": zfar " + numberText(lens.zfar) + " is not greater than znear " +
+                     numberText(lens.znear) + " (or 0: infinite)");
+            cam.yfov = float(src.perspective.yfov);
+            cam.znear = float(src.perspective.znear);
             cam.zfar = float(src.perspective.zfar);  // 0 (infinite) is made finite once the bounds are known
             cam.aspectRatio = float(src.perspective.aspectRatio);
         }
@@ -445,6 +523,9 @@ class GltfImporter {
     void punctualLight(const tinygltf::Light& src) {
         Light light;
         light.name = src.name;
+        if (src.type != "spot" && src.type != "point" && src.type != "directional")
+            fail("light '" + src.name + "': type '" + printableText(src.type, 40) +
+                 "' is not directional, point or spot");
         light.type = src.type == "spot"    ? LightType::Spot
                      : src.type == "point" ? LightType::Point
                                            : LightType::Directional;
@@ -480,8 +561,11 @@ class GltfImporter {
             };
             node.mesh = check(src.mesh, scene_.meshes.size(), "mesh");
             node.camera = check(src.camera, scene_.cameras.size(), "camera");
-            if (auto light = extensionNumber(src.extensions, "KHR_lights_punctual", "light"))
-                node.light = check(int(*light), scene_.lights.size(), "light");
+            if (auto light = extensionNumber(src.extensions, "KHR_lights_punctual", "light")) {
+                if (!(*light >= 0.0 && *light < double(scene_.lights.size())))
+                    fail("node '" + node.name + "': light index " + numberText(*light) + " is out of range");
+                node.light = int(*light);
+            }
             for (int c : src.children) {
                 check(c, count, "child");
                 if (c < 0 || scene_.nodes[size_t(c)].parent >= 0 || size_t(c) == i)
@@ -491,10 +575,28 @@ class GltfImporter {
                 node.children.push_back(c);
             }
         }
+        // A node that is its own ancestor: its transform is undefined (and the hierarchy would loop).
+        std::vector<int> state(count, 0);  // 0 unknown, 1 reaches a root
+        for (size_t i = 0; i < count; ++i) {
+            size_t steps = 0;
+            for (int n = int(i); n >= 0 && state[size_t(n)] == 0; n = scene_.nodes[size_t(n)].parent)
+                if (++steps > count)
+                    fail("node '" + scene_.nodes[i].name +
+                         "' is its own ancestor (the node hierarchy has a cycle)");
+            for (int n = int(i); n >= 0 && state[size_t(n)] == 0; n = scene_.nodes[size_t(n)].parent)
+                state[size_t(n)] = 1;
+        }
+        if (model_.defaultScene >= 0 && size_t(model_.defaultScene) >= model_.scenes.size())
+            fail("scene index " + std::to_string(model_.defaultScene) + " is out of range (" +
+                 std::to_string(model_.scenes.size()) + " scenes)");
         int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
         if (size_t(sceneIndex) < model_.scenes.size()) {
-            for (int n : model_.scenes[size_t(sceneIndex)].nodes)
-                if (n >= 0 && size_t(n) < count) scene_.roots.push_back(n);
+            for (int n : model_.scenes[size_t(sceneIndex)].nodes) {
+                if (n < 0 || size_t(n) >= count)
+                    fail("scene " + std::to_string(sceneIndex) + ": node " + std::to_string(n) +
+                         " is out of range");
+                scene_.roots.push_back(n);
+            }
         } else {
             for (size_t i = 0; i < count; ++i)
                 if (scene_.nodes[i].parent < 0) scene_.roots.push_back(int(i));
@@ -517,6 +619,17 @@ class GltfImporter {
                 continue;
             }
             const tinygltf::AnimationSampler& sampler = src.samplers[size_t(ch.sampler)];
+            if (ch.target_path != "translation" && ch.target_path != "rotation" && ch.target_path != "scale")
+                fail("animation '" + src.name + "': channel path '" + printableText(ch.target_path, 40) +
+                     "' is not translation, rotation, scale or weights");
+            if (!sampler.interpolation.empty() && sampler.interpolation != "LINEAR" &&
+                sampler.interpolation != "STEP" && sampler.interpolation != "CUBICSPLINE")
+                fail("animation '" + src.name + "': interpolation '" +
+                     printableText(sampler.interpolation, 40) + "' is not LINEAR, STEP or CUBICSPLINE");
+            for (int index : {sampler.input, sampler.output})
+                if (index >= 0 && size_t(index) < model_.accessors.size())
+                    charge(keysLeft_, model_.accessors[size_t(index)].count,
+                           "animation '" + src.name + "' channel " + ch.target_path, "animation keys");
             AnimationChannel out;
             out.node = ch.target_node;
             out.path = ch.target_path == "rotation" ? AnimationPath::Rotation
@@ -553,7 +666,10 @@ class GltfImporter {
     }
 
     const tinygltf::Model& model_;
-    uint64_t zeroFillLimit_;
+    uint64_t zeroFillLeft_;
+    uint64_t elementsLeft_;
+    uint64_t keysLeft_;
+    uint64_t texelsLeft_ = kMaxSceneTexels;
     const std::map<std::string, std::string>& refused_;
     Scene scene_;
     std::map<std::pair<int, TextureKind>, int> textureCache_;
@@ -570,7 +686,13 @@ struct LoadContext {
     // which uri the bytes came from.
     std::string lastRead;
     size_t lastReadBytes = 0;
+    uint64_t texelsLeft = kMaxSceneTexels;  // what all images of the file may decode to together
 };
+
+std::string imageKey(int index) {
+    return "#image " +
+           std::to_string(index);  // not a file name: what LoadContext::refused holds for an image
+}
 
 bool fileExists(const std::string& path, void*) {
     struct stat info {};
@@ -605,15 +727,19 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 // decodes with stb as tinygltf would (8- or 16-bit, the file's channel count).
 bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
-    const LoadContext& context = *static_cast<const LoadContext*>(user);
+    LoadContext& context = *static_cast<LoadContext*>(user);
     std::string name = "image " + std::to_string(index);
     if (!image->name.empty()) name += " '" + image->name + "'";
     if (image->bufferView < 0 && !context.lastRead.empty() &&
         context.lastReadBytes == size_t(std::max(size, 0)))
         name += " (" + context.lastRead + ")";
+    // An image that cannot be used fails the load only if a texture uses it (the importer reports it then): a
+    // file may list images it never uses, or ones an extension replaces with a PNG fallback (a WebP image
+    // beside the texture's PNG source).
+    (void)err;
     auto refuse = [&](const std::string& why) {
-        if (err) *err += name + ": " + why + "\n";
-        return false;
+        static_cast<LoadContext*>(user)->refused[imageKey(index)] = name + ": " + why;
+        return true;
     };
     if (image->bufferView >= 0) {
         const tinygltf::Model& model = *context.model;
@@ -637,6 +763,11 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
     if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxTexturePixels)
         return refuse("is " + std::to_string(width) + "x" + std::to_string(height) + ", more than the " +
                       std::to_string(kMaxTexturePixels) + " pixels a texture may have");
+    if (uint64_t(width) * uint64_t(height) > context.texelsLeft)
+        return refuse("is " + std::to_string(width) + "x" + std::to_string(height) +
+                      ": with the file's other images more than the " + std::to_string(kMaxSceneTexels) +
+                      " pixels one file's images may have together");
+    context.texelsLeft -= uint64_t(width) * uint64_t(height);
     const bool sixteen = stbi_is_16_bit_from_memory(bytes, size);
     std::unique_ptr<void, void (*)(void*)> pixels(
         sixteen ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &width, &height, &channels, 0))
@@ -655,6 +786,62 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
     image->pixel_type =
         sixteen ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
     return true;
+}
+
+// ---- integers tinygltf narrows to int without a check ("mesh": 4294967297 would draw mesh 1) ----
+
+// Keys whose values (numbers, arrays of numbers, or objects of numbers for "attributes"/"targets") tinygltf
+// stores as int: indices and enums. Inside "sparse", "count" and "byteOffset" are ints too.
+bool intKey(const std::string& key) {
+    static const std::set<std::string> keys = {
+        "scene",      "nodes",      "children",  "mesh",       "camera", "skin",   "skeleton",
+        "joints",     "material",   "indices",   "bufferView", "buffer", "source", "sampler",
+        "index",      "texCoord",   "input",     "output",     "node",   "light",  "componentType",
+        "mode",       "byteStride", "magFilter", "minFilter",  "wrapS",  "wrapT",  "inverseBindMatrices",
+        "attributes", "targets"};
+    return keys.count(key) > 0;
+}
+
+void checkJsonIntegers(const nlohmann::json& value, std::vector<std::string>& path, bool intValued,
+                       bool inSparse) {
+    auto where = [&] {
+        std::string text;
+        for (const std::string& part : path) text += "/" + part;
+        return text;
+    };
+    if (value.is_number()) {
+        if (!intValued) return;
+        bool ok = true;
+        if (value.is_number_unsigned())
+            ok = value.get<uint64_t>() <= uint64_t(INT_MAX);
+        else if (value.is_number_integer())
+            ok = value.get<int64_t>() >= 0 && value.get<int64_t>() <= INT_MAX;
+        else
+            ok = value.get<double>() >= 0.0 && value.get<double>() <= double(INT_MAX) &&
+                 std::floor(value.get<double>()) == value.get<double>();
+        if (!ok)
+            fail(where() + " is " + printableText(value.dump(), 40) + ", not an integer index in 0.." +
+                 std::to_string(INT_MAX));
+        return;
+    }
+    if (value.is_array()) {
+        for (size_t i = 0; i < value.size(); ++i) {
+            path.push_back(std::to_string(i));
+            checkJsonIntegers(value[i], path, intValued, inSparse);
+            path.pop_back();
+        }
+        return;
+    }
+    if (!value.is_object()) return;
+    for (const auto& [key, child] : value.items()) {
+        if (key == "extras") continue;  // the application's own data
+        const bool sparse = inSparse || key == "sparse";
+        const bool ints = intKey(key) || (intValued && child.is_number()) ||
+                          (inSparse && (key == "count" || key == "byteOffset"));
+        path.push_back(printableText(key, 40));
+        checkJsonIntegers(child, path, ints, sparse);
+        path.pop_back();
+    }
 }
 
 // The JSON of a .glb (its first chunk), bounds-checked; empty when the header does not describe one.
@@ -704,6 +891,53 @@ void fitCameraDepthRanges(Scene& scene) {
     }
 }
 
+// Amplification: nodes instancing a mesh multiply its triangles; what a frame draws is budgeted.
+void checkInstancedTriangles(const Scene& scene) {
+    std::vector<uint64_t> meshTriangles(scene.meshes.size(), 0);
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+        for (uint32_t p : scene.meshes[m].primitives)
+            if (p < scene.primitives.size()) meshTriangles[m] += scene.primitives[p].indexCount / 3;
+    uint64_t total = 0;
+    for (const Node& node : scene.nodes)
+        if (node.mesh >= 0 && size_t(node.mesh) < meshTriangles.size())
+            total += meshTriangles[size_t(node.mesh)];
+    if (total > kMaxInstancedTriangles)
+        throw Error("its nodes instance " + std::to_string(total) + " triangles, more than the " +
+                    std::to_string(kMaxInstancedTriangles) + " a frame may draw");
+}
+
+// Animations may carry geometry far outside the bounds at t = 0 that normalizeScale brought into range (a key
+// at 3e38): the voxel grid spans where geometry goes, and past this its math leaves float (NaN in the
+// indirect light). Sampled as the voxel grid samples it, and at the keys.
+void checkAnimatedExtent(const Scene& scene) {
+    constexpr double kMaxAnimatedExtent = 1e6;
+    float duration = 0.0f;
+    std::vector<float> times;
+    for (const Animation& animation : scene.animations) {
+        duration = std::max(duration, animation.duration);
+        for (const AnimationChannel& channel : animation.channels)
+            times.insert(times.end(), channel.times.begin(), channel.times.end());
+    }
+    if (!(duration > 0.0f)) return;
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    if (times.size() > 256) times.resize(256);
+    for (int k = 1; k <= 32; ++k) times.push_back(duration * float(k) / 32.0f);
+    Aabb box = scene.bounds();
+    for (float t : times)
+        for (const Instance& instance : scene.instances(t))
+            for (uint32_t p : scene.meshes[size_t(instance.mesh)].primitives)
+                if (p < scene.primitives.size())
+                    box.extend(scene.primitives[p].bounds.transformed(instance.world));
+    if (box.empty()) return;
+    const glm::dvec3 size = glm::dvec3(box.max) - glm::dvec3(box.min);
+    const double extent = std::max(size.x, std::max(size.y, size.z));
+    if (!(extent <= kMaxAnimatedExtent))
+        throw Error("its animations move geometry across " + numberText(extent) + " units, more than the " +
+                    numberText(kMaxAnimatedExtent) +
+                    " float math is kept in (at the scale of the scene at t = 0)");
+}
+
 // loadGltf without the file name in its errors (loadGltf adds it to every one, whatever threw).
 Scene importGltf(const std::string& path) {
     FileRead file = readRegularFile(path);
@@ -717,6 +951,20 @@ Scene importGltf(const std::string& path) {
     // tinygltf converts JSON recursively: deep nesting would overflow the stack before it could say so.
     if (jsonNestingDepth(json, kMaxJsonDepth) > kMaxJsonDepth)
         throw Error("JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    if (binary) {
+        uint32_t version = 0;
+        if (file.bytes.size() >= 8) std::memcpy(&version, file.bytes.data() + 4, 4);
+        if (version != 2)
+            throw Error("GLB container version " + std::to_string(version) + " is not 2 (glTF 2.0)");
+    }
+    {
+        // Every index and enum as the file spells it, before tinygltf narrows it to int.
+        const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+        if (!doc.is_discarded()) {
+            std::vector<std::string> where;
+            checkJsonIntegers(doc, where, false, false);
+        }
+    }
 
     tinygltf::TinyGLTF gltf;
     tinygltf::Model model;
@@ -737,10 +985,12 @@ Scene importGltf(const std::string& path) {
     file.bytes = {};
     Scene scene = GltfImporter(model, inputBytes, context.refused).run();
     scene.name = std::filesystem::path(path).stem().string();
+    checkInstancedTriangles(scene);
     fitCameraDepthRanges(scene);
     // Check the data before anything derives a camera or light from it (NaN bounds would spread).
     scene.validate();
     scene.normalizeScale();
+    checkAnimatedExtent(scene);
     scene.addDefaultsIfMissing();
     return scene;
 }

@@ -33,6 +33,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "scene/input_limits.h"
 
 namespace vct {
 
@@ -405,11 +406,7 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path) {
     } catch (const Error& e) {
         throw Error("cannot write " + path.string() + ": " + e.what());
     }
-    std::ofstream file(path, std::ios::binary | std::ios::trunc);
-    if (!file) throw Error("cannot write " + path.string() + ": " + std::strerror(errno));
-    file.write(bytes.data(), std::streamsize(bytes.size()));
-    file.close();
-    if (!file) throw Error("cannot write " + path.string() + ": write failed");
+    writeFileReplacing(path, bytes);  // checked, fsync'ed, never through a planted symlink
 }
 
 }  // namespace vct

@@ -11,6 +11,12 @@
 
 namespace vct {
 
+namespace {
+// The brightest light (colour x intensity) vct renders: the shaders divide by the squared distance (at least
+// 1e-8), and light sums over bounces and pixels must stay far inside float.
+constexpr float kMaxLightPower = 1e20f;
+}  // namespace
+
 Aabb Aabb::transformed(const glm::mat4& m) const {
     Aabb out;
     if (empty()) return out;
@@ -280,45 +286,55 @@ Aabb Scene::bounds() const {
 void Scene::normalizeScale() {
     const Aabb box = bounds();
     if (box.empty()) return;
-    // The largest side, not the diagonal: squaring a side of 1e-30 would underflow to 0.
-    const glm::vec3 size = box.max - box.min;
-    const float extent = std::max(size.x, std::max(size.y, size.z));
-    constexpr float kMinExtent = 1e-2f, kMaxExtent = 1e6f;
-    if (!(extent > 0.0f) || (extent >= kMinExtent && extent <= kMaxExtent)) return;
-    // A power of two: every scaled value keeps its bits, so the image is the one the scene would give if
-    // float could hold it.
+    // The largest side in double: a span from -FLT_MAX to FLT_MAX is finite there, not in float.
+    const glm::dvec3 size = glm::dvec3(box.max) - glm::dvec3(box.min);
+    const double extent = std::max(size.x, std::max(size.y, size.z));
+    constexpr double kMinExtent = 1e-2, kMaxExtent = 1e6;
+    if (!(extent > 0.0) || (extent >= kMinExtent && extent <= kMaxExtent)) return;
+    if (!std::isfinite(extent)) throw Error("the scene's extent is not finite");
+    // A power of two: every scaled value keeps its bits (subnormal inputs gain them back), so the image is
+    // the one the scene would give if float could hold it. The scale goes into the vertices and the
+    // translations (of every node, animated ones included), never into a node's linear part: a matrix of
+    // 2^-127 would be subnormal, flushed to zero on the GPU, and draw nothing. s·(T1 L1 (T2 L2 v)) =
+    // T(s t1) L1 (T(s t2) L2 (s v)) for uniform s, so this is exact for any hierarchy.
     const int exponent = -std::ilogb(extent);
-    const float s = std::ldexp(1.0f, exponent);
-    for (size_t n = 0; n < nodes.size(); ++n) {
-        Node& node = nodes[n];
-        if (node.parent >= 0) continue;  // children inherit the scale from their root
-        if (node.matrix) {
-            *node.matrix = glm::scale(glm::mat4(1.0f), glm::vec3(s)) * *node.matrix;
-        } else {
-            node.translation *= s;
-            node.scale *= s;
-        }
-        for (Animation& anim : animations)
-            for (AnimationChannel& ch : anim.channels)
-                if (ch.node == int(n) && ch.path != AnimationPath::Rotation)
-                    for (glm::vec4& v : ch.values) v *= s;
+    const auto scaled = [exponent](float v) { return std::ldexp(v, exponent); };
+    const auto scaled3 = [&](glm::vec3 v) { return glm::vec3(scaled(v.x), scaled(v.y), scaled(v.z)); };
+    for (Vertex& v : vertices) v.position = scaled3(v.position);
+    for (Primitive& prim : primitives)
+        if (!prim.bounds.empty()) prim.bounds = Aabb{scaled3(prim.bounds.min), scaled3(prim.bounds.max)};
+    for (Node& node : nodes) {
+        if (node.matrix)
+            for (int r = 0; r < 3; ++r) (*node.matrix)[3][r] = scaled((*node.matrix)[3][r]);
+        node.translation = scaled3(node.translation);
     }
+    for (Animation& anim : animations)
+        for (AnimationChannel& ch : anim.channels)
+            if (ch.path == AnimationPath::Translation)
+                for (glm::vec4& v : ch.values) v = glm::vec4(scaled3(glm::vec3(v)), v.w);
     for (Camera& cam : cameras) {
-        cam.znear *= s;
-        cam.zfar *= s;
+        cam.znear = scaled(cam.znear);
+        cam.zfar = scaled(cam.zfar);
     }
     for (size_t l = 0; l < lights.size(); ++l) {
         Light& light = lights[l];
-        light.range *= s;
+        light.range = scaled(light.range);
         // A point or spot light's irradiance falls with the squared distance, which scaled by s².
-        if (light.type != LightType::Directional) light.intensity *= s * s;
-        if (!std::isfinite(light.intensity) || !finite(light.color * light.intensity))
+        if (light.type != LightType::Directional) light.intensity = std::ldexp(light.intensity, 2 * exponent);
+        if (!std::isfinite(light.intensity) || !finite(light.color * light.intensity) ||
+            std::max({light.color.x, light.color.y, light.color.z}) * light.intensity > kMaxLightPower)
             throw Error("light '" + light.name + "': its intensity at this scene's scale (" +
                         numberText(extent) + " across) overflows float");
     }
-    notes.push_back(
-        "scene is " + numberText(extent) + " units across: scaled by 2^" + std::to_string(exponent) +
-        " to keep float math in range (lights and cameras scaled with it; the image is the same)");
+    const Aabb after = bounds();
+    const float newExtent =
+        std::max({after.max.x - after.min.x, after.max.y - after.min.y, after.max.z - after.min.z});
+    if (!(newExtent >= 0.25f && newExtent <= 4.0f))
+        throw Error("the scene (" + numberText(extent) + " across) cannot be brought into float's range: " +
+                    numberText(newExtent) + " across after scaling by 2^" + std::to_string(exponent));
+    notes.push_back("scene is " + numberText(extent) + " units across: scaled by 2^" +
+                    std::to_string(exponent) +
+                    " to keep float math in range (lights and cameras scaled with it)");
 }
 
 void Scene::addDefaultsIfMissing() {
@@ -477,6 +493,11 @@ void validateLights(const Scene& scene) {
         if (!std::isfinite(light.intensity) || light.intensity < 0.0f)
             fail(where + "intensity " + numberText(light.intensity) + " is not finite and non-negative");
         if (!finite(light.color * light.intensity)) fail(where + "color x intensity overflows float");
+        // The shaders divide by the squared distance (at least 1e-8): past this, light would overflow.
+        const float power = std::max({light.color.x, light.color.y, light.color.z}) * light.intensity;
+        if (power > kMaxLightPower)
+            fail(where + "color x intensity " + numberText(power) + " is beyond the " +
+                 numberText(kMaxLightPower) + " vct renders (its light would overflow float)");
         if (!std::isfinite(light.range) || light.range < 0.0f)
             fail(where + "range " + numberText(light.range) + " is not finite and non-negative");
         if (light.type == LightType::Spot &&
@@ -508,6 +529,10 @@ void validateWorldTransforms(const Scene& scene) {
             times.insert(times.end(), ch.times.begin(), ch.times.end());
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
+    // Between keys too: two finite keys can interpolate past float's range midway.
+    for (size_t i = 0, keys = times.size(); i + 1 < keys && keys < 4096; ++i)
+        times.push_back(0.5f * times[i] + 0.5f * times[i + 1]);
+    std::sort(times.begin(), times.end());
     const size_t step = std::max<size_t>(1, times.size() / 4096);
     for (size_t t = 0; t < times.size(); t += step) {
         const std::vector<glm::mat4> world = scene.evaluate(times[t]);

@@ -85,9 +85,12 @@ void makeFlatNormals(std::vector<Vertex>& vertices, std::vector<uint32_t>& indic
             // An out-of-range index keeps a zero vertex here; the caller validates indices before this.
             corner[k] = index < vertices.size() ? vertices[index] : Vertex{};
         }
-        glm::vec3 n = safeNormalize(
-            glm::cross(corner[1].position - corner[0].position, corner[2].position - corner[0].position),
-            glm::vec3(0, 0, 1));
+        // In double: the cross product of edges near float's limits (1e-30 or 1e30 long) under- or overflows
+        // float, and the triangle's normal would be lost.
+        const glm::dvec3 p0(corner[0].position), p1(corner[1].position), p2(corner[2].position);
+        const glm::dvec3 cross = glm::cross(p1 - p0, p2 - p0);
+        const double length = glm::length(cross);
+        glm::vec3 n = length > 0.0 && std::isfinite(length) ? glm::vec3(cross / length) : glm::vec3(0, 0, 1);
         for (Vertex& c : corner) {
             c.normal = n;
             flat.push_back(c);

@@ -29,6 +29,7 @@
 #include "report/image_metrics.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera_path.h"
+#include "scene/input_limits.h"
 
 namespace vct {
 
@@ -84,11 +85,15 @@ std::string pathSlug(const std::string& name) {
 std::vector<ReportScene> reportScenes(const ParsedArgs& args) {
     const std::filesystem::path listFile = args.get("report-scenes");
     const std::filesystem::path listDir = listFile.parent_path();
-    std::ifstream in(listFile);
-    if (!in) throw Error("report scene list '" + listFile.string() + "': cannot be opened");
+    // The one checked open: a FIFO is refused instead of blocking.
+    const FileRead read = readRegularFile(listFile, uint64_t(1) << 24);
+    if (!read.error.empty()) throw Error("report scene list '" + listFile.string() + "': " + read.error);
+    const std::string_view text(reinterpret_cast<const char*>(read.bytes.data()), read.bytes.size());
+    if (jsonNestingDepth(text, kMaxJsonDepth) > kMaxJsonDepth)
+        throw Error("report scene list '" + listFile.string() + "': JSON nested too deep");
     json list;
     try {
-        list = json::parse(in);
+        list = json::parse(text);
     } catch (const json::exception& e) {
         throw Error("report scene list '" + listFile.string() + "': not valid JSON (" + e.what() + ")");
     }

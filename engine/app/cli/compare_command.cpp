@@ -29,9 +29,16 @@ namespace fs = std::filesystem;
 const char* const kFileFlags[] = {"reference", "image", "peak", "tonemap", "error-map", "error-scale"};
 const char* const kDirFlags[] = {"reference-dir", "image-dir", "json", "maps"};
 
+// NaN or Inf in an input is a bad input: one line naming the file (it used to end in exit 1, silently).
+void requireFinite(const ImageRgba32f& image, const std::string& path) {
+    if (auto bad = nonFiniteProblem(image)) throw Error(path + ": " + *bad);
+}
+
 int compareFiles(const ParsedArgs& args) {
     const ImageRgba32f reference = readExr(args.get("reference"));
+    requireFinite(reference, args.get("reference"));
     const ImageRgba32f image = readExr(args.get("image"));
+    requireFinite(image, args.get("image"));
     const ImageError error =
         compareImages(reference, image, args.has("peak") ? args.getFloat("peak", 1e-30f, 1e30f) : 0.0);
     std::printf("%s\n", formatImageError(error).c_str());

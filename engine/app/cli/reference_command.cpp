@@ -119,6 +119,7 @@ int runReferenceCommand(int argc, char** argv, int first) {
 
     const Scene scene = loadScene(args.get("scene"));
     for (const std::string& note : scene.notes) std::printf("note: %s\n", note.c_str());
+    if (cameraPath) checkCameraPathForScene(*cameraPath, scene, args.get("camera-path"));
     // The very frame `vct render --frames K+1` ends on: time and camera from the same function.
     const FrameInput input = fixedStepFrame(scene, frame, 0, cameraPath ? &*cameraPath : nullptr);
     reference::PathTracer tracer(scene, input.timeSeconds, input.camera, settings);

@@ -88,6 +88,7 @@ int runRenderCommand(int argc, char** argv, int first) {
     prepareOutputDirectory(outDir, "--out");
     {
         Session session(options);
+        if (cameraPath) checkCameraPathForScene(*cameraPath, session.scene(), args.get("camera-path"));
 
         Renderer& renderer = session.renderer();
         const uint32_t mip = view == AuxView::Voxels ? voxelMip(renderer.voxelGrid()->mipCount()) : 0;

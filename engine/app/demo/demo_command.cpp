@@ -56,8 +56,9 @@ CommandSpec makeDemoSpec() {
         {"script", "FILE.json",
          "replay a session: [{\"frame\": N, \"set\": {option: value}}, {\"frame\": N, \"screenshot\": "
          "\"a.png\"}]; "
-         "quits after its last step",
+         "quits after its last step (screenshots relative to, and confined to, the script's directory)",
          ""},
+        {"script-outputs-anywhere", "", "let --script screenshots write outside the script's directory", ""},
         {"camera-path", "FILE.json", "play this keyframed camera path (toggle in the panel)", ""},
         {"record-path", "FILE.json", "where R (record camera path) writes the recorded path",
          "camera_path.json"},
@@ -630,7 +631,10 @@ int runDemoCommand(int argc, char** argv, int first) {
     args.frameLimit = parsedArgs.getUint("frames", 0, 100000000);
     args.screenshot = parsedArgs.get("screenshot");
     args.recordPath = parsedArgs.get("record-path");
-    if (parsedArgs.has("script")) args.script = loadDemoScript(parsedArgs.get("script"));
+    if (parsedArgs.has("script"))
+        args.script = loadDemoScript(parsedArgs.get("script"), parsedArgs.has("script-outputs-anywhere"));
+    else if (parsedArgs.has("script-outputs-anywhere"))
+        throw UsageError("--script-outputs-anywhere: only with --script");
     if (parsedArgs.has("camera-path")) args.cameraPath = loadCameraPath(parsedArgs.get("camera-path"));
     args.controls.settings = args.session.settings;
     applyOption(args.controls, "view", parsedArgs.get("view"));

@@ -7,7 +7,9 @@
 //    {"frame": 9, "set": {"camera-cut": true}}]
 //
 // "set" values are what the command line takes ("sg", 4, "on"; JSON true/false mean on/off). A step applies
-// before its frame is rendered; a screenshot is taken after it. The file is checked whole at load time.
+// before its frame is rendered; a screenshot is taken after it. The file is checked whole at load time:
+// a relative screenshot path is taken from the script's directory, and every screenshot must lie under that
+// directory (unless --script-outputs-anywhere) in a directory that exists; frames are at most kMaxScriptFrame.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,9 @@
 #include <vector>
 
 namespace vct {
+
+// The last frame a script may name (as --frames).
+inline constexpr uint64_t kMaxScriptFrame = 100000000;
 
 struct ScriptStep {
     uint32_t frame = 0;
@@ -31,8 +36,10 @@ struct DemoScript {
 };
 
 // Reads and checks a script (every option name and value); throws Error naming the file and the step.
-DemoScript loadDemoScript(const std::filesystem::path& file);
-// The same from JSON text (tests); `source` names it in errors.
-DemoScript parseDemoScript(const std::string& text, const std::string& source);
+DemoScript loadDemoScript(const std::filesystem::path& file, bool outputsAnywhere = false);
+// The same from JSON text (tests); `source` names it in errors. Screenshots are confined to `outputDir` (the
+// current directory when empty, their paths then kept as written).
+DemoScript parseDemoScript(const std::string& text, const std::string& source,
+                           const std::filesystem::path& outputDir = {}, bool outputsAnywhere = false);
 
 }  // namespace vct
