@@ -3,6 +3,7 @@
 // count that would allocate gigabytes, a light or camera value that overflows float, ...). Every case must
 // end in one stderr line naming the file (exit 1) or in a finite image (hostile_util.h, expectGraceful).
 #include <sys/stat.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstdint>
@@ -474,14 +475,14 @@ std::vector<GltfCase> amplificationCases() {
     cases.push_back(
         {"SharedZeroFilledAccessor",
          [](GltfScene& s) {
-             s.doc["accessors"].push_back({{"componentType", 5126}, {"count", 3000}, {"type", "VEC3"}});
+             s.doc["accessors"].push_back({{"componentType", 5126}, {"count", 1000}, {"type", "VEC3"}});
              const size_t zeros = s.doc["accessors"].size() - 1;
              json prims = json::array();
-             for (int p = 0; p < 3000; ++p) prims.push_back({{"attributes", {{"POSITION", zeros}}}});
+             for (int p = 0; p < 200; ++p) prims.push_back({{"attributes", {{"POSITION", zeros}}}});
              s.doc["meshes"][0]["primitives"] = prims;
          },
          fails({"without a bufferView"})});
-    // 120 primitives reusing 40k vertices (4.8M built from 0.5 MB): the vertex budget, charged first.
+    // 120 primitives reusing 40k vertices (4.8M built from 0.5 MB): the vertex budget, summed before building.
     cases.push_back({"SharedVertices",
                      [](GltfScene& s) {
                          const size_t offset = s.bin.size(), count = 40002;
@@ -737,6 +738,54 @@ std::vector<GltfCase> lenientCases() {
     return cases;
 }
 
+// Class 4 (images): a valid PNG of `width` x `height` black 1-bit pixels, a few kB however large, that stb
+// decodes to one byte per pixel.
+void writeBlackPng(const fs::path& path, uint32_t width, uint32_t height) {
+    const size_t row = 1 + (width + 7) / 8;
+    const std::vector<unsigned char> raw(row * height, 0);  // filter 0, all pixels 0
+    uLongf packedSize = compressBound(uLong(raw.size()));
+    std::vector<unsigned char> packed(packedSize);
+    ASSERT_EQ(compress2(packed.data(), &packedSize, raw.data(), uLong(raw.size()), 9), Z_OK);
+    packed.resize(packedSize);
+    std::vector<unsigned char> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    auto chunk = [&](const char* type, const std::vector<unsigned char>& data) {
+        for (int i = 0; i < 4; ++i) png.push_back((unsigned char)(data.size() >> (24 - 8 * i)));
+        const size_t start = png.size();
+        png.insert(png.end(), type, type + 4);
+        png.insert(png.end(), data.begin(), data.end());
+        const uint32_t crc = crc32(png.data() + start, png.size() - start);
+        for (int i = 0; i < 4; ++i) png.push_back((unsigned char)(crc >> (24 - 8 * i)));
+    };
+    std::vector<unsigned char> header;
+    for (uint32_t v : {width, height})
+        for (int i = 0; i < 4; ++i) header.push_back((unsigned char)(v >> (24 - 8 * i)));
+    header.insert(header.end(), {1, 0, 0, 0, 0});  // 1 bit, greyscale, deflate, filter 0, no interlace
+    chunk("IHDR", header);
+    chunk("IDAT", packed);
+    chunk("IEND", {});
+    test::writeBinaryFile(path, png);
+}
+
+// Five 8192^2 images in one file: each within the per-image cap, together past the file's 2^28 pixels. The
+// fifth (the one the material uses) is refused before it is decoded.
+std::vector<GltfCase> pixelBudgetCases() {
+    std::vector<GltfCase> cases;
+    cases.push_back({"ImagesPastTheFilesPixels",
+                     [](GltfScene& s) {
+                         s.doc["images"] = json::array();
+                         for (int i = 0; i < 5; ++i)
+                             s.doc["images"].push_back({{"uri", "big" + std::to_string(i) + ".png"}});
+                         s.doc["textures"][0]["source"] = 4;
+                         s.texture = false;
+                         s.extraFiles = [](const fs::path& dir) {
+                             for (int i = 0; i < 5; ++i)
+                                 writeBlackPng(dir / ("big" + std::to_string(i) + ".png"), 8192, 8192);
+                         };
+                     },
+                     fails({"big4.png", "together"})});
+    return cases;
+}
+
 class HostileGltf : public ::testing::TestWithParam<GltfCase> {};
 
 TEST_P(HostileGltf, EndsInOneLineOrAFiniteImage) {
@@ -766,6 +815,7 @@ INSTANTIATE_TEST_SUITE_P(Amplification, HostileGltf, ::testing::ValuesIn(amplifi
 INSTANTIATE_TEST_SUITE_P(Radiance, HostileGltf, ::testing::ValuesIn(radianceCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(Lenses, HostileGltf, ::testing::ValuesIn(lensCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(Lenient, HostileGltf, ::testing::ValuesIn(lenientCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(PixelBudget, HostileGltf, ::testing::ValuesIn(pixelBudgetCases()), caseName);
 
 // Class 11: a scene of any finite size without a camera is framed by the default camera: it renders, finite,
 // and the triangle covers pixels (albedo.exr is black where nothing was drawn).

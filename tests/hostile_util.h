@@ -1,7 +1,8 @@
 // Shared by the hostile-input regression suite (tests/hostile_*_test.cpp): a valid one-triangle glTF scene
 // as JSON + buffer that generators mutate, writers for .gltf/.glb, and the one check every hostile case must
 // pass: the run ends by itself (no signal, no hang), and either exits 0 having written only finite images, or
-// exits 1 or 2 with exactly one line on stderr naming the problem.
+// exits 1 or 2 with exactly one line on stderr naming the problem, of bounded length, control characters
+// escaped.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -221,6 +222,10 @@ inline test::RunResult expectGraceful(const std::vector<std::string>& args, cons
     if (!err.empty() && err.back() == '\n') err.pop_back();
     EXPECT_FALSE(err.empty()) << "nothing on stderr: " << r.describe();
     EXPECT_EQ(err.find_first_of("\r\n"), std::string::npos) << "stderr is not one line:\n" << r.err;
+    // Bounded, whatever the file quotes (vct cuts its lines at ~600 characters), and no raw control characters.
+    EXPECT_LE(err.size(), 700u) << "stderr line of " << err.size() << " characters: " << err.substr(0, 300);
+    EXPECT_EQ(std::count_if(err.begin(), err.end(), [](char c) { return (unsigned char)c < 0x20; }), 0)
+        << "control characters on stderr: " << err.substr(0, 300);
     for (const std::string& m : expect.mentions)
         EXPECT_NE(lower(err).find(lower(m)), std::string::npos)
             << "stderr does not mention '" << m << "': " << err;

@@ -211,6 +211,7 @@ class GltfImporter {
         for (const std::string& ext : model_.extensionsUsed)
             if (!supported(ext)) note("extension " + ext + " is not supported: ignored");
         if (model_.skins.size() > 0) note("skins are not supported: rendering the bind pose");
+        checkTotals();
         for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(material(i));
         for (size_t i = 0; i < model_.meshes.size(); ++i) mesh(i);
         if (scene_.materials.empty()) scene_.materials.emplace_back();  // spec default material
@@ -222,6 +223,40 @@ class GltfImporter {
     }
 
   private:
+    // The whole-file budgets summed over the file before anything is built (400 primitives reusing one
+    // accessor are refused at once, not after 399 of them); the per-read charges below hold them exactly.
+    void checkTotals() const {
+        auto count = [&](int index) -> uint64_t {
+            return index >= 0 && size_t(index) < model_.accessors.size()
+                       ? model_.accessors[size_t(index)].count
+                       : 0;
+        };
+        uint64_t elements = 0, keys = 0;
+        auto add = [](uint64_t& total, uint64_t n) {
+            if (!checkedAdd(total, n, total)) total = UINT64_MAX;
+        };
+        for (const tinygltf::Mesh& mesh : model_.meshes)
+            for (const tinygltf::Primitive& prim : mesh.primitives) {
+                auto position = prim.attributes.find("POSITION");
+                add(elements, position == prim.attributes.end() ? 0 : count(position->second));
+                add(elements, count(prim.indices));
+            }
+        for (const tinygltf::Animation& animation : model_.animations)
+            for (const tinygltf::AnimationChannel& channel : animation.channels)
+                if (channel.sampler >= 0 && size_t(channel.sampler) < animation.samplers.size()) {
+                    const tinygltf::AnimationSampler& sampler = animation.samplers[size_t(channel.sampler)];
+                    add(keys, count(sampler.input));
+                    add(keys, count(sampler.output));
+                }
+        if (elements > elementsLeft_)
+            fail("its primitives build " + std::to_string(elements) +
+                 " vertices and indices together, more than the file's budget of " +
+                 std::to_string(elementsLeft_) + " (it reuses its data too often or is too large)");
+        if (keys > keysLeft_)
+            fail("its animation channels copy " + std::to_string(keys) +
+                 " animation keys together, more than the file's budget of " + std::to_string(keysLeft_));
+    }
+
     AccessorData accessor(int index, const std::string& what) {
         return readAccessor(model_, index, what, zeroFillLeft_);
     }
@@ -991,6 +1026,8 @@ Scene importGltf(const std::string& path) {
     scene.validate();
     scene.normalizeScale();
     checkAnimatedExtent(scene);
+    // Notes quote names from the file: printed to the terminal, they must not carry control characters.
+    for (std::string& note : scene.notes) note = printableText(note, 300);
     scene.addDefaultsIfMissing();
     return scene;
 }
