@@ -67,21 +67,32 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
 }
 
 // Demodulated indirect light at full-res `pixel` (lib/cone.glsl): diffuse = cosine-weighted mean incoming
-// radiance of the 6 diffuse cones, specular = incoming radiance along the specular cone. Background pixels
-// and a missing grid give 0.
+// radiance of the 6 diffuse cones, specular = incoming radiance averaged over the specular lobe (traceSurface).
+// Background pixels and a missing grid give 0.
 struct IndirectSample {
     vec3 diffuse;
     vec3 specular;
 };
 
+// The incoming radiance of each of the 6 diffuse cones from surface point p with unit normal n.
+void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, out vec3 radiance[DIFFUSE_CONE_COUNT]) {
+    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+        radiance[i] = traceCone(voxels, p, n, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
+}
+
+// Their cosine-weighted mean.
+vec3 diffuseFromCones(const vec3 radiance[DIFFUSE_CONE_COUNT]) {
+    vec3 diffuse = vec3(0.0);
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) diffuse += diffuseConeWeight(i) * radiance[i];
+    return diffuse;
+}
+
 // The 6 diffuse cones from surface point p with unit normal n: cosine-weighted mean incoming radiance.
 vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
-    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
-    vec3 diffuse = vec3(0.0);
-    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        diffuse += diffuseConeWeight(i) *
-                   traceCone(voxels, p, n, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
-    return diffuse;
+    vec3 radiance[DIFFUSE_CONE_COUNT];
+    traceDiffuseCones(voxels, p, n, radiance);
+    return diffuseFromCones(radiance);
 }
 
 // Both cone sets from surface point p with unit normal n, seen along unit v (towards the camera).
@@ -91,25 +102,26 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 // walls (α = 0.81) it reflected the dark front wall and ceiling where the path-traced truth also sees the
 // lit floor.
 IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness) {
-    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
+    vec3 cones[DIFFUSE_CONE_COUNT];
+    traceDiffuseCones(voxels, p, n, cones);
     const float alpha = alphaFromPerceptual(perceptualRoughness);
     const vec3 xi = specularConeDirection(n, v);
-    const float invLambda = specularLobeInverseSharpness(alpha, dot(n, v));
-    const float tanHalf = specularConeTanHalf(alpha);
-    vec3 diffuse = vec3(0.0), lobe = vec3(0.0);
-    float lobeWeight = 0.0;
-    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
-        const vec3 dir = diffuseConeDirection(n, i);
-        const vec3 l = traceCone(voxels, p, n, origin, dir, DIFFUSE_CONE_TAN_HALF).rgb;
-        diffuse += diffuseConeWeight(i) * l;
-        const float w = sgDiffuseConeWeight(xi, invLambda, n, dir);
-        lobe += w * l;
-        lobeWeight += w;
+    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
+    vec3 specular = traceCone(voxels, p, n, origin, xi, specularConeTanHalf(alpha)).rgb;
+    const float share = specularConeShare(alpha, dot(n, v));
+    if (share < 1.0) {
+        const float invLambda = specularLobeInverseSharpness(alpha, dot(n, v));
+        vec3 lobe = vec3(0.0);
+        float lobeWeight = 0.0;
+        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
+            const float w = sgDiffuseConeWeight(xi, invLambda, n, diffuseConeDirection(n, i));
+            lobe += w * cones[i];
+            lobeWeight += w;
+        }
+        // No diffuse cone under the lobe at all: the specular cone stands for all of it.
+        if (lobeWeight > 0.0) specular = share * specular + (1.0 - share) * lobe / lobeWeight;
     }
-    const float inCone = lobeWeight > 0.0 ? specularConeShare(alpha, dot(n, v)) : 1.0;
-    vec3 specular = inCone * traceCone(voxels, p, n, origin, xi, tanHalf).rgb;
-    if (inCone < 1.0) specular += (1.0 - inCone) * lobe / lobeWeight;
-    return IndirectSample(diffuse, specular);
+    return IndirectSample(diffuseFromCones(cones), specular);
 }
 
 IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D normalRoughnessTexture,
