@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <fstream>
 #include <functional>
+#include <glm/glm.hpp>
 #include <iterator>
 #include <limits>
 
@@ -177,6 +178,29 @@ std::vector<GltfCase> allocationCases() {
 }
 
 // Class 6: light parameters that overflow float or break the spot cone; degenerate light transforms.
+// A sampler of key `times` (seconds) and VEC3 `values` (one per key) appended to the buffer: two accessors,
+// input then output. Returns the input accessor's index.
+size_t addVec3Sampler(GltfScene& s, const std::vector<float>& times, const std::vector<glm::vec3>& values) {
+    const size_t offset = s.bin.size(), keys = times.size();
+    for (float t : times) appendFloats(s.bin, {t});
+    for (const glm::vec3& v : values) appendFloats(s.bin, {v.x, v.y, v.z});
+    s.doc["buffers"][0]["byteLength"] = s.bin.size();
+    s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", keys * 16}});
+    const size_t view = s.doc["bufferViews"].size() - 1;
+    s.doc["accessors"].push_back({{"bufferView", view},
+                                  {"componentType", 5126},
+                                  {"count", keys},
+                                  {"type", "SCALAR"},
+                                  {"min", {double(times.front())}},
+                                  {"max", {double(times.back())}}});
+    s.doc["accessors"].push_back({{"bufferView", view},
+                                  {"byteOffset", keys * 4},
+                                  {"componentType", 5126},
+                                  {"count", keys},
+                                  {"type", "VEC3"}});
+    return s.doc["accessors"].size() - 2;
+}
+
 void addLight(GltfScene& s, json light, json node = json::object()) {
     s.doc["extensionsUsed"] = {"KHR_lights_punctual"};
     s.doc["extensions"]["KHR_lights_punctual"]["lights"] = {light};
@@ -224,23 +248,7 @@ std::vector<GltfCase> lightCases() {
         {"LightAnimatedToScaleZero",
          [](GltfScene& s) {
              addLight(s, {{"type", "directional"}, {"intensity", 2}});
-             const size_t offset = s.bin.size();
-             appendFloats(s.bin, {0.0f, 0.01f, 1, 1, 1, 0, 0, 0});
-             s.doc["buffers"][0]["byteLength"] = s.bin.size();
-             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 32}});
-             const size_t view = s.doc["bufferViews"].size() - 1;
-             s.doc["accessors"].push_back({{"bufferView", view},
-                                           {"componentType", 5126},
-                                           {"count", 2},
-                                           {"type", "SCALAR"},
-                                           {"min", {0}},
-                                           {"max", {0.01}}});
-             s.doc["accessors"].push_back({{"bufferView", view},
-                                           {"byteOffset", 8},
-                                           {"componentType", 5126},
-                                           {"count", 2},
-                                           {"type", "VEC3"}});
-             const size_t keys = s.doc["accessors"].size() - 2;
+             const size_t keys = addVec3Sampler(s, {0.0f, 0.01f}, {glm::vec3(1), glm::vec3(0)});
              s.doc["animations"] = {
                  {{"channels",
                    {{{"sampler", 0}, {"target", {{"node", s.doc["nodes"].size() - 1}, {"path", "scale"}}}}}},
@@ -426,24 +434,15 @@ std::vector<GltfCase> narrowingCases() {
 
 // Classes 3 and 4: small files that reuse their data until they would take gigabytes or minutes: each is
 // refused by a whole-file budget before it is built.
+// `keys` keys at 60 Hz, a translation alternating between 0 and 1 cm.
 void addSampler(GltfScene& s, size_t keys) {
-    const size_t offset = s.bin.size();
-    for (size_t k = 0; k < keys; ++k) appendFloats(s.bin, {float(k) / 60.0f});
-    for (size_t k = 0; k < keys; ++k) appendFloats(s.bin, {0.0f, float(k % 2) * 0.01f, 0.0f});
-    s.doc["buffers"][0]["byteLength"] = s.bin.size();
-    s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", keys * 16}});
-    const size_t view = s.doc["bufferViews"].size() - 1;
-    s.doc["accessors"].push_back({{"bufferView", view},
-                                  {"componentType", 5126},
-                                  {"count", keys},
-                                  {"type", "SCALAR"},
-                                  {"min", {0.0}},
-                                  {"max", {double(float(keys - 1) / 60.0f)}}});
-    s.doc["accessors"].push_back({{"bufferView", view},
-                                  {"byteOffset", keys * 4},
-                                  {"componentType", 5126},
-                                  {"count", keys},
-                                  {"type", "VEC3"}});
+    std::vector<float> times(keys);
+    std::vector<glm::vec3> values(keys);
+    for (size_t k = 0; k < keys; ++k) {
+        times[k] = float(k) / 60.0f;
+        values[k] = glm::vec3(0.0f, float(k % 2) * 0.01f, 0.0f);
+    }
+    addVec3Sampler(s, times, values);
 }
 std::vector<GltfCase> amplificationCases() {
     std::vector<GltfCase> cases;
@@ -599,32 +598,16 @@ std::vector<GltfCase> lensCases() {
                      },
                      rendersOrFails()});
     // To float's limit in 50 ms: the voxel grid spans where the geometry goes (NaN in the indirect light).
-    cases.push_back(
-        {"AnimationToFloatLimit",
-         [](GltfScene& s) {
-             const size_t offset = s.bin.size();
-             appendFloats(s.bin, {0.0f, 0.05f, 0, 0, 0, 3e38f, 0, 0});
-             s.doc["buffers"][0]["byteLength"] = s.bin.size();
-             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 32}});
-             const size_t view = s.doc["bufferViews"].size() - 1;
-             s.doc["accessors"].push_back({{"bufferView", view},
-                                           {"componentType", 5126},
-                                           {"count", 2},
-                                           {"type", "SCALAR"},
-                                           {"min", {0}},
-                                           {"max", {0.05}}});
-             s.doc["accessors"].push_back({{"bufferView", view},
-                                           {"byteOffset", 8},
-                                           {"componentType", 5126},
-                                           {"count", 2},
-                                           {"type", "VEC3"}});
-             const size_t keys = s.doc["accessors"].size() - 2;
-             json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}};
-             json sampler = {{"input", keys}, {"output", keys + 1}};
-             s.doc["animations"] =
-                 json::array({{{"channels", json::array({channel})}, {"samplers", json::array({sampler})}}});
-         },
-         fails({"animations"})});
+    cases.push_back({"AnimationToFloatLimit",
+                     [](GltfScene& s) {
+                         const size_t keys = addVec3Sampler(s, {0.0f, 0.05f},
+                                                            {glm::vec3(0.0f), glm::vec3(3e38f, 0.0f, 0.0f)});
+                         json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}};
+                         json sampler = {{"input", keys}, {"output", keys + 1}};
+                         s.doc["animations"] = json::array(
+                             {{{"channels", json::array({channel})}, {"samplers", json::array({sampler})}}});
+                     },
+                     fails({"animations"})});
     return cases;
 }
 

@@ -69,22 +69,6 @@ inline vct::Node& addLight(vct::Scene& scene, const std::string& name, vct::Ligh
     return scene.nodes.back();
 }
 
-// A closed cube [−1, 1]³ seen from inside: every face's front side faces inwards.
-inline vct::Scene furnaceRoom(float albedo, float emission) {
-    vct::Scene scene = emptyScene("furnace", diffuseMaterial(albedo, emission));
-    for (int axis = 0; axis < 3; ++axis)
-        for (float side : {-1.0f, 1.0f}) {
-            glm::vec3 e(0.0f);
-            e[axis] = side;
-            const glm::vec3 inward = -e;
-            const glm::vec3 u = std::abs(inward.y) < 0.9f
-                                    ? glm::normalize(glm::cross(inward, glm::vec3(0, 1, 0)))
-                                    : glm::vec3(1, 0, 0);
-            addQuad(scene, e, u, glm::cross(inward, u), 0);
-        }
-    return scene;
-}
-
 // Appends the six inward faces of the box [lo, hi] with `material`.
 inline void addClosedBox(vct::Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
     const glm::vec3 c = 0.5f * (lo + hi), h = 0.5f * (hi - lo);
@@ -101,6 +85,13 @@ inline void addClosedBox(vct::Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t
             if (glm::dot(glm::cross(u, v), inward) < 0.0f) std::swap(u, v);
             addQuad(scene, c + e * h, u, v, material);
         }
+}
+
+// A closed cube [−1, 1]³ seen from inside: every face's front side faces inwards.
+inline vct::Scene furnaceRoom(float albedo, float emission) {
+    vct::Scene scene = emptyScene("furnace", diffuseMaterial(albedo, emission));
+    addClosedBox(scene, glm::vec3(-1.0f), glm::vec3(1.0f), 0);
+    return scene;
 }
 
 // Two closed rooms of albedo ρ side by side, sharing a wall of zero thickness at x = 0 (one quad facing each
