@@ -729,6 +729,12 @@ std::vector<GltfCase> lenientCases() {
                          };
                      },
                      fails({"broken.png", "decoded"})});
+    cases.push_back({"UnknownCameraType",
+                     [](GltfScene& s) {
+                         addCamera(s, {{"yfov", 0.8}, {"znear", 0.01}});
+                         s.doc["cameras"][0]["type"] = "fisheye";
+                     },
+                     fails({"camera"})});
     cases.push_back({"SceneIndexOutOfRange", [](GltfScene& s) { s.doc["scene"] = 5; }, fails({"scene"})});
     cases.push_back({"UnknownLightType",
                      [](GltfScene& s) {

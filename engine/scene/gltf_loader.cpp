@@ -547,6 +547,9 @@ class GltfImporter {
             cam.znear = float(src.perspective.znear);
             cam.zfar = float(src.perspective.zfar);  // 0 (infinite) is made finite once the bounds are known
             cam.aspectRatio = float(src.perspective.aspectRatio);
+        } else {
+            fail("camera '" + src.name + "': type '" + printableText(src.type, 40) +
+                 "' is not perspective or orthographic");
         }
         // Past float's range a far plane is as good as none: made finite from the bounds like an infinite
         // one.
