@@ -364,6 +364,30 @@ INSTANTIATE_TEST_SUITE_P(
                     "normal sum"}),
     [](const auto& param) { return param.param.name; });
 
+// Class 9: a cache of another scene whose scene hash was removed (re-sealed, so only the metadata is at
+// fault) was accepted on its file name alone.
+TEST(HostileVoxelCache, CacheWithoutItsSceneHashIsRefused) {
+    const fs::path dir = caseDir();
+    CacheScene c = cacheScene(dir);
+    c.file.info.sceneHash ^= 1;  // another scene's content, same bounds and name
+    writeVoxelFile(dir / "cache.vdb", c.file);
+    openvdb::initialize();
+    openvdb::io::File in((dir / "cache.vdb").string());
+    in.open(false);
+    openvdb::GridPtrVecPtr grids = in.getGrids();
+    openvdb::MetaMap::Ptr meta = in.getMetadata();
+    in.close();
+    meta->removeMeta("vct_scene_hash");
+    for (openvdb::GridBase::Ptr& grid : *grids) grid->removeMeta("vct_scene_hash");
+    const fs::path stripped = dir / "scene.vdb";  // the scene's own stem: the old fallback accepted it
+    openvdb::io::File out(stripped.string());
+    out.write(*grids, *meta);
+    out.close();
+    sealVoxelFile(stripped);
+    expectGraceful(cacheArgs(c, dir, stripped), dir / "out",
+                   {Outcome::MustFail, {"scene.vdb", "vct_scene_hash"}, 1});
+}
+
 // Class 2: every input and output path of every command goes through the one checked open: a FIFO is refused
 // at once (it used to block forever).
 struct FifoCase {

@@ -789,6 +789,25 @@ std::vector<GltfCase> pixelBudgetCases() {
                          };
                      },
                      fails({"big4.png", "together"})});
+    // Two 8192^2 images (within the file's decoded pixels) used in five roles: colour and data textures are
+    // made separately, 5 x 2^26 texels, refused before any is built.
+    cases.push_back({"ImagesInFiveRoles",
+                     [](GltfScene& s) {
+                         s.doc["images"] = {{{"uri", "big0.png"}}, {{"uri", "big1.png"}}};
+                         s.doc["textures"] = {{{"source", 0}}, {{"source", 1}}};
+                         json& m = s.doc["materials"][0];
+                         m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+                         m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0}};
+                         m["normalTexture"] = {{"index", 0}};
+                         m["emissiveTexture"] = {{"index", 1}};
+                         m["occlusionTexture"] = {{"index", 1}};
+                         s.texture = false;
+                         s.extraFiles = [](const fs::path& dir) {
+                             for (int i = 0; i < 2; ++i)
+                                 writeBlackPng(dir / ("big" + std::to_string(i) + ".png"), 8192, 8192);
+                         };
+                     },
+                     fails({"textures", "counts twice"})});
     return cases;
 }
 
