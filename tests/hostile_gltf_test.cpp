@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 #include <iterator>
 #include <limits>
+#include <tuple>
 
 #include "hostile_util.h"
 
@@ -597,17 +598,22 @@ std::vector<GltfCase> lensCases() {
                          s.doc["accessors"][0]["max"] = {m, m, 0};
                      },
                      rendersOrFails()});
-    // To float's limit in 50 ms: the voxel grid spans where the geometry goes (NaN in the indirect light).
-    cases.push_back({"AnimationToFloatLimit",
-                     [](GltfScene& s) {
-                         const size_t keys = addVec3Sampler(s, {0.0f, 0.05f},
-                                                            {glm::vec3(0.0f), glm::vec3(3e38f, 0.0f, 0.0f)});
-                         json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}};
-                         json sampler = {{"input", keys}, {"output", keys + 1}};
-                         s.doc["animations"] = json::array(
-                             {{{"channels", json::array({channel})}, {"samplers", json::array({sampler})}}});
-                     },
-                     fails({"animations"})});
+    // An animation carrying the triangle 9e5 units (inside the 1e6 kept) renders finite; to float's limit it is
+    // refused: the voxel grid spans where the geometry goes (3e38 gave NaN in the indirect light).
+    for (auto [name, reach, expect] :
+         {std::tuple{"AnimationWithinTheRange", 9e5f, Expectation{Outcome::MustRender, {}, 0, true}},
+          std::tuple{"AnimationToFloatLimit", 3e38f, fails({"animations"})}})
+        cases.push_back(
+            {name,
+             [reach = reach](GltfScene& s) {
+                 const size_t keys =
+                     addVec3Sampler(s, {0.0f, 0.05f}, {glm::vec3(0.0f), glm::vec3(reach, 0.0f, 0.0f)});
+                 json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}};
+                 json sampler = {{"input", keys}, {"output", keys + 1}};
+                 s.doc["animations"] = json::array(
+                     {{{"channels", json::array({channel})}, {"samplers", json::array({sampler})}}});
+             },
+             expect});
     return cases;
 }
 
@@ -712,6 +718,12 @@ std::vector<GltfCase> lenientCases() {
                          };
                      },
                      fails({"broken.png", "decoded"})});
+    cases.push_back({"UnknownCameraType",
+                     [](GltfScene& s) {
+                         addCamera(s, {{"yfov", 0.8}, {"znear", 0.01}});
+                         s.doc["cameras"][0]["type"] = "fisheye";
+                     },
+                     fails({"camera"})});
     cases.push_back({"SceneIndexOutOfRange", [](GltfScene& s) { s.doc["scene"] = 5; }, fails({"scene"})});
     cases.push_back({"UnknownLightType",
                      [](GltfScene& s) {
@@ -766,6 +778,25 @@ std::vector<GltfCase> pixelBudgetCases() {
                          };
                      },
                      fails({"big4.png", "together"})});
+    // Two 8192^2 images (within the file's decoded pixels) used in five roles: colour and data textures are
+    // made separately, 5 x 2^26 texels, refused before any is built.
+    cases.push_back({"ImagesInFiveRoles",
+                     [](GltfScene& s) {
+                         s.doc["images"] = {{{"uri", "big0.png"}}, {{"uri", "big1.png"}}};
+                         s.doc["textures"] = {{{"source", 0}}, {{"source", 1}}};
+                         json& m = s.doc["materials"][0];
+                         m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+                         m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0}};
+                         m["normalTexture"] = {{"index", 0}};
+                         m["emissiveTexture"] = {{"index", 1}};
+                         m["occlusionTexture"] = {{"index", 1}};
+                         s.texture = false;
+                         s.extraFiles = [](const fs::path& dir) {
+                             for (int i = 0; i < 2; ++i)
+                                 writeBlackPng(dir / ("big" + std::to_string(i) + ".png"), 8192, 8192);
+                         };
+                     },
+                     fails({"textures", "counts twice"})});
     return cases;
 }
 

@@ -8,6 +8,7 @@
 #include "app/cli/commands.h"
 #include "app/demo/demo_command.h"
 #include "core/error.h"
+#include "io/vdb_io.h"
 #include "scene/input_limits.h"
 
 namespace {
@@ -57,6 +58,10 @@ int dispatch(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Voxel caches are parsed by OpenVDB in a process of their own first (io/vdb_io.h): this program.
+    if (argc == 4 && std::strcmp(argv[1], vct::kCheckVoxelFileFlag) == 0)
+        return vct::checkVoxelFileInIsolation(argv[2], argv[3]);
+    vct::setVoxelFileIsolation("/proc/self/exe");
     try {
         return dispatch(argc, argv);
     } catch (const vct::UsageError& e) {

@@ -1,8 +1,13 @@
 #include "io/vdb_io.h"
 
+#include <fcntl.h>
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -11,12 +16,15 @@
 #include <cstring>
 #include <istream>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <system_error>
 
 #include "core/error.h"
 #include "io/safe_write.h"
 #include "scene/input_limits.h"
+
+extern char** environ;
 
 namespace vct {
 
@@ -202,6 +210,65 @@ class MemoryBuffer : public std::streambuf {
     }
 };
 
+// ---- OpenVDB parses in a process of its own first (setVoxelFileIsolation) ----
+
+std::mutex isolationMutex;
+std::filesystem::path isolationProgram;
+std::set<std::pair<std::string, uint64_t>> isolationPassed;  // (path, checksum) parsed cleanly already
+
+std::string hexText(uint64_t v) {
+    char text[20];
+    std::snprintf(text, sizeof(text), "%016llx", (unsigned long long)v);
+    return text;
+}
+
+// A file whose checksum is right may still be made to crash OpenVDB (written so on purpose): with isolation
+// on, `program --vct-check-voxel-file PATH CHECKSUM` parses it first, and only a clean exit lets this
+// process parse it. The child's output is discarded: this process says what happened, in one line.
+void checkInIsolation(const std::filesystem::path& path, uint64_t checksum, const std::string& name) {
+    std::filesystem::path program;
+    {
+        std::lock_guard<std::mutex> lock(isolationMutex);
+        if (isolationProgram.empty() || isolationPassed.count({path.string(), checksum})) return;
+        program = isolationProgram;
+    }
+    const std::string hex = hexText(checksum);
+    std::vector<std::string> args = {program.string(), kCheckVoxelFileFlag, path.string(), hex};
+    std::vector<char*> argv;
+    for (std::string& arg : args) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    for (int fd : {0, 1, 2})
+        posix_spawn_file_actions_addopen(&actions, fd, "/dev/null", fd ? O_WRONLY : O_RDONLY, 0);
+    pid_t pid = -1;
+    const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) throw Error(name + ": cannot start its check (" + std::strerror(spawned) + ")");
+    constexpr int kTimeoutSeconds = 120;
+    int status = 0;
+    for (int waited = 0;; ++waited) {
+        const pid_t done = waitpid(pid, &status, WNOHANG);
+        if (done == pid) break;
+        if (done < 0 && errno != EINTR)
+            throw Error(name + ": its check was lost (" + std::strerror(errno) + ")");
+        if (waited >= kTimeoutSeconds * 100) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            throw Error(name + " is damaged: OpenVDB did not finish parsing it in " +
+                        std::to_string(kTimeoutSeconds) + " s");
+        }
+        usleep(10000);
+    }
+    if (WIFSIGNALED(status))
+        throw Error(name + " is damaged: OpenVDB crashed parsing it (" + strsignal(WTERMSIG(status)) +
+                    "), though its checksum matches (made so on purpose?)");
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        throw Error(name + " changed while it was checked (or its check could not run)");
+    std::lock_guard<std::mutex> lock(isolationMutex);
+    isolationPassed.insert({path.string(), checksum});
+}
+
 // A whole voxel file in memory. OpenVDB does not defend itself against a damaged file (lengths trusted,
 // garbage sizes allocated, a flipped bit can crash it), so nothing reaches it before (1) the one checked open
 // (a regular file: a FIFO must not block), (2) the trailer: present, its payload length the file's, and (3)
@@ -239,8 +306,10 @@ VoxelStream openFile(const std::filesystem::path& path) {
     std::vector<unsigned char> payload;
     if (std::string problem = file.readAt(0, payloadBytes, payload); !problem.empty())
         throw Error(name + ": " + problem);
-    if (payloadChecksum(payload.data(), payload.size()) != getU64(trailer.data() + 16))
+    const uint64_t checksum = payloadChecksum(payload.data(), payload.size());
+    if (checksum != getU64(trailer.data() + 16))
         throw Error(name + " is damaged (its checksum does not match its contents)");
+    checkInIsolation(path, checksum, name);
 
     MemoryBuffer buffer(payload.data(), payload.size());
     std::istream in(&buffer);
@@ -439,6 +508,34 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
     for (const openvdb::GridBase::Ptr& grid : grids)
         summary.push_back({grid->getName(), grid->valueType(), uint64_t(grid->activeVoxelCount())});
     return summary;
+}
+
+void setVoxelFileIsolation(const std::filesystem::path& program) {
+    std::lock_guard<std::mutex> lock(isolationMutex);
+    isolationProgram = program;
+}
+
+int checkVoxelFileInIsolation(const std::filesystem::path& path, const std::string& checksum) {
+    {
+        std::lock_guard<std::mutex> lock(isolationMutex);
+        isolationProgram.clear();  // this is the isolated parse: no further process
+    }
+    try {
+        // The whole file, as this version of vct reads it (every grid, tiles voxelized).
+        const FileRead file = readRegularFile(path);
+        if (!file.error.empty() || file.bytes.size() < kTrailerBytes) return 1;
+        if (hexText(payloadChecksum(file.bytes.data(), file.bytes.size() - kTrailerBytes)) != checksum)
+            return 1;  // not the file the caller checked
+        // Everything this process would do with it; what is refused here (tiles outside the grid, impossible
+        // values) the caller refuses too, with its own message: only a crash or a hang is reported for this.
+        try {
+            readVoxelFile(path, true);
+        } catch (const std::exception&) {
+        }
+        return 0;
+    } catch (...) {
+        return 1;
+    }
 }
 
 void sealVoxelFile(const std::filesystem::path& path) {

@@ -110,6 +110,17 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
 // pass cannot produce (accumulator sums beyond their sample count, non-finite or negative light).
 VoxelFile readVoxelFile(const std::filesystem::path& path, bool frame = true);
 
+// Isolation: a file whose checksum matches may still be written to crash OpenVDB. With `program` set (the vct
+// executable; main() sets it), every file is first parsed by `program --vct-check-voxel-file PATH CHECKSUM` in
+// a process of its own, and refused in one line when that process crashes, fails or runs past 120 s; each
+// (path, checksum) is checked once per process. Off (empty) by default: tests read files in process.
+inline constexpr const char* kCheckVoxelFileFlag = "--vct-check-voxel-file";
+void setVoxelFileIsolation(const std::filesystem::path& program);
+// The isolated parse (`vct --vct-check-voxel-file PATH CHECKSUM`): reads the file as readVoxelFile does and
+// returns 0 (vct's own refusals included: the caller repeats them in one line); 1 when the file no longer has
+// that checksum. A crash ends it by a signal, which is what the caller looks for.
+int checkVoxelFileInIsolation(const std::filesystem::path& path, const std::string& checksum);
+
 // Appends the integrity trailer to an OpenVDB file written by other means (tests, tools that edit a cache).
 void sealVoxelFile(const std::filesystem::path& path);
 

@@ -248,6 +248,27 @@ class GltfImporter {
                     add(keys, count(sampler.input));
                     add(keys, count(sampler.output));
                 }
+        // Texels of every texture the materials make (an image used as colour and as data is two textures).
+        std::set<std::pair<int, TextureKind>> textures;
+        for (const tinygltf::Material& m : model_.materials) {
+            textures.insert({m.pbrMetallicRoughness.baseColorTexture.index, TextureKind::Color});
+            textures.insert({m.pbrMetallicRoughness.metallicRoughnessTexture.index, TextureKind::Linear});
+            textures.insert({m.normalTexture.index, TextureKind::Normal});
+            textures.insert({m.emissiveTexture.index, TextureKind::Color});
+            textures.insert({m.occlusionTexture.index, TextureKind::Linear});
+        }
+        uint64_t texels = 0;
+        for (const auto& [index, kind] : textures) {
+            if (index < 0 || size_t(index) >= model_.textures.size()) continue;
+            const int source = model_.textures[size_t(index)].source;
+            if (source < 0 || size_t(source) >= model_.images.size()) continue;
+            const tinygltf::Image& image = model_.images[size_t(source)];
+            add(texels, uint64_t(std::max(image.width, 0)) * uint64_t(std::max(image.height, 0)));
+        }
+        if (texels > texelsLeft_)
+            fail("its materials make textures of " + std::to_string(texels) +
+                 " texels together (an image used as colour and as data counts twice), more than the " +
+                 std::to_string(texelsLeft_) + " one file may have");
         if (elements > elementsLeft_)
             fail("its primitives build " + std::to_string(elements) +
                  " vertices and indices together, more than the file's budget of " +
@@ -547,6 +568,9 @@ class GltfImporter {
             cam.znear = float(src.perspective.znear);
             cam.zfar = float(src.perspective.zfar);  // 0 (infinite) is made finite once the bounds are known
             cam.aspectRatio = float(src.perspective.aspectRatio);
+        } else {
+            fail("camera '" + src.name + "': type '" + printableText(src.type, 40) +
+                 "' is not perspective or orthographic");
         }
         // Past float's range a far plane is as good as none: made finite from the bounds like an infinite
         // one.

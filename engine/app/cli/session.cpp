@@ -14,14 +14,16 @@ SessionOptions sessionOptions(const ParsedArgs& args) {
     options.context.deviceSubstring = args.get("device");
     options.context.validation = args.has("validate");
     applySettingArgs(args, options.settings);
-    // Each side may be as large as a device allows; both together would ask for gigabytes of targets.
-    constexpr uint64_t kMaxFramePixels = uint64_t(1) << 25;  // 8192 x 4096
+    // Each side may be as large as a device allows; both together ask for gigabytes of targets, and per-pixel
+    // storage buffers of 8 bytes a pixel: 2^25 pixels (8192x4096) already exceed lavapipe's 128 MiB
+    // maxStorageBufferRange (validation messages), 2^24 do not.
+    constexpr uint64_t kMaxFramePixels = uint64_t(1) << 24;  // 4096 x 4096
     const uint64_t pixels = uint64_t(options.settings.width) * options.settings.height;
     if (pixels > kMaxFramePixels)
         throw UsageError("--size " + std::to_string(options.settings.width) + "x" +
                          std::to_string(options.settings.height) + ": " + std::to_string(pixels) +
                          " pixels, more than the " + std::to_string(kMaxFramePixels) +
-                         " (8192x4096) a frame may have");
+                         " (4096x4096) a frame may have");
     // The static voxelization from `vct voxelize --out FILE.vdb`; the file is read and checked by the renderer.
     if (!options.settings.voxelCache.empty() && !options.settings.gi)
         throw UsageError("--voxel-cache needs --gi on (the voxels are for cone tracing)");
