@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <set>
 
 #include "core/error.h"
 #include "scene/builtin_scenes.h"
@@ -314,6 +315,46 @@ TEST(BuiltinScenes, CameraAndLightAreInsideTheRoom) {
             EXPECT_LT(forward.z, -0.9f);  // the camera looks at the back wall
         }
     }
+}
+
+// The large interior for issue 19's measurements: tens of metres, thin walls, a sun through openings and one
+// moving object, all as its description says.
+TEST(BuiltinScenes, HallIsALargeInteriorWithThinWallsAndOneMovingObject) {
+    Scene s = loadScene("hall");
+    EXPECT_NO_THROW(s.validate());
+    const Aabb box = s.bounds();
+    EXPECT_GE(box.max.x - box.min.x, 40.0f);
+    EXPECT_GE(box.max.z - box.min.z, 16.0f);
+    EXPECT_GE(box.max.y - box.min.y, 10.0f);
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_EQ(s.lights[0].type, LightType::Directional);
+    std::vector<Instance> a = s.instances(0.0f), b = s.instances(2.0f);
+    int moving = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (a[i].moving) {
+            ++moving;
+            EXPECT_GT(glm::distance(translationOf(a[i].world), translationOf(b[i].world)), 10.0f);
+        }
+    EXPECT_EQ(moving, 1);
+    // Thin walls: the partitions (the plaster primitive below the arches) are made of boxes 0.1 m thick in x,
+    // thinner than a voxel at 256³ (40.6 m / 256 = 0.16 m).
+    std::set<float> wallFaces;
+    for (const Primitive& p : s.primitives)
+        if (s.materials[p.material].name == "plaster" && p.bounds.max.y < 6.01f)
+            for (uint32_t v = 0; v < p.vertexCount; ++v)
+                wallFaces.insert(std::round(s.vertices[p.vertexOffset + v].position.x * 1000.0f) / 1000.0f);
+    ASSERT_EQ(wallFaces.size(), 6u);  // x = -8, 0, 8, each ± 0.05
+    for (auto it = wallFaces.begin(); it != wallFaces.end(); std::advance(it, 2))
+        EXPECT_NEAR(*std::next(it) - *it, 0.1f, 1e-3f);
+    EXPECT_LT(0.1f, (box.max.x - box.min.x) / 256.0f);
+    // The camera stands inside the hall.
+    std::vector<glm::mat4> world = s.evaluate(0.0f);
+    for (size_t n = 0; n < s.nodes.size(); ++n)
+        if (s.nodes[n].camera >= 0) {
+            const glm::vec3 p = translationOf(world[n]);
+            EXPECT_TRUE(glm::all(glm::greaterThan(p, box.min)) && glm::all(glm::lessThan(p, box.max)));
+        }
+    EXPECT_GT(s.indices.size() / 3, 5000u);
 }
 
 TEST(BuiltinScenes, PlaneAndUnknownNames) {

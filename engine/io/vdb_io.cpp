@@ -394,93 +394,111 @@ uint64_t denseVoxelBytes(uint32_t resolution) {
     return uint64_t(resolution) * resolution * resolution * perVoxel;
 }
 
-std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, const VoxelFile& data) {
-    initializeOpenVdb();
-    const VoxelFileInfo& info = data.info;
-    const uint32_t n = info.resolution;
-    if (n < 1 || n > 4096 || !(info.voxelSize > 0.0f))
-        throw Error("cannot write voxel file " + quoted(path) + ": bad grid (resolution " +
-                    std::to_string(n) + ", voxel size " + std::to_string(info.voxelSize) + ")");
+namespace {
 
+// The nine grids of a voxel file, each with its description (what a reader of the .vdb sees in its metadata).
+struct VoxelFileGrids {
+    openvdb::Vec3SGrid::Ptr albedo, normal, emission, radiance;
+    openvdb::FloatGrid::Ptr opacity;
+    openvdb::Int32Grid::Ptr count;
+    openvdb::Vec3IGrid::Ptr albedoSum, normalSum, emissionSum;
+
+    openvdb::GridPtrVec all() const {
+        return {albedo, normal, emission, opacity, radiance, count, albedoSum, normalSum, emissionSum};
+    }
+};
+
+VoxelFileGrids makeVoxelFileGrids(const VoxelFileInfo& info) {
     // Index → world: scale by the voxel size, then move index 0 to the centre of the min-corner voxel.
     openvdb::math::Transform::Ptr transform =
         openvdb::math::Transform::createLinearTransform(double(info.voxelSize));
     const glm::dvec3 firstCentre = glm::dvec3(info.origin) + 0.5 * double(info.voxelSize);
     transform->postTranslate(openvdb::Vec3d(firstCentre.x, firstCentre.y, firstCentre.z));
 
-    auto albedo = makeGrid<openvdb::Vec3SGrid>(
+    VoxelFileGrids g;
+    g.albedo = makeGrid<openvdb::Vec3SGrid>(
         kAlbedo, "resolved albedo (linear RGB) of the frame at vct_time: static + moving instances", info,
         transform);
-    auto normal = makeGrid<openvdb::Vec3SGrid>(
+    g.normal = makeGrid<openvdb::Vec3SGrid>(
         kNormal, "averaged surface normal (world space, not renormalised: shorter where surfaces disagree)",
         info, transform);
-    auto emission = makeGrid<openvdb::Vec3SGrid>(kEmission, "emitted radiance (linear RGB)", info, transform);
-    auto opacity = makeGrid<openvdb::FloatGrid>(kOpacity, "coverage: 1 where any surface touches the voxel",
-                                                info, transform);
-    auto radiance = makeGrid<openvdb::Vec3SGrid>(
+    g.emission = makeGrid<openvdb::Vec3SGrid>(kEmission, "emitted radiance (linear RGB)", info, transform);
+    g.opacity = makeGrid<openvdb::FloatGrid>(kOpacity, "coverage: 1 where any surface touches the voxel",
+                                             info, transform);
+    g.radiance = makeGrid<openvdb::Vec3SGrid>(
         kRadiance,
         "injected outgoing radiance of mip 0 at vct_time (direct light + emission), premultiplied by opacity",
         info, transform);
-    auto count = makeGrid<openvdb::Int32Grid>(
+    g.count = makeGrid<openvdb::Int32Grid>(
         kStaticCount, "voxelize samples of static geometry (the accumulator's count; the voxel cache)", info,
         transform);
-    auto albedoSum = makeGrid<openvdb::Vec3IGrid>(
+    g.albedoSum = makeGrid<openvdb::Vec3IGrid>(
         kStaticAlbedo, "static geometry: sum of albedo x 1023 over static_count samples (uint32 bits)", info,
         transform);
-    auto normalSum = makeGrid<openvdb::Vec3IGrid>(
+    g.normalSum = makeGrid<openvdb::Vec3IGrid>(
         kStaticNormal, "static geometry: sum of normal x 1023 over static_count samples (two's complement)",
         info, transform);
-    auto emissionSum = makeGrid<openvdb::Vec3IGrid>(
+    g.emissionSum = makeGrid<openvdb::Vec3IGrid>(
         kStaticEmission, "static geometry: sum of emission x 256 over static_count samples (uint32 bits)",
         info, transform);
-    opacity->setGridClass(openvdb::GRID_FOG_VOLUME);
-    normal->setVectorType(openvdb::VEC_COVARIANT);
+    g.opacity->setGridClass(openvdb::GRID_FOG_VOLUME);
+    g.normal->setVectorType(openvdb::VEC_COVARIANT);
+    return g;
+}
 
-    auto outside = [&](glm::ivec3 ijk) {
-        std::ostringstream message;
-        message << "cannot write voxel file " << quoted(path) << ": voxel (" << ijk.x << ", " << ijk.y << ", "
-                << ijk.z << ") is outside the " << n << "^3 grid";
-        return Error(message.str());
-    };
-    {
-        auto a = albedo->getAccessor();
-        auto nr = normal->getAccessor();
-        auto e = emission->getAccessor();
-        auto o = opacity->getAccessor();
-        auto r = radiance->getAccessor();
-        for (const VoxelSample& v : data.voxels) {
-            if (!inGrid(v.ijk, n)) throw outside(v.ijk);
-            // A reader refuses these: never write what cannot be read back.
-            if (!finite3(v.albedo) || !finite3(v.normal) || !finite3(v.emission) || !finite3(v.radiance) ||
-                !std::isfinite(v.opacity))
-                throw Error("cannot write voxel file " + quoted(path) + ": voxel (" +
-                            std::to_string(v.ijk.x) + ", " + std::to_string(v.ijk.y) + ", " +
-                            std::to_string(v.ijk.z) + ") holds a non-finite value");
-            const openvdb::Coord c = coord(v.ijk);
-            a.setValueOn(c, vec3s(v.albedo));
-            nr.setValueOn(c, vec3s(v.normal));
-            e.setValueOn(c, vec3s(v.emission));
-            o.setValueOn(c, v.opacity);
-            r.setValueOn(c, vec3s(v.radiance));
-        }
-    }
-    {
-        auto c = count->getAccessor();
-        auto a = albedoSum->getAccessor();
-        auto nr = normalSum->getAccessor();
-        auto e = emissionSum->getAccessor();
-        for (const StaticAccumVoxel& v : data.staticAccum) {
-            if (!inGrid(v.ijk, n)) throw outside(v.ijk);
-            const openvdb::Coord ijk = coord(v.ijk);
-            a.setValueOn(ijk, vec3i(&v.accum[0]));
-            nr.setValueOn(ijk, vec3i(&v.accum[3]));
-            e.setValueOn(ijk, vec3i(&v.accum[6]));
-            c.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[9]));
-        }
-    }
+Error voxelOutsideGrid(const std::filesystem::path& path, glm::ivec3 ijk, uint32_t n) {
+    std::ostringstream message;
+    message << "cannot write voxel file " << quoted(path) << ": voxel (" << ijk.x << ", " << ijk.y << ", "
+            << ijk.z << ") is outside the " << n << "^3 grid";
+    return Error(message.str());
+}
 
-    openvdb::GridPtrVec grids{albedo, normal,    emission,  opacity,    radiance,
-                              count,  albedoSum, normalSum, emissionSum};
+// The frame's resolved voxels: albedo, normal, emission, opacity, radiance.
+void fillFrameGrids(const std::filesystem::path& path, const VoxelFile& data, VoxelFileGrids& g) {
+    const uint32_t n = data.info.resolution;
+    auto a = g.albedo->getAccessor();
+    auto nr = g.normal->getAccessor();
+    auto e = g.emission->getAccessor();
+    auto o = g.opacity->getAccessor();
+    auto r = g.radiance->getAccessor();
+    for (const VoxelSample& v : data.voxels) {
+        if (!inGrid(v.ijk, n)) throw voxelOutsideGrid(path, v.ijk, n);
+        // A reader refuses these: never write what cannot be read back.
+        if (!finite3(v.albedo) || !finite3(v.normal) || !finite3(v.emission) || !finite3(v.radiance) ||
+            !std::isfinite(v.opacity))
+            throw Error("cannot write voxel file " + quoted(path) + ": voxel (" + std::to_string(v.ijk.x) +
+                        ", " + std::to_string(v.ijk.y) + ", " + std::to_string(v.ijk.z) +
+                        ") holds a non-finite value");
+        const openvdb::Coord c = coord(v.ijk);
+        a.setValueOn(c, vec3s(v.albedo));
+        nr.setValueOn(c, vec3s(v.normal));
+        e.setValueOn(c, vec3s(v.emission));
+        o.setValueOn(c, v.opacity);
+        r.setValueOn(c, vec3s(v.radiance));
+    }
+}
+
+// The static geometry's exact voxelize accumulator (the voxel cache).
+void fillStaticGrids(const std::filesystem::path& path, const VoxelFile& data, VoxelFileGrids& g) {
+    const uint32_t n = data.info.resolution;
+    auto c = g.count->getAccessor();
+    auto a = g.albedoSum->getAccessor();
+    auto nr = g.normalSum->getAccessor();
+    auto e = g.emissionSum->getAccessor();
+    for (const StaticAccumVoxel& v : data.staticAccum) {
+        if (!inGrid(v.ijk, n)) throw voxelOutsideGrid(path, v.ijk, n);
+        const openvdb::Coord ijk = coord(v.ijk);
+        a.setValueOn(ijk, vec3i(&v.accum[0]));
+        nr.setValueOn(ijk, vec3i(&v.accum[3]));
+        e.setValueOn(ijk, vec3i(&v.accum[6]));
+        c.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[9]));
+    }
+}
+
+// Serialised in memory, sealed with the integrity trailer, then written through the checked writer: a symlink
+// planted there is replaced, not followed; a full disk is an error.
+void writeSealed(const std::filesystem::path& path, const openvdb::GridPtrVec& grids,
+                 const VoxelFileInfo& info) {
     openvdb::MetaMap fileMeta;
     insertCommonMeta(fileMeta, info);
     fileMeta.insertMeta(
@@ -488,7 +506,6 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
         openvdb::StringMetadata("albedo, normal, emission, opacity, radiance: the frame at vct_time; "
                                 "static_*: the static geometry's exact voxelize accumulator (the "
                                 "voxel cache read by vct render --voxel-cache)"));
-    // Through the checked writer: a symlink planted there is replaced, not followed; a full disk is an error.
     const std::filesystem::path dir =
         path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     std::error_code error;
@@ -503,9 +520,24 @@ std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, 
     }
     bytes += trailerFor(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size());
     writeFileReplacing(path, bytes);
+}
+
+}  // namespace
+
+std::vector<VoxelGridSummary> writeVoxelFile(const std::filesystem::path& path, const VoxelFile& data) {
+    initializeOpenVdb();
+    const VoxelFileInfo& info = data.info;
+    const uint32_t n = info.resolution;
+    if (n < 1 || n > 4096 || !(info.voxelSize > 0.0f))
+        throw Error("cannot write voxel file " + quoted(path) + ": bad grid (resolution " +
+                    std::to_string(n) + ", voxel size " + std::to_string(info.voxelSize) + ")");
+    VoxelFileGrids grids = makeVoxelFileGrids(info);
+    fillFrameGrids(path, data, grids);
+    fillStaticGrids(path, data, grids);
+    writeSealed(path, grids.all(), info);
 
     std::vector<VoxelGridSummary> summary;
-    for (const openvdb::GridBase::Ptr& grid : grids)
+    for (const openvdb::GridBase::Ptr& grid : grids.all())
         summary.push_back({grid->getName(), grid->valueType(), uint64_t(grid->activeVoxelCount())});
     return summary;
 }

@@ -4,151 +4,14 @@
 #include <glm/gtc/constants.hpp>
 
 #include "core/error.h"
+#include "scene/builtin_hall.h"
 #include "scene/gltf_loader.h"
 #include "scene/procedural_textures.h"
-#include "scene/tangents.h"
+#include "scene/scene_builder.h"
 
 namespace vct {
 
 namespace {
-
-// Geometry for one primitive before it is appended to the scene.
-struct Geometry {
-    std::vector<Vertex> vertices;
-    std::vector<uint32_t> indices;
-};
-
-// Quad with corners o, o+u, o+u+v, o+v, facing cross(u, v) (counter-clockwise seen from that side, the
-// glTF front face). UVs run u: 0..uvScale.x along `u` and v: uvScale.y..0 along `v`, so an image appears
-// upright when `v` points up (glTF's v grows downwards in the image).
-void addQuad(Geometry& g, glm::vec3 o, glm::vec3 u, glm::vec3 v, glm::vec2 uvScale = glm::vec2(1.0f)) {
-    auto base = static_cast<uint32_t>(g.vertices.size());
-    glm::vec3 n = glm::normalize(glm::cross(u, v));
-    const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    for (const glm::vec2& c : corners) {
-        Vertex vert;
-        vert.position = o + c.x * u + c.y * v;
-        vert.normal = n;
-        vert.uv = glm::vec2(c.x, 1.0f - c.y) * uvScale;
-        g.vertices.push_back(vert);
-    }
-    g.indices.insert(g.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-}
-
-// Axis-aligned box centred at the origin with outward faces (half extents h).
-Geometry box(glm::vec3 h) {
-    Geometry g;
-    glm::vec3 X(2 * h.x, 0, 0), Y(0, 2 * h.y, 0), Z(0, 0, 2 * h.z);
-    addQuad(g, {h.x, -h.y, h.z}, -Z, Y);   // +X
-    addQuad(g, {-h.x, -h.y, -h.z}, Z, Y);  // -X
-    addQuad(g, {-h.x, -h.y, h.z}, X, Y);   // +Z
-    addQuad(g, {h.x, -h.y, -h.z}, -X, Y);  // -Z
-    addQuad(g, {-h.x, h.y, h.z}, X, -Z);   // +Y
-    addQuad(g, {-h.x, -h.y, -h.z}, X, Z);  // -Y
-    return g;
-}
-
-// UV sphere centred at the origin: u follows longitude, v latitude (v = 0 at the north pole, +Y).
-Geometry sphere(float radius, uint32_t segments, uint32_t rings) {
-    Geometry g;
-    for (uint32_t i = 0; i <= rings; ++i) {
-        float theta = glm::pi<float>() * float(i) / float(rings);
-        for (uint32_t j = 0; j <= segments; ++j) {
-            float phi = glm::two_pi<float>() * float(j) / float(segments);
-            Vertex v;
-            v.normal =
-                glm::vec3(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
-            v.position = radius * v.normal;
-            v.uv = glm::vec2(float(j) / float(segments), float(i) / float(rings));
-            g.vertices.push_back(v);
-        }
-    }
-    for (uint32_t i = 0; i < rings; ++i) {
-        for (uint32_t j = 0; j < segments; ++j) {
-            uint32_t a = i * (segments + 1) + j, b = a + segments + 1;  // a: this ring, b: the ring below
-            g.indices.insert(g.indices.end(), {a, b, b + 1, a, b + 1, a + 1});
-        }
-    }
-    return g;
-}
-
-// Appends meshes, materials and nodes to a Scene, generating tangents for every primitive.
-class SceneBuilder {
-  public:
-    explicit SceneBuilder(const std::string& name) { scene.name = name; }
-
-    uint32_t material(const Material& m) {
-        scene.materials.push_back(m);
-        return uint32_t(scene.materials.size() - 1);
-    }
-    int texture(Texture t) {
-        scene.textures.push_back(std::move(t));
-        return int(scene.textures.size() - 1);
-    }
-    // A mesh of one or more (geometry, material) primitives.
-    int mesh(const std::string& name, std::vector<std::pair<Geometry, uint32_t>> parts) {
-        Mesh m;
-        m.name = name;
-        for (auto& [g, mat] : parts) {
-            generateTangents(g.vertices, g.indices);
-            Primitive p;
-            p.firstIndex = uint32_t(scene.indices.size());
-            p.indexCount = uint32_t(g.indices.size());
-            p.vertexOffset = int32_t(scene.vertices.size());
-            p.vertexCount = uint32_t(g.vertices.size());
-            p.material = mat;
-            for (const Vertex& v : g.vertices) p.bounds.extend(v.position);
-            scene.vertices.insert(scene.vertices.end(), g.vertices.begin(), g.vertices.end());
-            scene.indices.insert(scene.indices.end(), g.indices.begin(), g.indices.end());
-            m.primitives.push_back(uint32_t(scene.primitives.size()));
-            scene.primitives.push_back(p);
-        }
-        scene.meshes.push_back(std::move(m));
-        return int(scene.meshes.size() - 1);
-    }
-    // A root node.
-    int node(Node n) {
-        scene.nodes.push_back(std::move(n));
-        scene.roots.push_back(int(scene.nodes.size() - 1));
-        return int(scene.nodes.size() - 1);
-    }
-    int cameraNode(const std::string& name, glm::vec3 position, glm::vec3 target, float yfovDegrees,
-                   float zfar) {
-        Camera cam;
-        cam.name = name;
-        cam.yfov = glm::radians(yfovDegrees);
-        cam.znear = 0.05f;
-        cam.zfar = zfar;
-        scene.cameras.push_back(cam);
-        Node n;
-        n.name = name;
-        n.translation = position;
-        n.rotation =
-            glm::quatLookAtRH(glm::normalize(target - position), glm::vec3(0, 1, 0));  // -Z looks at target
-        n.camera = int(scene.cameras.size() - 1);
-        return node(n);
-    }
-    int lightNode(const Light& light, glm::vec3 position, glm::quat rotation) {
-        scene.lights.push_back(light);
-        Node n;
-        n.name = light.name;
-        n.translation = position;
-        n.rotation = rotation;
-        n.light = int(scene.lights.size() - 1);
-        return node(n);
-    }
-
-    Scene scene;
-};
-
-Material makeMaterial(const std::string& name, glm::vec3 baseColor, float metallic, float roughness) {
-    Material m;
-    m.name = name;
-    m.baseColorFactor = glm::vec4(baseColor, 1.0f);
-    m.metallicFactor = metallic;
-    m.roughnessFactor = roughness;
-    return m;
-}
 
 // A 4 m (x) × 3 m (y) × 4 m (z) closed room, floor at y = 0, centred on x = z = 0; see the description.
 Scene cornell() {
@@ -267,7 +130,7 @@ Scene plane() {
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-    return {"cornell", "plane"};
+    return {"cornell", "plane", "hall"};
 }
 
 std::string builtinSceneDescription(const std::string& name) {
@@ -279,12 +142,17 @@ std::string builtinSceneDescription(const std::string& name) {
         return "10x10 m silver plane (roughness 0.15) with a fine bump normal map, a directional light and "
                "an "
                "oblique camera on its highlight (normal-map filtering tests)";
+    if (name == "hall")
+        return "40x10x16 m hall: two colonnades of 9 columns with arches, thin (0.1 m) partition walls with "
+               "doorways in the aisles, a sun through three roof openings, a bronze sphere, an orange cube "
+               "travelling down the nave (8 s loop); for speed at large sizes";
     return "";
 }
 
 std::optional<Scene> makeBuiltinScene(const std::string& name) {
     if (name == "cornell") return cornell();
     if (name == "plane") return plane();
+    if (name == "hall") return hallScene();
     return std::nullopt;
 }
 

@@ -171,6 +171,72 @@ struct ReportCamera {
     uint32_t cutFrame = 0;  // 0: none
 };
 
+// A configuration's errors against the reference, one value per frame.
+struct ErrorCurves {
+    std::vector<double> diffuse, specular, finalSrgb, retraced;
+};
+
+double indirectMs(const Renderer& r) {
+    return passMedian(r, "trace") + passMedian(r, "upsample") + passMedian(r, "resample");
+}
+
+// The reference configuration's (trace scale 1) costs, which the others are divided by.
+struct ReferenceCosts {
+    double indirectMs = 0.0;
+    double frameMs = 0.0;
+};
+
+// One configuration's JSON: timings, costs over the reference's and, but for the reference itself (`error`
+// null), the last frame's errors and the per-frame curves.
+json configJson(const BenchmarkRun& config, const ReferenceCosts& reference, const json* error,
+                const ErrorCurves& c) {
+    const Renderer& r = *config.renderer;
+    json entryJson = timingJson(r);
+    entryJson["name"] = config.name;
+    entryJson["indirect_ms"] = indirectMs(r);
+    entryJson["indirect_over_reference"] =
+        reference.indirectMs > 0.0 ? indirectMs(r) / reference.indirectMs : 0.0;
+    entryJson["frame_over_reference"] =
+        reference.frameMs > 0.0 ? r.timer().frameStats().medianMs / reference.frameMs : 0.0;
+    if (error) {
+        entryJson["error"] = *error;
+        double meanRetraced = 0.0;
+        for (double f : c.retraced) meanRetraced += f / double(std::max<size_t>(c.retraced.size(), 1));
+        entryJson["resampled_fraction"] = c.retraced.empty() ? 0.0 : c.retraced.back();
+        entryJson["resampled_fraction_mean"] = meanRetraced;
+        entryJson["curves"] = {{"diffuse_psnr", c.diffuse},
+                               {"specular_psnr", c.specular},
+                               {"final_srgb_psnr", c.finalSrgb},
+                               {"resampled_fraction", c.retraced}};
+    }
+    entryJson["settings"]["tau_used"] = resampleThreshold(r.settings());
+    return entryJson;
+}
+
+// The configuration's row of the Markdown table, from its JSON.
+std::string tableRow(const ReportScene& entry, const ReportCamera& camera, const BenchmarkRun& config,
+                     const json& entryJson) {
+    const Renderer& r = *config.renderer;
+    char line[512];
+    if (entryJson.contains("error")) {
+        const json& error = entryJson["error"];
+        auto psnrOf = [&](const char* buffer) { return finitePsnr(error[buffer]["psnr"].get<double>()); };
+        std::snprintf(
+            line, sizeof(line),
+            "| %s | %s | %s | %.2f | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f | %.3g | %.3g | %.2f%% |\n",
+            entry.name.c_str(), camera.name.c_str(), config.name.c_str(), r.timer().frameStats().medianMs,
+            passMedian(r, "upsample"), indirectMs(r), entryJson["indirect_over_reference"].get<double>(),
+            psnrOf("diffuse"), psnrOf("specular"), psnrOf("final_srgb"),
+            error["final_hdr"]["mse"].get<double>(), error["final_hdr"]["rel_mse"].get<double>(),
+            100.0 * entryJson["resampled_fraction_mean"].get<double>());
+    } else {
+        std::snprintf(line, sizeof(line), "| %s | %s | %s | %.2f | – | %.2f | 1 | – | – | – | – | – | – |\n",
+                      entry.name.c_str(), camera.name.c_str(), config.name.c_str(),
+                      r.timer().frameStats().medianMs, indirectMs(r));
+    }
+    return line;
+}
+
 // One (scene, camera) run: configurations interleaved, errors every frame. Returns its JSON and adds its rows
 // to the Markdown table. With `dumpDir`, writes each configuration's last frame into dumpDir/CONFIG/ and
 // lists them in the JSON's "last_frame".
@@ -182,10 +248,7 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
         config.renderer = std::make_unique<Renderer>(context, scene, config.settings);
     // The reference's frames of the current block, kept until every configuration has rendered them.
     std::map<uint32_t, FrameImages> referenceFrames;
-    struct Curves {
-        std::vector<double> diffuse, specular, finalSrgb, retraced;
-    };
-    std::vector<Curves> curves(configs.size());
+    std::vector<ErrorCurves> curves(configs.size());
     std::vector<json> lastErrors(configs.size());  // every metric of the last frame
     FrameHooks hooks;
     hooks.frameInput = [&](const BenchmarkRun& run, uint32_t frame, uint32_t warmup) {
@@ -209,7 +272,7 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
         const ImageError diffuse = compareImages(reference.diffuse, images.diffuse);
         const ImageError specular = compareImages(reference.specular, images.specular);
         const ImageError finalSrgb = compareImages(reference.display, images.display, 1.0);
-        Curves& c = curves[index];
+        ErrorCurves& c = curves[index];
         c.diffuse.push_back(finitePsnr(diffuse.psnr));
         c.specular.push_back(finitePsnr(specular.psnr));
         c.finalSrgb.push_back(finitePsnr(finalSrgb.psnr));
@@ -239,58 +302,51 @@ json measureCamera(vk::Context& context, const Scene& scene, const ReportScene& 
     }
 
     const Renderer& reference = *configs[0].renderer;
-    auto indirectMs = [](const Renderer& r) {
-        return passMedian(r, "trace") + passMedian(r, "upsample") + passMedian(r, "resample");
-    };
-    const double referenceIndirect = indirectMs(reference);
-    const double referenceFrame = reference.timer().frameStats().medianMs;
+    const ReferenceCosts referenceCosts{indirectMs(reference), reference.timer().frameStats().medianMs};
     json out = {{"scene", entry.name}, {"camera", camera.name}, {"configs", json::array()}};
     if (camera.cutFrame) out["cut_frame"] = camera.cutFrame;
     if (dumpDir) out["last_frame"] = {{"frame", timing.frames - 1}, {"dir", dumpDir->string()}};
-    char line[512];
     for (size_t index = 0; index < configs.size(); ++index) {
-        const BenchmarkRun& config = configs[index];
-        const Renderer& r = *config.renderer;
-        json entryJson = timingJson(r);
-        entryJson["name"] = config.name;
-        entryJson["indirect_ms"] = indirectMs(r);
-        entryJson["indirect_over_reference"] =
-            referenceIndirect > 0.0 ? indirectMs(r) / referenceIndirect : 0.0;
-        entryJson["frame_over_reference"] =
-            referenceFrame > 0.0 ? r.timer().frameStats().medianMs / referenceFrame : 0.0;
-        if (index > 0) {
-            const json& error = lastErrors[index];
-            entryJson["error"] = error;
-            auto psnrOf = [&](const char* buffer) { return finitePsnr(error[buffer]["psnr"].get<double>()); };
-            const Curves& c = curves[index];
-            double meanRetraced = 0.0;
-            for (double f : c.retraced) meanRetraced += f / double(std::max<size_t>(c.retraced.size(), 1));
-            entryJson["resampled_fraction"] = c.retraced.empty() ? 0.0 : c.retraced.back();
-            entryJson["resampled_fraction_mean"] = meanRetraced;
-            entryJson["curves"] = {{"diffuse_psnr", c.diffuse},
-                                   {"specular_psnr", c.specular},
-                                   {"final_srgb_psnr", c.finalSrgb},
-                                   {"resampled_fraction", c.retraced}};
-            std::snprintf(
-                line, sizeof(line),
-                "| %s | %s | %s | %.2f | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f | %.3g | %.3g | %.2f%% |\n",
-                entry.name.c_str(), camera.name.c_str(), config.name.c_str(), r.timer().frameStats().medianMs,
-                passMedian(r, "upsample"), indirectMs(r), entryJson["indirect_over_reference"].get<double>(),
-                psnrOf("diffuse"), psnrOf("specular"), psnrOf("final_srgb"),
-                error["final_hdr"]["mse"].get<double>(), error["final_hdr"]["rel_mse"].get<double>(),
-                100.0 * meanRetraced);
-        } else {
-            std::snprintf(line, sizeof(line),
-                          "| %s | %s | %s | %.2f | – | %.2f | 1 | – | – | – | – | – | – |\n",
-                          entry.name.c_str(), camera.name.c_str(), config.name.c_str(),
-                          r.timer().frameStats().medianMs, indirectMs(r));
-        }
-        entryJson["settings"]["tau_used"] = resampleThreshold(r.settings());
+        json entryJson = configJson(configs[index], referenceCosts, index > 0 ? &lastErrors[index] : nullptr,
+                                    curves[index]);
+        table += tableRow(entry, camera, configs[index], entryJson);
         if (dumpDir) entryJson["last_frame_dir"] = dumpSlugs[index];
-        table += line;
         out["configs"].push_back(entryJson);
     }
     return out;
+}
+
+std::vector<std::string> reportCameras(const ParsedArgs& args) {
+    std::vector<std::string> cameras;
+    std::stringstream list(args.get("cameras"));
+    for (std::string item; std::getline(list, item, ',');) {
+        if (item != "static" && item != "moving" && item != "cut")
+            throw UsageError("--cameras '" + item + "': expected static, moving and/or cut");
+        cameras.push_back(item);
+    }
+    return cameras;
+}
+
+// A scene's entry in the dump's manifest: what `vct reference` needs to render the same frame, and the
+// configurations' directories.
+json manifestEntry(const ReportScene& entry, const json& run) {
+    // A glTF file by its absolute path (benchmarks/report.sh may run vct reference elsewhere); a built-in
+    // scene by its name.
+    std::string sceneSpec = entry.scene;
+    const std::vector<std::string> builtins = builtinSceneNames();
+    if (std::find(builtins.begin(), builtins.end(), entry.scene) == builtins.end())
+        sceneSpec = std::filesystem::absolute(entry.scene).lexically_normal().string();
+    json configs = json::array();
+    for (const json& config : run["configs"])
+        configs.push_back({{"name", config["name"]},
+                           {"dir", config["last_frame_dir"]},
+                           {"trace_scale", config["settings"]["trace_scale"]},
+                           {"frame_median_ms", config["frame_median_ms"]}});
+    return {{"name", entry.name},
+            {"scene", sceneSpec},
+            {"dir", pathSlug(entry.name)},
+            {"camera_path", nullptr},
+            {"configs", configs}};
 }
 
 }  // namespace
@@ -300,15 +356,7 @@ int runReportBenchmark(const ParsedArgs& args, const SessionOptions& session, co
     if (timing.block > 8)
         throw UsageError("--block: at most 8 in report mode (reference frames are kept per block)");
     const std::vector<ReportScene> scenes = reportScenes(args);
-    std::vector<std::string> cameras;
-    {
-        std::stringstream list(args.get("cameras"));
-        for (std::string item; std::getline(list, item, ',');) {
-            if (item != "static" && item != "moving" && item != "cut")
-                throw UsageError("--cameras '" + item + "': expected static, moving and/or cut");
-            cameras.push_back(item);
-        }
-    }
+    const std::vector<std::string> cameras = reportCameras(args);
     // --dump-last: checked and made before any frame, as --out is.
     std::optional<std::filesystem::path> dumpDir;
     if (args.has("dump-last")) {
@@ -355,25 +403,7 @@ int runReportBenchmark(const ParsedArgs& args, const SessionOptions& session, co
                 if (dumpDir && cameraName == "static") sceneDump = *dumpDir / pathSlug(entry.name);
                 json run = measureCamera(context, scene, entry, camera, session, timing, table,
                                          sceneDump ? &*sceneDump : nullptr);
-                if (sceneDump) {
-                    // A glTF file by its absolute path (benchmarks/report.sh may run vct reference
-                    // elsewhere); a built-in scene by its name.
-                    std::string sceneSpec = entry.scene;
-                    const std::vector<std::string> builtins = builtinSceneNames();
-                    if (std::find(builtins.begin(), builtins.end(), entry.scene) == builtins.end())
-                        sceneSpec = std::filesystem::absolute(entry.scene).lexically_normal().string();
-                    json configs = json::array();
-                    for (const json& config : run["configs"])
-                        configs.push_back({{"name", config["name"]},
-                                           {"dir", config["last_frame_dir"]},
-                                           {"trace_scale", config["settings"]["trace_scale"]},
-                                           {"frame_median_ms", config["frame_median_ms"]}});
-                    manifest["scenes"].push_back({{"name", entry.name},
-                                                  {"scene", sceneSpec},
-                                                  {"dir", pathSlug(entry.name)},
-                                                  {"camera_path", nullptr},
-                                                  {"configs", configs}});
-                }
+                if (sceneDump) manifest["scenes"].push_back(manifestEntry(entry, run));
                 report["runs"].push_back(std::move(run));
             }
         }
