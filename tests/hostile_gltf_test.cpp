@@ -853,6 +853,29 @@ TEST_P(HostileSceneScale, DefaultCameraFramesTheScene) {
 INSTANTIATE_TEST_SUITE_P(FloatLimits, HostileSceneScale, ::testing::Values(3e38f, 1e-38f, 1e-44f),
                          [](const auto& param) { return "Limit" + std::to_string(param.index); });
 
+// Class 8 again, with the size in a node's scale instead of the vertices (a unit triangle under a node scaled by
+// 3e38): rescaling the vertices by 2^-127 made them subnormal, flushed to zero on the GPU, and the image was
+// empty with exit 0. The scale now goes into the root node; 1e-40 is itself subnormal in float.
+class HostileNodeScale : public ::testing::TestWithParam<float> {};
+
+TEST_P(HostileNodeScale, DefaultCameraFramesTheScene) {
+    const fs::path dir = caseDir();
+    GltfScene scene = triangleScene(1.0f);
+    scene.texture = false;
+    scene.doc["materials"][0]["pbrMetallicRoughness"] = {{"baseColorFactor", {0.8, 0.6, 0.4, 1.0}},
+                                                         {"metallicFactor", 0.0}};
+    scene.doc.erase("textures");
+    scene.doc.erase("images");
+    const double s = GetParam();
+    scene.doc["nodes"][0]["scale"] = {s, s, s};
+    const fs::path path = writeGltf(dir, scene);
+    expectGraceful(renderArgs(path, dir / "out"), dir / "out", {Outcome::MustRender, {}, 0});
+    EXPECT_GT(coveredPixels(dir / "out"), 32u * 18u / 20u) << "the triangle is hardly in view";
+}
+
+INSTANTIATE_TEST_SUITE_P(FloatLimits, HostileNodeScale, ::testing::Values(3e38f, 1e30f, 1e-30f, 1e-40f),
+                         [](const auto& param) { return "Limit" + std::to_string(param.index); });
+
 INSTANTIATE_TEST_SUITE_P(Scales, HostileSceneScale,
                          ::testing::Values(1e-5f, 1e-10f, 1e-20f, 1e-30f, 1e20f, 1e30f),
                          [](const auto& param) { return "Scale" + std::to_string(param.index); });

@@ -283,6 +283,42 @@ Aabb Scene::bounds() const {
     return box;
 }
 
+void Scene::scaleRootNodes(int exponent) {
+    const auto scaled = [exponent](float v) { return std::ldexp(v, exponent); };
+    const auto scaled3 = [&](glm::vec3 v) { return glm::vec3(scaled(v.x), scaled(v.y), scaled(v.z)); };
+    const auto leavesFloat = [](float v) { return v != 0.0f && !std::isnormal(v); };
+    std::vector<bool> isRoot(nodes.size(), false);
+    for (int r : roots)
+        if (r >= 0 && size_t(r) < nodes.size()) isRoot[size_t(r)] = true;
+    bool out = false;
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        if (!isRoot[n]) continue;
+        Node& node = nodes[n];
+        if (node.matrix) {
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 3; ++r)
+                    out |= leavesFloat((*node.matrix)[c][r] = scaled((*node.matrix)[c][r]));
+        }
+        node.translation = scaled3(node.translation);
+        node.scale = scaled3(node.scale);
+        for (int k = 0; k < 3; ++k) out |= leavesFloat(node.scale[k]);
+    }
+    for (Animation& anim : animations)
+        for (AnimationChannel& ch : anim.channels)
+            if (ch.node >= 0 && size_t(ch.node) < nodes.size() && isRoot[size_t(ch.node)] &&
+                (ch.path == AnimationPath::Translation || ch.path == AnimationPath::Scale))
+                for (glm::vec4& v : ch.values) {
+                    v = glm::vec4(scaled3(glm::vec3(v)), v.w);
+                    if (ch.path == AnimationPath::Scale)
+                        for (int k = 0; k < 3; ++k) out |= leavesFloat(v[k]);
+                }
+    if (out)
+        throw Error(
+            "the scene's size lives both in its vertices and in its node scales at float's limits: "
+            "neither can be scaled by 2^" +
+            std::to_string(exponent) + " without leaving float's range");
+}
+
 void Scene::normalizeScale() {
     const Aabb box = bounds();
     if (box.empty()) return;
@@ -300,18 +336,30 @@ void Scene::normalizeScale() {
     const int exponent = -std::ilogb(extent);
     const auto scaled = [exponent](float v) { return std::ldexp(v, exponent); };
     const auto scaled3 = [&](glm::vec3 v) { return glm::vec3(scaled(v.x), scaled(v.y), scaled(v.z)); };
-    for (Vertex& v : vertices) v.position = scaled3(v.position);
-    for (Primitive& prim : primitives)
-        if (!prim.bounds.empty()) prim.bounds = Aabb{scaled3(prim.bounds.min), scaled3(prim.bounds.max)};
-    for (Node& node : nodes) {
-        if (node.matrix)
-            for (int r = 0; r < 3; ++r) (*node.matrix)[3][r] = scaled((*node.matrix)[3][r]);
-        node.translation = scaled3(node.translation);
+    // When the magnitude lives in the nodes' scales rather than in the vertices (a unit triangle under a node
+    // scaled by 3e38), scaling the vertices would make them subnormal: flushed to zero on the GPU, drawing
+    // nothing. Then the scale goes into the root nodes instead: s·(T R S x) = T(s·t) R (s·S) x, exact for any
+    // hierarchy below them.
+    const auto subnormalOrInfinite = [](float v) { return v != 0.0f && !(std::isnormal(v)); };
+    bool verticesLeaveFloat = false;
+    for (const Vertex& v : vertices)
+        for (int k = 0; k < 3; ++k) verticesLeaveFloat |= subnormalOrInfinite(scaled(v.position[k]));
+    if (!verticesLeaveFloat) {
+        for (Vertex& v : vertices) v.position = scaled3(v.position);
+        for (Primitive& prim : primitives)
+            if (!prim.bounds.empty()) prim.bounds = Aabb{scaled3(prim.bounds.min), scaled3(prim.bounds.max)};
+        for (Node& node : nodes) {
+            if (node.matrix)
+                for (int r = 0; r < 3; ++r) (*node.matrix)[3][r] = scaled((*node.matrix)[3][r]);
+            node.translation = scaled3(node.translation);
+        }
+        for (Animation& anim : animations)
+            for (AnimationChannel& ch : anim.channels)
+                if (ch.path == AnimationPath::Translation)
+                    for (glm::vec4& v : ch.values) v = glm::vec4(scaled3(glm::vec3(v)), v.w);
+    } else {
+        scaleRootNodes(exponent);
     }
-    for (Animation& anim : animations)
-        for (AnimationChannel& ch : anim.channels)
-            if (ch.path == AnimationPath::Translation)
-                for (glm::vec4& v : ch.values) v = glm::vec4(scaled3(glm::vec3(v)), v.w);
     for (Camera& cam : cameras) {
         cam.znear = scaled(cam.znear);
         cam.zfar = scaled(cam.zfar);

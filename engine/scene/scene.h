@@ -179,10 +179,14 @@ struct Scene {
     // Nodes whose world transform is driven by an animation (the node or any ancestor).
     std::vector<bool> animatedNodes() const;
 
-    // Rescales a scene whose extent is far from 1 (below 1e-2 or above 1e6 units) by a power of two, at its
-    // root nodes, with cameras' depth ranges and lights' ranges and (point, spot) intensities, so that the
-    // image is the same but every product the renderer forms stays within float's range. Records a note.
+    // Rescales a scene whose extent is far from 1 (below 1e-2 or above 1e6 units) by a power of two, in its
+    // vertices and translations (or, when that would leave the vertices subnormal, in its root nodes), with
+    // cameras' depth ranges and lights' ranges and (point, spot) intensities, so that the image is the same
+    // but every product the renderer forms stays within float's range. Records a note.
     void normalizeScale();
+    // normalizeScale's second way: 2^exponent into the root nodes' translations and linear parts (animated
+    // ones included). Throws vct::Error when a scaled value would leave float's normal range.
+    void scaleRootNodes(int exponent);
     // Adds a camera looking at the scene bounds and/or a directional light when the scene has none,
     // and records a note for each.
     void addDefaultsIfMissing();

@@ -23,12 +23,12 @@ void addQuad(Geometry& g, glm::vec3 o, glm::vec3 u, glm::vec3 v, glm::vec2 uvSca
 
 void addBox(Geometry& g, glm::vec3 c, glm::vec3 h) {
     glm::vec3 X(2 * h.x, 0, 0), Y(0, 2 * h.y, 0), Z(0, 0, 2 * h.z);
-    addQuad(g, c + glm::vec3(h.x, -h.y, h.z), -Z, Y);    // +X
-    addQuad(g, c + glm::vec3(-h.x, -h.y, -h.z), Z, Y);   // -X
-    addQuad(g, c + glm::vec3(-h.x, -h.y, h.z), X, Y);    // +Z
-    addQuad(g, c + glm::vec3(h.x, -h.y, -h.z), -X, Y);   // -Z
-    addQuad(g, c + glm::vec3(-h.x, h.y, h.z), X, -Z);    // +Y
-    addQuad(g, c + glm::vec3(-h.x, -h.y, -h.z), X, Z);   // -Y
+    addQuad(g, c + glm::vec3(h.x, -h.y, h.z), -Z, Y);   // +X
+    addQuad(g, c + glm::vec3(-h.x, -h.y, -h.z), Z, Y);  // -X
+    addQuad(g, c + glm::vec3(-h.x, -h.y, h.z), X, Y);   // +Z
+    addQuad(g, c + glm::vec3(h.x, -h.y, -h.z), -X, Y);  // -Z
+    addQuad(g, c + glm::vec3(-h.x, h.y, h.z), X, -Z);   // +Y
+    addQuad(g, c + glm::vec3(-h.x, -h.y, -h.z), X, Z);  // -Y
 }
 
 Geometry box(glm::vec3 h) {
@@ -94,8 +94,10 @@ void addCylinder(Geometry& g, glm::vec3 base, float radius, float height, uint32
         }
         for (uint32_t j = 0; j < segments; ++j) {
             // Counter-clockwise seen from outside: the bottom cap is seen from below.
-            if (k) g.indices.insert(g.indices.end(), {centre, centre + 1 + j, centre + 2 + j});
-            else g.indices.insert(g.indices.end(), {centre, centre + 2 + j, centre + 1 + j});
+            if (k)
+                g.indices.insert(g.indices.end(), {centre, centre + 1 + j, centre + 2 + j});
+            else
+                g.indices.insert(g.indices.end(), {centre, centre + 2 + j, centre + 1 + j});
         }
     }
 }
@@ -195,7 +197,8 @@ int SceneBuilder::cameraNode(const std::string& name, glm::vec3 position, glm::v
     Node n;
     n.name = name;
     n.translation = position;
-    n.rotation = glm::quatLookAtRH(glm::normalize(target - position), glm::vec3(0, 1, 0));  // -Z looks at target
+    n.rotation =
+        glm::quatLookAtRH(glm::normalize(target - position), glm::vec3(0, 1, 0));  // -Z looks at target
     n.camera = int(scene.cameras.size() - 1);
     return node(n);
 }

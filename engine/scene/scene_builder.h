@@ -46,7 +46,8 @@ class SceneBuilder {
     int mesh(const std::string& name, std::vector<std::pair<Geometry, uint32_t>> parts);
     // A root node.
     int node(Node n);
-    int cameraNode(const std::string& name, glm::vec3 position, glm::vec3 target, float yfovDegrees, float zfar);
+    int cameraNode(const std::string& name, glm::vec3 position, glm::vec3 target, float yfovDegrees,
+                   float zfar);
     int lightNode(const Light& light, glm::vec3 position, glm::quat rotation);
 
     Scene scene;
