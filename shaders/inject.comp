@@ -41,12 +41,18 @@ float shadowVisibility(vec3 p) {
 ivec3 slabTexel(ivec3 voxel, int slab, int n) { return ivec3(voxel.x + slab * n, voxel.yz); }
 
 void main() {
-    const ivec3 voxel = ivec3(gl_GlobalInvocationID);
+    const ivec3 voxel = ivec3(push.region.xyz + gl_GlobalInvocationID);
     const int n = int(frame.voxels.resolution);
     if (any(greaterThanEqual(voxel, ivec3(n)))) return;
     const vec4 albedoOpacity = imageLoad(albedoImage, voxel);
-    // Empty: left as the clear before the dispatch made it (inject_pass.cpp).
-    if (albedoOpacity.a <= 0.0) return;
+    // Empty: left as the clear before the dispatch made it (inject_pass.cpp), or, in a region of a level that
+    // was not cleared, stored as zero here.
+    if (albedoOpacity.a <= 0.0) {
+        if (push.params.y != 0u)
+            for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
+                imageStore(radianceImage, slabTexel(voxel, slab, n), vec4(0.0));
+        return;
+    }
     const vec3 nbar = imageLoad(normalImage, voxel).xyz;
     const vec3 emission = imageLoad(emissionImage, voxel).rgb;
     const float voxelSize = frame.voxels.voxelSize;

@@ -3,7 +3,7 @@
 // mips: one level of the radiance + opacity chain from the level above, per direction slab (lib/voxel.glsl):
 // the two children along the slab's direction composited front to back, the four pairs averaged
 // (premultiplied, so empty voxels lower both colour and opacity and the colour stays un-fringed). One thread
-// per texel of the 6n × n × n level.
+// per texel of the frame's region of the 6n × n × n level (the whole level, or render/voxel_update.h's).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
@@ -15,12 +15,19 @@ layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_
 layout(set = 0, binding = 1, rgba16f) uniform readonly image3D source;
 layout(set = 0, binding = 2, rgba16f) uniform writeonly image3D dest;
 
+layout(push_constant) uniform Push { VoxelMipsPushConstants push; };
+
 void main() {
-    const ivec3 texel = ivec3(gl_GlobalInvocationID);
     const ivec3 size = imageSize(dest);  // (6·n, n, n): six slabs of n³ side by side
-    if (any(greaterThanEqual(texel, size))) return;
     const int n = size.y;
-    const int slab = texel.x / n;
+    // The dispatch covers the region (push.region: first texel, width in x) in each slab: the threads along x
+    // run through the six slabs' rows of the region one after the other.
+    const int width = int(push.region.w);
+    const int slab = int(gl_GlobalInvocationID.x) / width;
+    const ivec3 inSlab =
+        ivec3(push.region.xyz) + ivec3(int(gl_GlobalInvocationID.x) - slab * width, gl_GlobalInvocationID.yz);
+    if (slab >= VOXEL_SLAB_COUNT || any(greaterThanEqual(inSlab, ivec3(n)))) return;
+    const ivec3 texel = ivec3(inSlab.x + slab * n, inSlab.yz);
     const int axis = slab / 2;
     // The children: 2×2×2 voxels of the same slab one level up (n·2 texels per slab there).
     const ivec3 s = ivec3(slab * 2 * n + 2 * (texel.x - slab * n), 2 * texel.yz);

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // voxelize, second step: averages the static accumulator (voxelized once) plus the per-frame accumulator of
-// moving instances into albedo + opacity, normal and emission textures. One thread per voxel.
+// moving instances into albedo + opacity, normal and emission textures. One thread per voxel of the frame's
+// region (the whole grid, or where moving instances were and are: render/voxel_update.h).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
@@ -12,7 +13,7 @@ layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_
 // against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) readonly buffer Static { uint staticAccum[]; };
-layout(set = 0, binding = 2) readonly buffer Dynamic { uint dynamicAccum[]; };
+layout(set = 0, binding = 2) buffer Dynamic { uint dynamicAccum[]; };
 layout(set = 0, binding = 3, rgba8) uniform writeonly image3D albedoImage;  // albedo, opacity
 // Averaged normal (not renormalised), w unused.
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D normalImage;
@@ -21,7 +22,7 @@ layout(set = 0, binding = 5, rgba16f) uniform writeonly image3D emissionImage;  
 layout(push_constant) uniform Push { VoxelizePushConstants push; };
 
 void main() {
-    const ivec3 voxel = ivec3(gl_GlobalInvocationID);
+    const ivec3 voxel = ivec3(push.region.xyz + gl_GlobalInvocationID);
     const int n = int(frame.voxels.resolution);
     if (any(greaterThanEqual(voxel, ivec3(n)))) return;
     const uint base = voxelLinearIndex(voxel, n) * VCT_VOXEL_ACCUM_STRIDE;
@@ -38,6 +39,9 @@ void main() {
     uint sums[VCT_VOXEL_ACCUM_STRIDE - 1];
     for (int i = 0; i < VCT_VOXEL_ACCUM_STRIDE - 1; ++i)
         sums[i] = staticAccum[base + i] + (dynamic ? dynamicAccum[base + i] : 0u);
+    // Zeroed once read: the next frame's moving instances accumulate from zero (voxelize_pass.cpp).
+    if (push.params.z != 0u)
+        for (int i = 0; i < VCT_VOXEL_ACCUM_STRIDE; ++i) dynamicAccum[base + i] = 0u;
     const vec3 albedo = vec3(voxelDecodeUnit(sums[0], count), voxelDecodeUnit(sums[1], count),
                              voxelDecodeUnit(sums[2], count));
     const vec3 normal = vec3(voxelDecodeSigned(sums[3], count), voxelDecodeSigned(sums[4], count),

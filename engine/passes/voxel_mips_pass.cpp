@@ -20,12 +20,14 @@ VoxelMipsPass::VoxelMipsPass(const vk::Context& context, VoxelGrid& grid)
       resources_("mips",
                  {{kSource, Resource::image("radiance", grid.radiance()).eachDispatch(), Access::Read},
                   {kDest, Resource::image("radiance", grid.radiance()).eachDispatch(), Access::Write}}) {
-    pipeline_ = vk::Pipeline::compute(context, name(), "voxel_mips.comp", resources_.bindings(), 0);
+    pipeline_ = vk::Pipeline::compute(context, name(), "voxel_mips.comp", resources_.bindings(),
+                                      sizeof(gpu::VoxelMipsPushConstants));
 }
 
 void VoxelMipsPass::execute(const FrameContext& frame) {
     VkCommandBuffer cmd = frame.cmd;
     vk::Image& radiance = grid_.radiance();
+    const std::optional<VoxelGrid::UpdateRegions>& regions = grid_.updateRegions();
     pipeline_.bind(cmd);
     resources_.barriers(frame);
     for (uint32_t level = 1; level < grid_.mipCount(); ++level) {
@@ -40,10 +42,17 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
             .storage(kSource, radiance.mipView(level - 1))
             .storage(kDest, radiance.mipView(level))
             .push(frame.context, cmd, pipeline_);
+        // The texels with a child in the frame's region (the whole level without one), in each of the six
+        // direction slabs side by side along x (lib/voxel.glsl).
         const uint32_t size = std::max(1u, grid_.resolution() >> level);
-        const uint32_t groups = voxelTileCount(size);
-        // Six direction slabs side by side along x (lib/voxel.glsl).
-        vkCmdDispatch(cmd, voxelTileCount(size * uint32_t(glsl::VOXEL_SLAB_COUNT)), groups, groups);
+        const VoxelRegion region =
+            regions ? regions->inject.atLevel(level) : VoxelRegion{glm::uvec3(0), glm::uvec3(size)};
+        if (region.empty()) continue;
+        const glm::uvec3 extent = region.max - region.min;
+        const gpu::VoxelMipsPushConstants push{glm::uvec4(region.min, extent.x)};
+        pipeline_.pushConstants(cmd, &push, sizeof(push));
+        vkCmdDispatch(cmd, voxelTileCount(extent.x * uint32_t(glsl::VOXEL_SLAB_COUNT)),
+                      voxelTileCount(extent.y), voxelTileCount(extent.z));
     }
 }
 

@@ -16,7 +16,8 @@ ResourceTable resolveResources(VoxelGrid& grid) {
     return {"voxelize",
             {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
              {1, Resource::buffer("staticAccumulator", grid.staticAccumulator()), Access::Read},
-             {2, Resource::buffer("dynamicAccumulator", dynamic), Access::Read},
+             // Read-write: the resolve zeroes what it read of the moving instances' accumulator.
+             {2, Resource::buffer("dynamicAccumulator", dynamic), Access::ReadWrite},
              {3, Resource::image("albedo", grid.albedo()), Access::ReadWrite},
              {4, Resource::image("normal", grid.normal()), Access::ReadWrite},
              {5, Resource::image("emission", grid.emission()), Access::ReadWrite}}};
@@ -86,6 +87,7 @@ void VoxelizePass::execute(const FrameContext& frame) {
     // frame is done.
     const bool fromCache = voxelizeStatic && grid_.hasStaticCache();
     const bool moving = grid_.hasMovingInstances();
+    const std::optional<VoxelGrid::UpdateRegions>& regions = grid_.updateRegions();
     // A static scene's volumes, once resolved, never change: a frame that rebuilds the grid for a changed
     // light or a camera cut re-injects, but has nothing to voxelize or resolve.
     if (!voxelizeStatic && !moving && resolved_ && !frame.settings.recomputeEveryFrame) return;
@@ -99,7 +101,9 @@ void VoxelizePass::execute(const FrameContext& frame) {
             staticAccumulator.use(cmd, vk::BufferAccess::TransferWrite);
             vkCmdFillBuffer(cmd, staticAccumulator.handle(), 0, VK_WHOLE_SIZE, 0);
         }
-        if (moving) {
+        // The moving instances' accumulator is zero wherever the last resolve read it, which covers every voxel
+        // they wrote (render/voxel_update.h): cleared whole only when the whole grid is updated.
+        if (moving && !regions) {
             dynamicAccumulator.use(cmd, vk::BufferAccess::TransferWrite);
             vkCmdFillBuffer(cmd, dynamicAccumulator.handle(), 0, VK_WHOLE_SIZE, 0);
         }
@@ -123,10 +127,14 @@ void VoxelizePass::execute(const FrameContext& frame) {
     resolve_.bind(cmd);
     resolveResources_.bind(frame, resolve_);
     gpu::VoxelizePushConstants push{};
-    push.params = glm::uvec4(0, moving ? 1u : 0u, 0, 0);
+    push.params = glm::uvec4(0, moving ? 1u : 0u, moving ? 1u : 0u, 0);
+    const VoxelRegion region =
+        regions ? regions->resolve : VoxelRegion{glm::uvec3(0), glm::uvec3(grid_.resolution())};
+    push.region = glm::uvec4(region.min, 0u);
     resolve_.pushConstants(cmd, &push, sizeof(push));
-    const uint32_t groups = voxelTileCount(grid_.resolution());
-    vkCmdDispatch(cmd, groups, groups, groups);
+    if (region.empty()) return;
+    const glm::uvec3 size = region.max - region.min;
+    vkCmdDispatch(cmd, voxelTileCount(size.x), voxelTileCount(size.y), voxelTileCount(size.z));
 }
 
 }  // namespace vct

@@ -220,6 +220,12 @@ VkSampler GpuScene::textureSampler(const Material& material, Slot slot) const {
     return index >= 0 ? textureSamplers_[size_t(index)] : defaultSampler_;
 }
 
+Aabb GpuScene::meshBounds(int mesh) const {
+    Aabb box;
+    for (uint32_t p : scene_.meshes[size_t(mesh)].primitives) box.extend(scene_.primitives[p].bounds);
+    return box;
+}
+
 void GpuScene::update(float timeSeconds, bool cut) {
     std::vector<glm::quat> rotations;
     const std::vector<glm::mat4> world = scene_.evaluate(timeSeconds, &rotations);
@@ -237,14 +243,25 @@ void GpuScene::update(float timeSeconds, bool cut) {
     }
     // Exact comparison: a scene without animation evaluates to the very same matrices every time.
     bool changed = !hasUpdated_ || next.size() != instances_.size();
-    for (size_t i = 0; !changed && i < next.size(); ++i) changed = next[i].world != instances_[i].world;
+    onlyInstancesMoved_ = !changed;
+    movedBounds_ = Aabb{};
+    for (size_t i = 0; onlyInstancesMoved_ && i < next.size(); ++i)
+        if (next[i].world != instances_[i].world) {
+            changed = true;
+            // Where the instance was and where it is: the voxels whose content its move changed.
+            const Aabb mesh = meshBounds(next[i].mesh);
+            movedBounds_.extend(mesh.transformed(instances_[i].world));
+            movedBounds_.extend(mesh.transformed(next[i].world));
+        }
     instances_ = std::move(next);
 
     const std::vector<gpu::GpuLight> previousLights = std::move(lights_);
     lights_ = sceneLights(scene_, world, rotations);
-    changed = changed || previousLights.size() != lights_.size() ||
-              (!lights_.empty() && std::memcmp(previousLights.data(), lights_.data(),
-                                               lights_.size() * sizeof(gpu::GpuLight)) != 0);
+    const bool lightsChanged = previousLights.size() != lights_.size() ||
+                               (!lights_.empty() && std::memcmp(previousLights.data(), lights_.data(),
+                                                                lights_.size() * sizeof(gpu::GpuLight)) != 0);
+    changed = changed || lightsChanged;
+    onlyInstancesMoved_ = onlyInstancesMoved_ && !lightsChanged && !cut;
     changed_ = changed;
     hasUpdated_ = true;
     fitShadow();

@@ -41,6 +41,10 @@ class GpuScene {
     // Whether the last update() moved an instance or changed a light against the update before it (the first
     // update: true). The voxel grid depends on nothing else of the scene.
     bool changedInLastUpdate() const { return changed_; }
+    // Whether what changed in the last update was only instances moving (no light, no cut, not the first
+    // update), and the world bounds of those instances before and after their move (empty: nothing moved).
+    bool onlyInstancesMovedInLastUpdate() const { return onlyInstancesMoved_; }
+    const Aabb& movedBounds() const { return movedBounds_; }
     const std::vector<Instance>& instances() const { return instances_; }
     uint32_t lightCount() const { return uint32_t(lights_.size()); }
     const std::vector<gpu::GpuLight>& lights() const { return lights_; }
@@ -56,6 +60,7 @@ class GpuScene {
     VkSampler textureSampler(const Material& material, Slot slot) const;
 
   private:
+    Aabb meshBounds(int mesh) const;
     void uploadTextures();
     vk::Image uploadTexture(const Texture& texture);
     VkSampler samplerFor(TextureWrap s, TextureWrap t);
@@ -78,6 +83,8 @@ class GpuScene {
     bool changed_ = true;
     bool hasUpdated_ = false;
     Aabb bounds_;
+    Aabb movedBounds_;
+    bool onlyInstancesMoved_ = false;
     void fitShadow();
 };
 

@@ -18,6 +18,7 @@
 #include "passes/voxelize_pass.h"
 #include "render/setting_table.h"
 #include "render/shader_math.h"
+#include "render/voxel_update.h"
 #include "scene/camera_path.h"
 #include "vk/check.h"
 
@@ -209,6 +210,10 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     //   same for two frames, so that both G-buffer copies (current and previous, for the history) hold them.
     const bool sceneChanged = !sceneBuilt_ || input.cut || !hasPrevious_ || gpuScene_.changedInLastUpdate() ||
                               settings_.recomputeEveryFrame;
+    // Moving instances alone: the voxel passes update only the voxels the move touched (render/voxel_update.h).
+    if (voxelGrid_)
+        voxelGrid_->setUpdateRegions(voxelUpdateRegions(*voxelGrid_, gpuScene_, settings_,
+                                                        !sceneBuilt_ || input.cut || !hasPrevious_));
     const float aspect = float(settings_.width) / float(settings_.height);
     const glm::mat4 viewProj = input.camera.projection(aspect) * input.camera.view;
     const bool viewChanged =

@@ -72,6 +72,7 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     mipCount_ = uint32_t(std::countr_zero(resolution)) + 1;
     Aabb bounds = voxelSceneBounds(scene);
     if (bounds.empty()) bounds = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
+    contentBounds_ = bounds;
     originSize_ = glsl::voxelGridFit(bounds.min, bounds.max, float(resolution));
 
     auto volume = [&](VkFormat format, uint32_t mips, VkImageUsageFlags usage, uint32_t slabs = 1) {
@@ -273,6 +274,28 @@ std::vector<glm::vec4> VoxelGrid::readRadiance(uint32_t mip) {
             out[i] = glm::max(out[i], slabs[yz * size * glsl::VOXEL_SLAB_COUNT + slab * size + x]);
     }
     return out;
+}
+
+uint64_t VoxelRegion::voxelCount() const {
+    if (empty()) return 0;
+    const glm::uvec3 size = max - min;
+    return uint64_t(size.x) * size.y * size.z;
+}
+
+VoxelRegion VoxelRegion::atLevel(uint32_t level) const {
+    if (empty()) return *this;
+    const glm::uvec3 round((1u << level) - 1u);
+    return {min >> level, (max + round) >> level};
+}
+
+VoxelRegion VoxelGrid::regionOf(const Aabb& box, uint32_t margin) const {
+    if (box.empty()) return {};
+    const glm::vec3 lo = (box.min - origin()) / voxelSize(), hi = (box.max - origin()) / voxelSize();
+    const float n = float(resolution_), m = float(margin), tile = float(VCT_VOXEL_TILE);
+    // Tile-aligned, so that a region's dispatch covers whole tiles as the full grid's does.
+    const glm::vec3 first = glm::clamp(glm::floor((lo - m) / tile) * tile, 0.0f, n);
+    const glm::vec3 last = glm::clamp(glm::ceil((hi + m + 1.0f) / tile) * tile, 0.0f, n);
+    return {glm::uvec3(first), glm::uvec3(last)};
 }
 
 }  // namespace vct

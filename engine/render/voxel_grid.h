@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 #include "io/vdb_io.h"
@@ -45,6 +46,18 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
 // geometry stays inside the grid.
 Aabb voxelSceneBounds(const Scene& scene);
 
+// A box of voxels, [min, max) on each axis at mip 0. The voxel passes update only the frame's regions
+// (docs/design.md §5.8): where moving instances were or are, and for the injected light also where their
+// shadows fall.
+struct VoxelRegion {
+    glm::uvec3 min{0u};
+    glm::uvec3 max{0u};
+    bool empty() const { return glm::any(glm::greaterThanEqual(min, max)); }
+    uint64_t voxelCount() const;
+    // The same box at mip `level`: every texel with a child in it.
+    VoxelRegion atLevel(uint32_t level) const;
+};
+
 class VoxelGrid {
   public:
     VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution);
@@ -56,6 +69,9 @@ class VoxelGrid {
     float voxelSize() const { return originSize_.w; }
     glm::vec4 originSize() const { return originSize_; }  // (origin, voxelSize), as lib/voxel.glsl takes it
     uint32_t resolution() const { return resolution_; }
+    // Where the scene's geometry can be, over its whole animation (voxelSceneBounds): no voxel outside is
+    // ever occupied. The grid (a cube) spans more.
+    const Aabb& contentBounds() const { return contentBounds_; }
     uint32_t mipCount() const { return mipCount_; }
 
     // Premultiplied radiance + opacity, 3D RGBA16F with the full mip chain (SAMPLED | STORAGE): six direction
@@ -78,6 +94,17 @@ class VoxelGrid {
     vk::Buffer& dynamicAccumulator() { return dynamicAccum_; }
     bool hasMovingInstances() const { return dynamicAccum_.handle() != VK_NULL_HANDLE; }
     VkDeviceSize accumulatorSize() const { return staticAccum_.size(); }
+
+    // The voxels this frame's voxel passes update (set by the renderer before they run): nullopt, the whole
+    // grid; else `resolve` (voxelize's resolve: where moving instances were and are) and `inject` (it, and
+    // where their shadows fall; inject and mips). Both empty: nothing moved.
+    struct UpdateRegions {
+        VoxelRegion resolve, inject;
+    };
+    const std::optional<UpdateRegions>& updateRegions() const { return updateRegions_; }
+    void setUpdateRegions(std::optional<UpdateRegions> regions) { updateRegions_ = regions; }
+    // The voxels that world bounds `box` touch, widened by `margin` voxels and aligned to VCT_VOXEL_TILE.
+    VoxelRegion regionOf(const Aabb& box, uint32_t margin) const;
 
     // Whether the static accumulator holds the static geometry yet (set by the voxelize pass).
     bool staticVoxelized() const { return staticVoxelized_; }
@@ -108,6 +135,8 @@ class VoxelGrid {
     std::vector<StaticAccumVoxel> readStaticAccumulator();
 
   private:
+    std::optional<UpdateRegions> updateRegions_;
+    Aabb contentBounds_;
     const vk::Context& context_;
     const Scene& scene_;  // outlives the grid (the Renderer's GpuScene holds it too)
     uint32_t resolution_ = 0;

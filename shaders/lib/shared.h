@@ -162,14 +162,23 @@ static_assert(sizeof(VoxelViewPushConstants) == 16);
 
 // Push constants of voxelize (one dispatch per instance × primitive) and resolve.
 struct VoxelizePushConstants {
-    uvec4 draw;    // x: instance, y: material, z: first index, w: triangle count
-    uvec4 params;  // x: vertex offset (int32 bits); resolve: y = 1 when the dynamic accumulator is bound
+    uvec4 draw;  // x: instance, y: material, z: first index, w: triangle count
+    // x: vertex offset (int32 bits); resolve: y = 1 when the dynamic accumulator is bound, z = 1 to zero it
+    // once read (the next frame's moving instances start from zero where they were)
+    uvec4 params;
+    uvec4 region;  // resolve: xyz, the first voxel of the region its dispatch covers
 };
 
 // Push constants of inject: params.x = 1 adds the gathered bounce (albedo × the voxel_bounce image) to the
 // direct light; 0 (the first inject of a frame) injects direct light and emission only.
 struct InjectPushConstants {
-    uvec4 params;
+    uvec4 params;  // x = 1: add the gathered bounce; y = 1: store empty voxels too (level 0 was not cleared)
+    uvec4 region;  // xyz: the first voxel of the region the dispatch covers
+};
+
+// Push constants of mips: the region of the level written, its first texel (xyz, per slab) and width in x.
+struct VoxelMipsPushConstants {
+    uvec4 region;
 };
 
 #ifdef __cplusplus
@@ -197,8 +206,9 @@ static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(GpuInstance) == 192);
 static_assert(sizeof(DrawPushConstants) == 16);
-static_assert(sizeof(VoxelizePushConstants) == 32);
-static_assert(sizeof(InjectPushConstants) == 16);
+static_assert(sizeof(VoxelizePushConstants) == 48);
+static_assert(sizeof(InjectPushConstants) == 32);
+static_assert(sizeof(VoxelMipsPushConstants) == 16);
 }  // namespace vct::gpu
 #endif
 
