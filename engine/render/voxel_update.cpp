@@ -60,7 +60,8 @@ std::optional<VoxelGrid::UpdateRegions> voxelUpdateRegions(const VoxelGrid& grid
         !scene.onlyInstancesMovedInLastUpdate())
         return std::nullopt;
     const Aabb& moved = scene.movedBounds();
-    VoxelGrid::UpdateRegions regions{grid.regionOf(moved, kResolveMargin), grid.regionOf(moved, kInjectMargin)};
+    VoxelGrid::UpdateRegions regions{grid.regionOf(moved, kResolveMargin),
+                                     grid.regionOf(moved, kInjectMargin)};
     const int shadowLight = scene.shadowLightIndex();
     if (shadowLight >= 0 && !moved.empty()) {
         // Swept only as far as the scene's geometry reaches: beyond it no voxel is occupied.
