@@ -111,8 +111,13 @@ int runReferenceCommand(int argc, char** argv, int first) {
         secondary == "full" ? reference::SecondaryBrdf::Full : reference::SecondaryBrdf::Diffuse;
     settings.threads = args.getUint("threads", 0, 1024);
     settings.environment = RenderSettings{}.ambient;
+    // The environment's four flags, as the table's rows parse them (applySettingArgs would also read this
+    // command's own --bounces, which takes values the renderer's does not).
     RenderSettings renderSettings;
-    applySettingArgs(args, renderSettings);
+    if (args.has("environment")) renderSettings.environment = args.get("environment");
+    renderSettings.environmentIntensity = args.getFloat("environment-intensity", 1e-3f, 1e4f);
+    renderSettings.environmentRotation = args.getFloat("environment-rotation", -360.0f, 360.0f);
+    renderSettings.skyTurbidity = args.getFloat("sky-turbidity", 2.0f, 10.0f);
     const uint32_t spp = args.getUint("spp", 1, 1u << 20);
     if (uint64_t(settings.width) * settings.height * spp > kMaxSamples)
         throw UsageError("--size " + args.get("size") + " with --spp " + std::to_string(spp) +
