@@ -38,7 +38,7 @@ std::string errorOf(F&& f) {
 
 TEST(SpirvReflect, TraceShader) {
     const std::vector<vk::ShaderBinding> bindings = vk::reflectBindings(vk::readSpirv("trace.comp"));
-    EXPECT_EQ(bindings.size(), 8u);
+    EXPECT_EQ(bindings.size(), 9u);  // 9: the environment map (issue 20)
     EXPECT_EQ(find(bindings, 0).type, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     const vk::ShaderBinding& voxels = find(bindings, 3);
     EXPECT_EQ(voxels.type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
@@ -81,7 +81,8 @@ std::vector<vk::Binding> traceBindings() {
             {4, storage, cs, "indirectLow", VK_FORMAT_R32G32B32A32_UINT, d2},
             {6, storage, cs, "guidePosition", VK_FORMAT_R32G32B32A32_SFLOAT, d2},
             {7, storage, cs, "guideNormal", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
-            {8, storage, cs, "guideAxis", VK_FORMAT_R16G16B16A16_SFLOAT, d2}};
+            {8, storage, cs, "guideAxis", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
+            {9, sampled, cs, "environment", VK_FORMAT_R32G32B32A32_SFLOAT, d2}};
 }
 
 std::string checkTrace(const std::vector<vk::Binding>& declared) {
