@@ -7,6 +7,7 @@
 #include "render/environment.h"
 
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
 
 #include <cmath>
 #include <filesystem>
@@ -175,6 +176,36 @@ TEST(Environment, ImportanceSamplingPdfIntegratesToOneAndEstimatesTheIntegral) {
     }
     // Luminance-proportional sampling of a luminance integral has no variance: exact up to float rounding.
     EXPECT_NEAR(estimate / n / integral(map, 0), 1.0, 1e-3);
+}
+
+// A Radiance .hdr (written by stb) loads as the same map, up to RGBE's 8-bit mantissa, with its mips; the
+// intensity and rotation settings reach it.
+TEST(Environment, RadianceHdrLoadsWithIntensityAndRotation) {
+    const fs::path path = vct::test::freshOutputDir("environment/hdr") / "gradient.hdr";
+    std::vector<float> rgb(16 * 8 * 3);
+    for (size_t i = 0; i < 16 * 8; ++i) {
+        rgb[i * 3] = 0.25f + float(i % 16);
+        rgb[i * 3 + 1] = 2.0f;
+        rgb[i * 3 + 2] = 0.5f * float(i / 16);
+    }
+    ASSERT_NE(stbi_write_hdr(path.string().c_str(), 16, 8, 3, rgb.data()), 0);
+    vct::RenderSettings settings;
+    settings.environment = path.string();
+    settings.environmentIntensity = 2.0f;
+    settings.environmentRotation = 90.0f;
+    const vct::EnvironmentMap map = vct::sceneEnvironment(sceneWithSun(glm::vec3(0, 1, 0), 3.0f), settings);
+    ASSERT_EQ(map.width(), 16u);
+    ASSERT_EQ(map.height(), 8u);
+    EXPECT_EQ(map.levels.size(), 5u);  // 16×8 … 1×1
+    EXPECT_NEAR(map.rotation, glm::radians(90.0f), 1e-6f);
+    for (size_t i = 0; i < 16 * 8; ++i) {
+        EXPECT_NEAR(map.levels[0][i].r, 2.0f * rgb[i * 3], 0.01f * 2.0f * rgb[i * 3]);
+        EXPECT_NEAR(map.levels[0][i].g, 4.0f, 0.04f);
+    }
+    // Turned by 90°: the direction that looked up texel u = 0.5 now looks up u = 0.25.
+    const glm::vec3 d =
+        vct::glsl::equirectDirection(glm::vec2(0.5f + 0.5f / 16.0f, 0.5f + 0.5f / 8.0f), 0.0f);
+    EXPECT_NEAR(map.radiance(d).r, 2.0f * (0.25f + 4.0f), 0.1f);
 }
 
 // ---- the path-traced reference ----
