@@ -6,7 +6,7 @@
 # relMSE without the reference's noise, log2 ratio maps). benchmarks/plot_truth.py then writes truth.md,
 # truth_ratios.png and truth_error_vs_voxels.png and copies the ratio maps.
 # Writes benchmarks/results/<device>-truth/ (TRUTH_QUICK=1: <device>-truth-quick/; the directory is replaced).
-# Usage: benchmarks/truth.sh [SCENE...]   (build first; default scenes: cornell plane, and
+# Usage: benchmarks/truth.sh [SCENE...]   (build first; default scenes: cornell plane courtyard, and
 #        ../shared/scenes/DamagedHelmet/glTF/DamagedHelmet.gltf when present)
 # Environment (defaults in brackets):
 #   TRUTH_SIZE [320x180]  TRUTH_SPP [256]  TRUTH_FRAMES [64]  TRUTH_VOXELS ["32 64 128"]  TRUTH_SCALES ["1 4"]
@@ -43,7 +43,8 @@ mkdir -p "$work/json" "$work/maps"
 [ -x "$vct" ] || { echo "truth.sh: $vct not found: build first (cmake --build build)" >&2; exit 1; }
 
 if [ "${#scenes[@]}" -eq 0 ]; then
-    scenes=(cornell plane)
+    # courtyard: the open scene, lit mostly by the sun and the procedural sky (docs/design.md §5.9).
+    scenes=(cornell plane courtyard)
     helmet="$(realpath -m ../shared/scenes/DamagedHelmet/glTF/DamagedHelmet.gltf)"
     if [ -f "$helmet" ]; then
         scenes+=("$helmet")

@@ -1,11 +1,13 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// direct: one thread per pixel; sums every punctual light (the main one shadowed), emission and ambient.
+// direct: one thread per pixel; sums every punctual light (the main one shadowed), emission and, with GI off, the
+// environment's light; the background is the environment.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
 #include "lib/gbuffer_read.glsl"
 #include "lib/lights.glsl"
+#include "lib/cone.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
@@ -19,6 +21,9 @@ layout(set = 0, binding = 4) uniform sampler2D baseColorMetallicTexture;
 layout(set = 0, binding = 5) uniform sampler2D emissiveOcclusionTexture;
 layout(set = 0, binding = 6) uniform sampler2DShadow shadowMap;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 0, binding = 8) uniform sampler2D environmentMap;  // lib/environment_sample.glsl
+
+#include "lib/environment_sample.glsl"
 
 // 3x3 PCF on the main light's shadow map; the position is pushed along the normal by a texel or so,
 // which removes acne on surfaces at grazing light angles without detaching shadows.
@@ -44,7 +49,9 @@ void main() {
     const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     if (isBackground(depth)) {
-        imageStore(outputImage, pixel, vec4(frame.lighting.ambient, 1.0));
+        const vec3 farPoint = worldFromDepth(frame.invViewProj, uv, 1.0);
+        imageStore(outputImage, pixel,
+                   vec4(environmentRadiance(normalize(farPoint - frame.cameraPosition)), 1.0));
         return;
     }
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
@@ -64,13 +71,16 @@ void main() {
         if (i == shadowLight && any(greaterThan(reflected, vec3(0.0)))) reflected *= shadowVisibility(p, n);
         radiance += reflected;
     }
-    // Constant ambient, only with GI off (with GI on, composite adds the cone-traced indirect light instead):
-    // a uniform environment of radiance `ambient` reflected by the diffuse albedo plus F0, attenuated by the
-    // material's occlusion.
+    // The environment, only with GI off (with GI on, composite adds the cone-traced indirect light instead),
+    // unoccluded but for the material's occlusion: its cosine-weighted mean radiance (what the six diffuse
+    // cones read of an open sky) × the diffuse albedo, plus what the specular cone would read × F0. A uniform
+    // environment L gives L·(albedo + F0), the constant ambient term this replaced.
     if ((frame.flags & VCT_FLAG_GI) == 0u) {
         const vec3 albedo = diffuseAlbedo(baseColorMetallic.rgb, baseColorMetallic.a);
         const vec3 f0 = f0FromMetallic(baseColorMetallic.rgb, baseColorMetallic.a);
-        radiance += frame.lighting.ambient * (albedo + f0) * emissiveOcclusion.a;
+        const float alpha = alphaFromPerceptual(normalRoughness.w);
+        const vec3 specular = environmentCone(specularConeDirection(n, v), specularConeTanHalf(alpha));
+        radiance += (environmentDiffuse(n) * albedo + specular * f0) * emissiveOcclusion.a;
     }
     imageStore(outputImage, pixel, vec4(radiance, 1.0));
 }

@@ -28,6 +28,9 @@ layout(set = 0, binding = 6, std430) readonly buffer ResampleList {
 }
 resampleList;
 
+// The environment: what a cone that leaves the grid sees (lib/environment_sample.glsl).
+layout(set = 0, binding = 9) uniform sampler2D environmentMap;
+
 #include "lib/cone_trace.glsl"
 
 void main() {

@@ -36,6 +36,9 @@ layout(set = 0, binding = 7,
        rgba16f) uniform writeonly image2D guideNormalImage;  // unit normal, w: smoothed specular sharpness λ̄
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D guideAxisImage;  // specular lobe axis
 
+// The environment: what a cone that leaves the grid sees (lib/environment_sample.glsl).
+layout(set = 0, binding = 9) uniform sampler2D environmentMap;
+
 #include "lib/cone_trace.glsl"
 
 void main() {

@@ -4,7 +4,8 @@
 // send on as albedo × it. The 6 diffuse cones of a surface pixel (lib/cone_trace.glsl's traceDiffuse), from the
 // voxel's centre about its averaged normal: the cosine-weighted mean incoming radiance, the Lambertian bounce's
 // albedo/π · E. Voxels whose surfaces disagree on a side (|n̄| short: both faces of a thin wall) gather about
-// n̄'s side only when it is clear, and over both sides (the mean of ±n̂) when it is not. One thread per voxel.
+// n̄'s side only when it is clear, and over both sides (the mean of ±n̂) when it is not. Cones that leave the grid
+// see the environment (lib/cone_trace.glsl), so sky light bounces too. One thread per voxel.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
@@ -20,6 +21,8 @@ layout(set = 0, binding = 1, rgba8) uniform readonly image3D albedoImage;
 layout(set = 0, binding = 2, rgba16f) uniform readonly image3D normalImage;
 layout(set = 0, binding = 3) uniform sampler3D voxels;  // radiance slabs with mips (lib/voxel.glsl)
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D bounceImage;
+// The environment: sky light reaches the voxels through cones that leave the grid (lib/environment_sample.glsl).
+layout(set = 0, binding = 5) uniform sampler2D environmentMap;
 
 #include "lib/cone_trace.glsl"
 

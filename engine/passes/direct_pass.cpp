@@ -5,7 +5,7 @@ namespace vct {
 namespace {
 
 // Binding numbers: shaders/direct.comp's.
-ResourceTable directResources() {
+ResourceTable directResources(const EnvironmentSource& environment) {
     return {"direct",
             {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
              {1, Resource::scene(SceneBuffer::Lights), Access::Read},
@@ -14,12 +14,14 @@ ResourceTable directResources() {
              {4, Target::baseColorMetallic, Access::Sampled},
              {5, Target::emissiveOcclusion, Access::Sampled},
              {6, Target::shadowMap, Access::SampledCompare},
-             {7, Target::direct, Access::Write}}};
+             {7, Target::direct, Access::Write},
+             {8, Resource::image("environment", *environment.image, environment.sampler), Access::Sampled}}};
 }
 
 }  // namespace
 
-DirectPass::DirectPass(const vk::Context& context) : resources_(directResources()) {
+DirectPass::DirectPass(const vk::Context& context, const EnvironmentSource& environment)
+    : resources_(directResources(environment)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "direct.comp", resources_.bindings(), 0);
 }
 

@@ -1,7 +1,9 @@
 // direct: full-resolution direct light (GGX + height-correlated Smith + Schlick, docs/design.md §3.2) from every
-// punctual light, the main light shadow-mapped, plus emission and the constant ambient term.
+// punctual light, the main light shadow-mapped, plus emission; the environment for the background and, with GI
+// off, its light reflected by the surface (lib/environment_sample.glsl).
 #pragma once
 
+#include "render/gpu_environment.h"
 #include "render/pass.h"
 #include "vk/pipeline.h"
 
@@ -9,7 +11,8 @@ namespace vct {
 
 class DirectPass : public Pass {
   public:
-    explicit DirectPass(const vk::Context& context);
+    // `environment`: the background, and the ambient light with GI off.
+    DirectPass(const vk::Context& context, const EnvironmentSource& environment);
     const char* name() const override { return "direct"; }
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     void execute(const FrameContext& frame) override;

@@ -5,15 +5,18 @@ namespace vct {
 TracePass::TracePass(const vk::Context& context, uint32_t traceScale, const VoxelSource& voxels)
     : output_(traceScale <= 1 ? Target::indirect : Target::indirectLow),
       // Binding numbers: shaders/trace.comp's.
-      resources_("trace", {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-                           {1, Target::depth, Access::Sampled},
-                           {2, Target::normalRoughness, Access::Sampled},
-                           {3, Resource::image("voxels", *voxels.radiance, voxels.sampler), Access::Sampled},
-                           {4, output_, Access::Write},
-                           // 1×1 stand-ins at trace scale 1 (the pipeline declares them, never writes them).
-                           {6, Target::guidePosition, Access::Write},
-                           {7, Target::guideNormal, Access::Write},
-                           {8, Target::guideAxis, Access::Write}}) {
+      resources_("trace",
+                 {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+                  {1, Target::depth, Access::Sampled},
+                  {2, Target::normalRoughness, Access::Sampled},
+                  {3, Resource::image("voxels", *voxels.radiance, voxels.sampler), Access::Sampled},
+                  {4, output_, Access::Write},
+                  // 1×1 stand-ins at trace scale 1 (the pipeline declares them, never writes them).
+                  {6, Target::guidePosition, Access::Write},
+                  {7, Target::guideNormal, Access::Write},
+                  {8, Target::guideAxis, Access::Write},
+                  {9, Resource::image("environment", *voxels.environment.image, voxels.environment.sampler),
+                   Access::Sampled}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "trace.comp", resources_.bindings(), 0,
                                       {traceScale});  // VCT_SPEC_TRACE_SCALE
 }

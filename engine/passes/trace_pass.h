@@ -3,6 +3,7 @@
 // Writes demodulated diffuse and specular indirect light (lib/cone.glsl) to the low-res targets.
 #pragma once
 
+#include "render/gpu_environment.h"
 #include "render/pass.h"
 #include "vk/pipeline.h"
 
@@ -13,6 +14,7 @@ namespace vct {
 struct VoxelSource {
     vk::Image* radiance = nullptr;
     VkSampler sampler = VK_NULL_HANDLE;
+    EnvironmentSource environment;  // what a cone that leaves the grid sees (lib/cone_trace.glsl)
 };
 
 class TracePass : public Pass {

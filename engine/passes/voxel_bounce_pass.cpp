@@ -3,18 +3,21 @@
 namespace vct {
 
 VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject,
-                                 VoxelMipsPass& mips, uint32_t bounces)
+                                 VoxelMipsPass& mips, uint32_t bounces, const EnvironmentSource& environment)
     : grid_(grid),
       inject_(inject),
       mips_(mips),
       iterations_(bounces > 1 ? bounces - 1 : 0),
       // Binding numbers: shaders/voxel_bounce.comp's.
-      resources_("bounce",
-                 {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-                  {1, Resource::image("albedo", grid.albedo()), Access::Read},
-                  {2, Resource::image("normal", grid.normal()), Access::Read},
-                  {3, Resource::image("radiance", grid.radiance(), grid.sampler()), Access::Sampled},
-                  {4, Resource::image("bounce", grid.bounce()), Access::Write}}) {
+      resources_(
+          "bounce",
+          {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+           {1, Resource::image("albedo", grid.albedo()), Access::Read},
+           {2, Resource::image("normal", grid.normal()), Access::Read},
+           {3, Resource::image("radiance", grid.radiance(), grid.sampler()), Access::Sampled},
+           {4, Resource::image("bounce", grid.bounce()), Access::Write},
+           // Cones that leave the grid see the environment: sky light bounces too.
+           {5, Resource::image("environment", *environment.image, environment.sampler), Access::Sampled}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(), 0);
 }
 

@@ -8,6 +8,7 @@
 
 #include "passes/inject_pass.h"
 #include "passes/voxel_mips_pass.h"
+#include "render/gpu_environment.h"
 #include "render/pass.h"
 #include "render/voxel_grid.h"
 #include "vk/pipeline.h"
@@ -18,7 +19,7 @@ class VoxelBouncePass : public Pass {
   public:
     // `bounces` ≥ 2: the number of bounces the indirect light of a pixel carries (1 needs no pass).
     VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject, VoxelMipsPass& mips,
-                    uint32_t bounces);
+                    uint32_t bounces, const EnvironmentSource& environment);
     const char* name() const override { return "bounce"; }
     void execute(const FrameContext& frame) override;
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }

@@ -11,6 +11,7 @@
 
 #include "reference/ray_scene.h"
 #include "reference/rng.h"
+#include "render/environment_sampler.h"
 #include "render/scene_lights.h"
 #include "render/shader_math.h"
 
@@ -57,6 +58,9 @@ vec2 dfgLookup(float NoV, float perceptualRoughness) {
 // After this many bounces of unlimited GI, paths continue with probability max(throughput) (Russian
 // roulette).
 constexpr int kRouletteDepth = 3;
+// The primary specular lobe is also combined with the environment's sampling from this α up (below it D_GGX
+// is a spike that only the lobe's own rays can meet).
+constexpr float kMinAlphaEnvironmentMis = 1e-3f;
 // A hard stop for unlimited paths that roulette keeps alive (a furnace of albedo 1): never reached in
 // practice.
 constexpr int kMaxDepth = 1024;
@@ -92,6 +96,13 @@ struct PathTracer::Impl {
     MaterialEvaluator materials;
     RayScene rays;
     std::vector<gpu::GpuLight> lights;
+    // What escaping rays see (ReferenceSettings::environmentMap, or the constant `environment`), and its
+    // importance sampling. A map of more than one texel is also sampled as a light (next-event estimation
+    // combined with BSDF sampling by the balance heuristic, docs/design.md §9.2); a constant one only by the
+    // BSDF's rays (the cosine lobe already is its best strategy), exactly as before maps existed.
+    EnvironmentMap environment;
+    std::unique_ptr<EnvironmentSampler> environmentSampler;
+    bool sampleEnvironment = false;
     std::vector<Surface> surfaces;
     std::unique_ptr<tbb::task_arena> arena;
 
@@ -108,6 +119,10 @@ struct PathTracer::Impl {
         std::vector<glm::quat> rotations;
         const std::vector<glm::mat4> world = scene.evaluate(t, &rotations);
         lights = sceneLights(scene, world, rotations);
+        environment =
+            settings.environmentMap ? *settings.environmentMap : constantEnvironment(settings.environment);
+        environmentSampler = std::make_unique<EnvironmentSampler>(environment);
+        sampleEnvironment = environment.width() * environment.height() > 1;
         for (const RayGeometry& g : rays.geometries())
             surfaces.push_back({g.name, g.node, g.primitive, g.material});
         // Rays leave a surface this far along its face normal: well above float rounding at the scene's
@@ -194,22 +209,18 @@ struct PathTracer::Impl {
     // Samples the next direction of an indirect path at x: returns false where the path ends; `weight` is
     // f·cos/pdf. Full: a one-sample mixture of cosine and GGX half-vector sampling, weighted by the mixture's
     // pdf (the balance heuristic of the two strategies). Diffuse: cosine sampling of the Lambert lobe.
-    bool sampleSecondary(const Shading& x, Pcg32& rng, vec3& l, vec3& weight) const {
+    // `pdf`: the solid-angle pdf of l (for MIS with the environment's sampling).
+    bool sampleSecondary(const Shading& x, Pcg32& rng, vec3& l, vec3& weight, float& pdfOut) const {
         const vec3 n = x.s.normal;
         const vec3 albedo = glsl::diffuseAlbedo(x.s.baseColor, x.s.metallic);
         if (settings.secondary == SecondaryBrdf::Diffuse) {
             l = sampleCosine(rng.uniform2(), n);
             weight = albedo;
+            pdfOut = std::max(glm::dot(n, l), 0.0f) * glsl::INV_PI;
             return glm::dot(l, x.s.faceNormal) > 0.0f && maxComponent(albedo) > 0.0f;
         }
-        const vec3 f0 = glsl::f0FromMetallic(x.s.baseColor, x.s.metallic);
-        const float specularWeight = glsl::luminance(f0);
-        const float diffuseWeight = glsl::luminance(albedo) * (1.0f - specularWeight);
-        const float total = specularWeight + diffuseWeight;
-        const float pSpecular = total > 0.0f ? std::clamp(specularWeight / total, 0.05f, 0.95f) : 0.5f;
-        // The α evalBrdf uses: sampling the very lobe it evaluates keeps f/pdf bounded.
-        const float alpha =
-            std::max(glsl::alphaFromPerceptual(x.s.perceptualRoughness), glsl::MIN_ALPHA_PUNCTUAL);
+        const float pSpecular = specularChoice(x);
+        const float alpha = secondaryAlpha(x);
         const float choice = rng.uniform();
         const vec2 u = rng.uniform2();
         if (choice < pSpecular) {
@@ -220,33 +231,94 @@ struct PathTracer::Impl {
         }
         const float NoL = glm::dot(n, l);
         if (NoL <= 0.0f || glm::dot(l, x.s.faceNormal) <= 0.0f) return false;
-        const vec3 h = glm::normalize(x.v + l);
-        const float NoH = glsl::saturate(glm::dot(n, h));
-        const float VoH = glm::dot(x.v, h);
-        const float pdfSpecular = VoH > 0.0f ? glsl::D_GGX(NoH, alpha) * NoH / (4.0f * VoH) : 0.0f;
-        const float pdf = (1.0f - pSpecular) * NoL * glsl::INV_PI + pSpecular * pdfSpecular;
+        const float pdf = secondaryPdf(x, l);
+        pdfOut = pdf;
         if (!(pdf > 0.0f)) return false;
         weight = glsl::evalBrdfCosine(n, x.v, l, x.s.baseColor, x.s.metallic, x.s.perceptualRoughness) / pdf;
         return maxComponent(weight) > 0.0f && std::isfinite(maxComponent(weight));
     }
 
+    // The share of the specular strategy in the secondary mixture, and the α it samples (the α evalBrdf
+    // uses: sampling the very lobe it evaluates keeps f/pdf bounded).
+    static float specularChoice(const Shading& x) {
+        const vec3 albedo = glsl::diffuseAlbedo(x.s.baseColor, x.s.metallic);
+        const vec3 f0 = glsl::f0FromMetallic(x.s.baseColor, x.s.metallic);
+        const float specularWeight = glsl::luminance(f0);
+        const float diffuseWeight = glsl::luminance(albedo) * (1.0f - specularWeight);
+        const float total = specularWeight + diffuseWeight;
+        return total > 0.0f ? std::clamp(specularWeight / total, 0.05f, 0.95f) : 0.5f;
+    }
+    static float secondaryAlpha(const Shading& x) {
+        return std::max(glsl::alphaFromPerceptual(x.s.perceptualRoughness), glsl::MIN_ALPHA_PUNCTUAL);
+    }
+    // The solid-angle pdf with which sampleSecondary draws l.
+    float secondaryPdf(const Shading& x, vec3 l) const {
+        const vec3 n = x.s.normal;
+        const float NoL = glm::dot(n, l);
+        if (NoL <= 0.0f) return 0.0f;
+        if (settings.secondary == SecondaryBrdf::Diffuse) return NoL * glsl::INV_PI;
+        const float pSpecular = specularChoice(x);
+        const float alpha = secondaryAlpha(x);
+        const vec3 h = glm::normalize(x.v + l);
+        const float NoH = glsl::saturate(glm::dot(n, h));
+        const float VoH = glm::dot(x.v, h);
+        const float pdfSpecular = VoH > 0.0f ? glsl::D_GGX(NoH, alpha) * NoH / (4.0f * VoH) : 0.0f;
+        return (1.0f - pSpecular) * NoL * glsl::INV_PI + pSpecular * pdfSpecular;
+    }
+
+    // The environment seen by a BSDF-sampled ray that escaped along `direction`, drawn with solid-angle pdf
+    // `bsdfPdf` (0: the vertex did not also sample the environment, weight 1): the balance heuristic's share.
+    vec3 escapedRadiance(vec3 direction, float bsdfPdf) const {
+        const vec3 radiance = environment.radiance(direction);
+        if (!(bsdfPdf > 0.0f)) return radiance;
+        return radiance * (bsdfPdf / (bsdfPdf + environmentSampler->pdf(direction)));
+    }
+
+    // One environment sample leaving surface point s, unoccluded and above the face; pdf 0 when it is not.
+    EnvironmentSampler::Sample environmentLightSample(const SurfacePoint& s, Pcg32& rng,
+                                                      uint64_t& rayCount) const {
+        EnvironmentSampler::Sample e = environmentSampler->sample(rng.uniform2());
+        if (!(e.pdf > 0.0f) || glm::dot(e.direction, s.faceNormal) <= 0.0f ||
+            glm::dot(e.direction, s.normal) <= 0.0f)
+            return {};
+        ++rayCount;
+        if (rays.occluded(spawnOrigin(s, e.direction), e.direction, 0.0f,
+                          std::numeric_limits<float>::infinity()))
+            return {};
+        return e;
+    }
+
+    // Next-event estimation of the environment at a secondary vertex, weighted against the BSDF's own rays.
+    vec3 environmentLight(const Shading& x, Pcg32& rng, uint64_t& rayCount) const {
+        const EnvironmentSampler::Sample e = environmentLightSample(x.s, rng, rayCount);
+        if (!(e.pdf > 0.0f)) return vec3(0.0f);
+        return secondaryBrdfCosine(x, e.direction) * e.radiance / (e.pdf + secondaryPdf(x, e.direction));
+    }
+
     // Radiance arriving at `origin` along unit `direction` from the first surface hit (its emission, its
     // reflection of the lights and, with bounces left, of further indirect light) or from the environment.
-    vec3 indirectRadiance(vec3 origin, vec3 direction, Pcg32& rng, uint64_t& rayCount) const {
+    // `directionPdf`: the pdf the caller's BSDF sampling drew `direction` with, when the caller also sampled
+    // the environment (0 when it did not). The environment counts like emission: light it sends reaches the
+    // origin after as many bounces as the path has vertices before it escapes.
+    vec3 indirectRadiance(vec3 origin, vec3 direction, float directionPdf, Pcg32& rng,
+                          uint64_t& rayCount) const {
         vec3 radiance(0.0f), throughput(1.0f);
         for (int depth = 1; depth <= kMaxDepth; ++depth) {
             ++rayCount;
             const RayHit hit =
                 rays.intersect(origin, direction, 0.0f, std::numeric_limits<float>::infinity(), false);
             if (!hit.hit) {
-                radiance += throughput * settings.environment;
+                radiance += throughput * escapedRadiance(direction, directionPdf);
                 break;
             }
             const Shading x{rays.surfaceAt(hit, direction), -direction};
             radiance += throughput * (x.s.emission + directLight(x, false, rayCount));
             if (settings.bounces != kUnlimitedBounces && depth >= settings.bounces) break;
+            if (sampleEnvironment) radiance += throughput * environmentLight(x, rng, rayCount);
             vec3 l, weight;
-            if (!sampleSecondary(x, rng, l, weight)) break;
+            float pdf = 0.0f;
+            if (!sampleSecondary(x, rng, l, weight, pdf)) break;
+            directionPdf = sampleEnvironment ? pdf : 0.0f;
             throughput *= weight;
             if (settings.bounces == kUnlimitedBounces && depth >= kRouletteDepth) {
                 const float survive = std::min(maxComponent(throughput), 0.95f);
@@ -273,7 +345,8 @@ struct PathTracer::Impl {
             hit = rays.intersect(origin, direction, 0.0f, length, true);
         }
         if (!hit.hit) {
-            direct = final = settings.environment;  // the background, as vct's direct pass writes it
+            direct = final =
+                environment.radiance(direction);  // the background, as vct's direct pass writes it
         } else {
             const Shading x0{rays.surfaceAt(hit, direction), -direction};
             const SurfacePoint& s = x0.s;
@@ -294,8 +367,9 @@ struct PathTracer::Impl {
             if (settings.bounces != 0) {
                 // D: one cosine-distributed ray; its radiance is an unbiased estimate of (1/π)∫L cos.
                 const vec3 ld = sampleCosine(rng.uniform2(), n);
+                const float pdfD = sampleEnvironment ? std::max(glm::dot(n, ld), 0.0f) * glsl::INV_PI : 0.0f;
                 if (glm::dot(ld, s.faceNormal) > 0.0f)
-                    diffuse = indirectRadiance(spawnOrigin(s, ld), ld, rng, rayCount);
+                    diffuse = indirectRadiance(spawnOrigin(s, ld), ld, pdfD, rng, rayCount);
                 // S: one GGX half vector (pdf D·(n·h)); f_s·cos/pdf = F·V·4(n·l)(v·h)/(n·h) (D cancels,
                 // finite at α = 0), divided by the lobe's albedo F0·scale + bias.
                 const float alpha = glsl::alphaFromPerceptual(s.perceptualRoughness);
@@ -304,13 +378,36 @@ struct PathTracer::Impl {
                 const vec3 ls = 2.0f * VoH * h - v;
                 const float NoL = glm::dot(n, ls);
                 const vec3 lobeAlbedo = f0 * dfg.x + dfg.y;
+                // Below this α the lobe is (nearly) a delta: only its own ray can find the environment.
+                const bool specularMis = sampleEnvironment && alpha >= kMinAlphaEnvironmentMis;
                 if (NoL > 0.0f && VoH > 0.0f && glm::dot(ls, s.faceNormal) > 0.0f &&
                     maxComponent(lobeAlbedo) > 0.0f) {
                     const float NoH = std::max(glm::dot(n, h), 1e-8f);
                     const vec3 lobe = glsl::F_Schlick(f0, VoH) * glsl::V_SmithGGXCorrelated(NoV, NoL, alpha) *
                                       4.0f * NoL * VoH / NoH;
+                    const float pdfS = specularMis ? glsl::D_GGX(NoH, alpha) * NoH / (4.0f * VoH) : 0.0f;
                     specular = lobe / glm::max(lobeAlbedo, vec3(1e-6f)) *
-                               indirectRadiance(spawnOrigin(s, ls), ls, rng, rayCount);
+                               indirectRadiance(spawnOrigin(s, ls), ls, pdfS, rng, rayCount);
+                }
+                // The environment sampled as a light for D and S (one shadow ray for both), each weighted
+                // against its own BSDF strategy by the balance heuristic.
+                if (sampleEnvironment) {
+                    const EnvironmentSampler::Sample e = environmentLightSample(s, rng, rayCount);
+                    if (e.pdf > 0.0f) {
+                        const float NoLe = glm::dot(n, e.direction);
+                        diffuse += NoLe * glsl::INV_PI * e.radiance / (e.pdf + NoLe * glsl::INV_PI);
+                        const vec3 he = glm::normalize(v + e.direction);
+                        const float VoHe = glm::dot(v, he);
+                        const float NoHe = glsl::saturate(glm::dot(n, he));
+                        if (specularMis && VoHe > 0.0f && maxComponent(lobeAlbedo) > 0.0f) {
+                            const float d = glsl::D_GGX(NoHe, alpha);
+                            const vec3 fCos = glsl::F_Schlick(f0, VoHe) *
+                                              glsl::V_SmithGGXCorrelated(NoV, NoLe, alpha) * d * NoLe;
+                            const float pdfLobe = d * NoHe / (4.0f * VoHe);
+                            specular +=
+                                fCos / glm::max(lobeAlbedo, vec3(1e-6f)) * e.radiance / (e.pdf + pdfLobe);
+                        }
+                    }
                 }
             }
             // Kept apart rather than taken as final − direct: a highlight of a punctual light on a

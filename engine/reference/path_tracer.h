@@ -1,6 +1,6 @@
 // The path-traced reference (`vct reference`): an unbiased CPU path tracer on Embree 3 that renders exactly
 // the scene vct renders (same Scene at the same time, camera, pixel grid, punctual lights, materials, BRDF
-// from shaders/lib/brdf.glsl compiled as C++, constant environment) and writes its result in vct's own units,
+// from shaders/lib/brdf.glsl compiled as C++, the same environment map) and writes its result in vct's own units,
 // so that it compares pixel for pixel with `vct render --aux`.
 //
 // What each buffer estimates at a pixel (box filter over the pixel: every sample jitters its primary ray):
@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "render/environment.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -54,7 +55,10 @@ struct ReferenceSettings {
     int bounces = 1;  // 0, N ≥ 1 or kUnlimitedBounces
     SecondaryBrdf secondary = SecondaryBrdf::Full;
     glm::vec3 environment{0.03f};  // constant radiance of rays that escape (RenderSettings::ambient)
-    uint32_t threads = 0;          // 0: every hardware thread
+    // The environment map (render/environment.h: sceneEnvironment, what vct renders with); replaces
+    // `environment` when set. Importance-sampled with MIS when it has more than one texel.
+    std::shared_ptr<const EnvironmentMap> environmentMap;
+    uint32_t threads = 0;  // 0: every hardware thread
 };
 
 // One row of the surface table: the (instance, primitive) pairs the primary rays can hit. Ids index it.

@@ -49,6 +49,10 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE, settings.traceScale,
                     settings.gi);
     createSamplers();
+    // The environment (docs/design.md §5.9), made once from the settings and the scene's sun at t = 0.
+    environmentMap_ = std::make_shared<const EnvironmentMap>(sceneEnvironment(scene, settings_));
+    gpuEnvironment_ = std::make_unique<GpuEnvironment>(context, *environmentMap_);
+    const EnvironmentSource environment = gpuEnvironment_->source();
     // The frame, in order (docs/design.md §2.1).
     passes_.push_back(std::make_unique<ShadowPass>(context));
     if (settings.gi) {
@@ -63,17 +67,17 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.7).
         std::unique_ptr<Pass> bounce;
         if (settings.bounces > 1)
-            bounce =
-                std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces);
+            bounce = std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces,
+                                                       environment);
         passes_.push_back(std::move(inject));
         passes_.push_back(std::move(mips));
         if (bounce) passes_.push_back(std::move(bounce));
     }
     passes_.push_back(std::make_unique<GBufferPass>(context));
-    passes_.push_back(std::make_unique<DirectPass>(context));
+    passes_.push_back(std::make_unique<DirectPass>(context, environment));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
-        const VoxelSource voxels{&voxelGrid_->radiance(), voxelGrid_->sampler()};
+        const VoxelSource voxels{&voxelGrid_->radiance(), voxelGrid_->sampler(), environment};
         passes_.push_back(std::make_unique<TracePass>(context, settings.traceScale, voxels));
         // Upsampling and adaptive re-tracing only where something is traced at low resolution: at scale 1 the
         // trace writes the full-res targets itself.
@@ -151,7 +155,8 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
     u.imageSize = glm::vec2(settings_.width, settings_.height);
     u.texelSize = glm::vec2(1.0f / float(settings_.width), 1.0f / float(settings_.height));
 
-    u.lighting.ambient = settings_.ambient;
+    u.lighting.ambient = environmentMap_->meanRadiance();
+    u.lighting.environmentRotation = environmentMap_->rotation;
     u.lighting.lightCount = gpuScene_.lightCount();
     u.lighting.shadowLight = gpuScene_.shadowLightIndex();
     u.lighting.shadowNormalOffset = gpuScene_.shadowTexelWorldSize();

@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "render/camera.h"
+#include "render/environment.h"
 #include "render/frame_targets.h"
+#include "render/gpu_environment.h"
 #include "render/gpu_scene.h"
 #include "render/pass.h"
 #include "render/settings.h"
@@ -67,6 +69,10 @@ class Renderer {
     const vk::GpuTimer& timer() const { return timer_; }
     const RenderSettings& settings() const { return settings_; }
     const GpuScene& gpuScene() const { return gpuScene_; }
+    // The environment the frame sees (docs/design.md §5.9), as made from the settings and the scene.
+    const EnvironmentMap& environment() const { return *environmentMap_; }
+    // The same, shared (the demo's path-traced reference renders with it).
+    std::shared_ptr<const EnvironmentMap> sharedEnvironment() const { return environmentMap_; }
     // The voxel grid of cone tracing; null when GI is off.
     VoxelGrid* voxelGrid() { return voxelGrid_.get(); }
     // The voxel grid ray-marched at `mip` (0 .. mipCount − 1) from the last frame's camera: radiance, RGBA16F at
@@ -101,6 +107,8 @@ class Renderer {
     Samplers samplers_;
     vk::Buffer frameUniforms_;
     vk::GpuTimer timer_;
+    std::shared_ptr<const EnvironmentMap> environmentMap_;
+    std::unique_ptr<GpuEnvironment> gpuEnvironment_;  // before passes_: they bind it
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
     std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_

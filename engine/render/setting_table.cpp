@@ -46,6 +46,22 @@ const SettingSpec kTable[] = {
     {.name = "voxel-cache", .valueName = "FILE.vdb",
      .help = "load the static voxelization from FILE (written by vct voxelize) instead of computing it",
      .value = TextValue{&S::voxelCache, "a file name"}, .apply = A::Rebuild, .group = G::Gi},
+    // ---- the environment (docs/design.md §5.9): with the GI flags, as render and demo take them ----
+    {.name = "environment", .valueName = "FILE.exr|FILE.hdr",
+     .help = "equirectangular HDR map of the light from afar (default: a clear sky lit by the scene's directional "
+             "light; the constant ambient 0.03 in a scene with only point and spot lights)",
+     .value = TextValue{&S::environment, "an .exr or .hdr file name"}, .apply = A::Rebuild, .group = G::Gi},
+    {.name = "environment-intensity", .valueName = "X", .help = "scale of the environment's radiance (map or sky)",
+     .value = FloatValue{&S::environmentIntensity, 1e-3f, 1e4f}, .apply = A::Rebuild, .group = G::Gi,
+     .demo = true, .json = true, .widget = W::LogSlider, .label = "environment intensity"},
+    {.name = "environment-rotation", .valueName = "DEG",
+     .help = "turn the --environment map about +y by DEG degrees (the sky follows its light)",
+     .value = FloatValue{&S::environmentRotation, -360.0f, 360.0f}, .apply = A::Rebuild, .group = G::Gi,
+     .demo = true, .json = true, .widget = W::Slider, .label = "environment rotation"},
+    {.name = "sky-turbidity", .valueName = "T",
+     .help = "turbidity of the procedural sky (Preetham): 2 very clear, 3 clear, 6 and more hazy",
+     .value = FloatValue{&S::skyTurbidity, 2.0f, 10.0f}, .apply = A::Rebuild, .group = G::Gi, .demo = true,
+     .json = true, .widget = W::Slider, .label = "sky turbidity"},
     {.name = "recompute-every-frame", .valueName = "",
      .help = "diagnostic: run every pass every frame, also the shadow map, voxel grid, G-buffer and direct light "
              "when nothing moved, no light changed and the camera stood still",
@@ -109,8 +125,9 @@ const SettingSpec kTable[] = {
      .json = true, .widget = W::LogSlider, .label = "exposure"},
 
     // ---- set by the program ----
-    {.name = "ambient", .valueName = "", .help = "constant ambient radiance (GI off) and background",
-     .value = ColorValue{&S::ambient}, .apply = A::Live, .group = G::Internal},
+    {.name = "ambient", .valueName = "",
+     .help = "constant environment radiance of scenes with only point and spot lights (made into the map)",
+     .value = ColorValue{&S::ambient}, .apply = A::Rebuild, .group = G::Internal},
     {.name = "shadow-depth-bias", .valueName = "", .help = "shadow map constant depth bias (dynamic state)",
      .value = FloatValue{&S::shadowDepthBias, 0.0f, 1e4f}, .apply = A::Live, .group = G::Internal},
     {.name = "shadow-slope-bias", .valueName = "", .help = "shadow map slope depth bias (dynamic state)",

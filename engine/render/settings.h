@@ -38,8 +38,13 @@ struct RenderSettings {
     uint32_t height = 720;
     // Linear scale applied before tone mapping.
     float exposure = 1.0f;
-    // Constant ambient radiance standing in for indirect light until cone tracing replaces it; also the
-    // radiance of the background, so that the two agree.
+    // The environment (render/environment.h, docs/design.md §5.9): an equirectangular HDR map (.exr, .hdr)
+    // when `environment` names one; otherwise the procedural sky of the scene's first directional light; in a
+    // scene with only point and spot lights (a closed room), the constant `ambient`. All × the intensity.
+    std::string environment;
+    float environmentIntensity = 1.0f;
+    float environmentRotation = 0.0f;  // degrees about +y (maps only; the sky follows its light)
+    float skyTurbidity = 3.0f;         // Preetham's T: 2 very clear, 3 clear, 6+ hazy
     glm::vec3 ambient{0.03f};
     // Shadow-map depth bias: constant (in depth units × 2^-24 for D32... device-defined) and slope factor.
     float shadowDepthBias = 1.25f;

@@ -11,6 +11,7 @@ using gpu::GpuLight;
 #include "lib/brdf.glsl"
 #include "lib/color.glsl"
 #include "lib/cone.glsl"
+#include "lib/environment.glsl"
 #include "lib/indirect_pack.glsl"
 #include "lib/lights.glsl"
 #include "lib/toksvig.glsl"

@@ -47,7 +47,7 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
 Aabb voxelSceneBounds(const Scene& scene);
 
 // A box of voxels, [min, max) on each axis at mip 0. The voxel passes update only the frame's regions
-// (docs/design.md §5.8): where moving instances were or are, and for the injected light also where their
+// (docs/design.md §5.9): where moving instances were or are, and for the injected light also where their
 // shadows fall.
 struct VoxelRegion {
     glm::uvec3 min{0u};

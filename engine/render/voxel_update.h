@@ -1,4 +1,4 @@
-// Which voxels a frame must update when instances moved (docs/design.md §5.8): the voxel passes then resolve,
+// Which voxels a frame must update when instances moved (docs/design.md §5.9): the voxel passes then resolve,
 // inject and filter only those, and leave the rest of the grid as the last frame made it.
 #pragma once
 

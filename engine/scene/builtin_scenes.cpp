@@ -127,10 +127,49 @@ Scene plane() {
     return std::move(b.scene);
 }
 
+// An open courtyard under the sky (issue 20): an 8 m × 8 m grey floor, two walls meeting at a corner, a white
+// box and a gold sphere, lit by a sun at 40° elevation: most of its light after the sun's comes from the sky
+// (docs/design.md §5.9), so it is the open scene of benchmarks/truth.sh.
+Scene courtyard() {
+    SceneBuilder b("courtyard");
+    const uint32_t grey = b.material(makeMaterial("grey", glm::vec3(0.5f), 0.0f, 0.9f));
+    const uint32_t brick = b.material(makeMaterial("brick", {0.6f, 0.25f, 0.15f}, 0.0f, 0.8f));
+    const uint32_t white = b.material(makeMaterial("white", glm::vec3(0.8f), 0.0f, 0.6f));
+    const uint32_t gold = b.material(makeMaterial("gold", {1.0f, 0.78f, 0.34f}, 1.0f, 0.3f));
+    Geometry floorG, backG, leftG;
+    addQuad(floorG, {-4.0f, 0.0f, 4.0f}, {8.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -8.0f});
+    addQuad(backG, {-4.0f, 0.0f, -4.0f}, {8.0f, 0.0f, 0.0f}, {0.0f, 2.5f, 0.0f});
+    addQuad(leftG, {-4.0f, 0.0f, 4.0f}, {0.0f, 0.0f, -8.0f}, {0.0f, 2.5f, 0.0f});
+    Node ground;
+    ground.name = "courtyard";
+    ground.mesh = b.mesh("courtyard", {{floorG, grey}, {backG, brick}, {leftG, brick}});
+    b.node(ground);
+    Node block;
+    block.name = "box";
+    block.translation = {-1.2f, 0.75f, -1.5f};
+    block.rotation = glm::angleAxis(glm::radians(25.0f), glm::vec3(0, 1, 0));
+    block.mesh = b.mesh("box", {{box({0.75f, 0.75f, 0.75f}), white}});
+    b.node(block);
+    Node ball;
+    ball.name = "sphere";
+    ball.translation = {1.0f, 0.6f, 0.0f};
+    ball.mesh = b.mesh("sphere", {{sphere(0.6f, 32, 16), gold}});
+    b.node(ball);
+    b.cameraNode("camera", {3.5f, 2.2f, 4.5f}, {-0.5f, 0.6f, -1.0f}, 50.0f, 50.0f);
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    sun.intensity = 3.0f;
+    const glm::vec3 dir = -glm::normalize(glm::vec3(0.55f, std::tan(glm::radians(40.0f)), 0.83f));
+    b.lightNode(sun, -dir * 6.0f, glm::quatLookAtRH(dir, glm::vec3(0, 1, 0)));
+    b.scene.validate();
+    return std::move(b.scene);
+}
+
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-    return {"cornell", "plane", "hall"};
+    return {"cornell", "plane", "courtyard", "hall"};
 }
 
 std::string builtinSceneDescription(const std::string& name) {
@@ -146,6 +185,10 @@ std::string builtinSceneDescription(const std::string& name) {
         return "40x10x16 m hall: two colonnades of 9 columns with arches, thin (0.1 m) partition walls with "
                "doorways in the aisles, a sun through three roof openings, a bronze sphere, an orange cube "
                "travelling down the nave (8 s loop); for speed at large sizes";
+    if (name == "courtyard")
+        return "8x8 m open courtyard: grey floor, two brick walls, a white box and a gold sphere under a sun "
+               "at "
+               "40 deg and the procedural sky (environment tests, the open scene of the truth runs)";
     return "";
 }
 
@@ -153,6 +196,7 @@ std::optional<Scene> makeBuiltinScene(const std::string& name) {
     if (name == "cornell") return cornell();
     if (name == "plane") return plane();
     if (name == "hall") return hallScene();
+    if (name == "courtyard") return courtyard();
     return std::nullopt;
 }
 

@@ -1,9 +1,11 @@
 // Cone tracing of one full-res pixel through the voxel grid (docs/design.md §5.3–5.5): shared by trace.comp (one
 // low-res sample per thread) and resample.comp (the listed full-res pixels). GLSL only: it marches a sampler3D.
-// Expects before inclusion: `frame` (FrameUniforms), lib/constants, brdf, cone, voxel and gbuffer_read.
+// Expects before inclusion: `frame` (FrameUniforms), `environmentMap` (lib/environment_sample.glsl), lib/constants,
+// brdf, cone, voxel and gbuffer_read.
 #ifndef VCT_CONE_TRACE_GLSL
 #define VCT_CONE_TRACE_GLSL
 
+#include "lib/environment_sample.glsl"
 #include "lib/voxel.glsl"
 
 // The grid as a cone travelling along unit `dir` sees it at `uvw` and (fractional) `mip`: the three direction
@@ -23,8 +25,9 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
 }
 
 // Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
-// Light that leaves the grid unoccluded sees the environment, the constant ambient radiance (the background
-// shows the same value, so the two agree).
+// Light that leaves the grid unoccluded sees the environment (docs/design.md §5.9): the map read along the cone
+// at the mip whose texels are as wide as the cone, times what the cone left unoccluded (the background shows
+// the same map, so the two agree).
 // The cone leaves the surface at p with unit normal n (coneSurfaceFootprint keeps that surface out of it).
 vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle) {
     const vec3 gridOrigin = frame.voxels.origin;
@@ -62,7 +65,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // Stopped as nearly opaque: what lies behind the last CONE_MAX_OPACITY would add its share of the cone in
     // any case, and is estimated as what the cone saw (else a closed room gathers 0.95 of its radiance).
     if (acc.a >= CONE_MAX_OPACITY) acc = vec4(acc.rgb / acc.a, 1.0);
-    acc.rgb += (1.0 - saturate(acc.a)) * frame.lighting.ambient;
+    acc.rgb += (1.0 - saturate(acc.a)) * environmentCone(dir, tanHalfAngle);
     return acc;
 }
 

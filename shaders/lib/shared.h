@@ -28,7 +28,7 @@ using glm::vec4;
 // ---- per-frame constants (uniform buffer, binding VCT_BINDING_FRAME in every pass; std140) ----
 
 // Bits of FrameUniforms::flags: the frame's switches.
-#define VCT_FLAG_GI 1u            // cone-traced indirect light (off: direct adds the constant ambient term)
+#define VCT_FLAG_GI 1u            // cone-traced indirect light (off: direct adds the environment's light)
 #define VCT_FLAG_TOKSVIG 2u       // Toksvig roughness from normal-map mips (docs/design.md §4.1)
 #define VCT_FLAG_SPECULAR_AA 4u   // geometric specular anti-aliasing from normal derivatives (§4.2)
 #define VCT_FLAG_TEXTURE_LOD0 8u  // sample material textures at level 0 only (supersampled references)
@@ -39,14 +39,14 @@ using glm::vec4;
 // extent, ceil(size / s), is what their bounds checks read (imageSize, textureSize).
 #define VCT_SPEC_TRACE_SCALE 0
 
-// The lights and the shadow map (direct, inject; ambient also in the cones and the voxel view).
+// The lights and the shadow map (direct, inject), the environment's rotation (lib/environment_sample.glsl).
 struct LightingUniforms {
-    vec3 ambient;              // constant ambient radiance: GI off, light leaving the grid, the background
-    uint lightCount;           // entries of the light buffer
-    int shadowLight;           // index of the light with the shadow map, -1 when none is shadowed
-    float shadowNormalOffset;  // world units per shadow-map texel (direct's normal offset)
-    float shadowTexelSize;     // 1 / shadow-map size (uv units per texel)
-    float pad0;
+    vec3 ambient;               // the environment's mean radiance (the voxel view's background)
+    uint lightCount;            // entries of the light buffer
+    int shadowLight;            // index of the light with the shadow map, -1 when none is shadowed
+    float shadowNormalOffset;   // world units per shadow-map texel (direct's normal offset)
+    float shadowTexelSize;      // 1 / shadow-map size (uv units per texel)
+    float environmentRotation;  // radians about +y (lib/environment.glsl)
 };
 
 // The voxel grid of cone tracing (lib/voxel.glsl's originSize is vec4(origin, voxelSize)).

@@ -11,6 +11,7 @@
 #include "app/cli/cli.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress_line.h"
+#include "app/cli/session.h"
 #include "core/error.h"
 #include "io/safe_write.h"
 #include "reference/path_tracer.h"
@@ -55,7 +56,12 @@ const CommandSpec& referenceSpec() {
           "full"},
          {"threads", "N", "worker threads (0: every hardware thread)", "0"},
          {"exposure", "X", "linear exposure of final.png's tone map", "1"},
-         {"out", "DIR", "output directory (created if missing)", "reference"}});
+         {"out", "DIR", "output directory (created if missing)", "reference"},
+         // The environment, as vct render makes it (render/environment.h: sceneEnvironment).
+         settingOption("environment"),
+         settingOption("environment-intensity"),
+         settingOption("environment-rotation"),
+         settingOption("sky-turbidity")});
     return spec;
 }
 
@@ -105,6 +111,13 @@ int runReferenceCommand(int argc, char** argv, int first) {
         secondary == "full" ? reference::SecondaryBrdf::Full : reference::SecondaryBrdf::Diffuse;
     settings.threads = args.getUint("threads", 0, 1024);
     settings.environment = RenderSettings{}.ambient;
+    // The environment's four flags, as the table's rows parse them (applySettingArgs would also read this
+    // command's own --bounces, which takes values the renderer's does not).
+    RenderSettings renderSettings;
+    if (args.has("environment")) renderSettings.environment = args.get("environment");
+    renderSettings.environmentIntensity = args.getFloat("environment-intensity", 1e-3f, 1e4f);
+    renderSettings.environmentRotation = args.getFloat("environment-rotation", -360.0f, 360.0f);
+    renderSettings.skyTurbidity = args.getFloat("sky-turbidity", 2.0f, 10.0f);
     const uint32_t spp = args.getUint("spp", 1, 1u << 20);
     if (uint64_t(settings.width) * settings.height * spp > kMaxSamples)
         throw UsageError("--size " + args.get("size") + " with --spp " + std::to_string(spp) +
@@ -122,6 +135,8 @@ int runReferenceCommand(int argc, char** argv, int first) {
     if (cameraPath) checkCameraPathForScene(*cameraPath, scene, args.get("camera-path"));
     // The very frame `vct render --frames K+1` ends on: time and camera from the same function.
     const FrameInput input = fixedStepFrame(scene, frame, 0, cameraPath ? &*cameraPath : nullptr);
+    settings.environmentMap = std::make_shared<const EnvironmentMap>(sceneEnvironment(scene, renderSettings));
+    std::printf("environment: %s\n", settings.environmentMap->description.c_str());
     reference::PathTracer tracer(scene, input.timeSeconds, input.camera, settings);
     std::printf("reference: %s, %ux%u, %u spp, bounces %s, secondary %s, seed %u\n", scene.name.c_str(),
                 settings.width, settings.height, spp, args.get("bounces").c_str(), secondary.c_str(),

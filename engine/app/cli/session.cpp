@@ -62,6 +62,7 @@ Session::Session(const SessionOptions& options) {
     std::printf("device: %s\n", context_->deviceName().c_str());
     renderer_ = std::make_unique<Renderer>(*context_, scene_, options.settings);
     printAnisotropy(options.settings.anisotropy, renderer_->settings().anisotropy);
+    std::printf("environment: %s\n", renderer_->environment().description.c_str());
 }
 
 void printAnisotropy(uint32_t requested, uint32_t chosen) {

@@ -431,6 +431,7 @@ void DemoApp::updateReference(const FrameInput& input) {
     request.height = controls_.settings.height;
     request.bounces = controls_.referenceBounces;
     request.environment = controls_.settings.ambient;
+    request.environmentMap = renderers_.a().sharedEnvironment();
     // Scripted runs go in lockstep (one pass per frame, waited for) so that they are reproducible.
     reference_->update(request, fixedStep_);
 }

@@ -17,7 +17,8 @@ bool sameCamera(const CameraView& a, const CameraView& b) {
 // What a PathTracer is built for, besides the camera (restart() changes only that).
 bool sameBuild(const ReferenceRequest& a, const ReferenceRequest& b) {
     return a.scene == b.scene && a.timeSeconds == b.timeSeconds && a.width == b.width &&
-           a.height == b.height && a.bounces == b.bounces && a.environment == b.environment;
+           a.height == b.height && a.bounces == b.bounces && a.environment == b.environment &&
+           a.environmentMap == b.environmentMap;
 }
 
 // Whether the scene stands exactly as it did: every node's pose (instances, lights) the same at both times.
@@ -146,6 +147,7 @@ void DemoReference::run() {
                     settings.height = want.height;
                     settings.bounces = want.bounces;
                     settings.environment = want.environment;
+                    settings.environmentMap = want.environmentMap;
                     settings.threads = threads_;
                     tracer = std::make_unique<reference::PathTracer>(*scene, want.timeSeconds, want.camera,
                                                                      settings);

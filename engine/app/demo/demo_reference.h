@@ -41,6 +41,8 @@ struct ReferenceRequest {
     uint32_t width = 0, height = 0;
     int bounces = 1;               // reference::ReferenceSettings::bounces (kUnlimitedBounces: all)
     glm::vec3 environment{0.03f};  // RenderSettings::ambient
+    // The environment side A renders with (Renderer::sharedEnvironment); replaces `environment` when set.
+    std::shared_ptr<const EnvironmentMap> environmentMap;
 };
 
 // The latest complete pass, as the frame loop reads it.

@@ -1,0 +1,31 @@
+// Reading the environment map on the GPU (lib/environment.glsl: layout and mip; docs/design.md §5.9).
+// GLSL only. Expects before inclusion: `frame` (FrameUniforms), `environmentMap` (sampler2D: the map with its
+// prefiltered mips, linear filtering, u repeated, v clamped), lib/constants, lib/cone.
+#ifndef VCT_ENVIRONMENT_SAMPLE_GLSL
+#define VCT_ENVIRONMENT_SAMPLE_GLSL
+
+#include "lib/environment.glsl"
+
+// Radiance arriving from unit direction `dir`, averaged over a cone of half-angle atan(tanHalfAngle) (the mip
+// whose texels are as wide as the cone).
+vec3 environmentCone(vec3 dir, float tanHalfAngle) {
+    const float mip = environmentMip(tanHalfAngle, float(textureSize(environmentMap, 0).x));
+    return textureLod(environmentMap, equirectUv(dir, frame.lighting.environmentRotation), mip).rgb;
+}
+
+// Radiance seen along `dir` at full resolution (the background).
+vec3 environmentRadiance(vec3 dir) {
+    return textureLod(environmentMap, equirectUv(dir, frame.lighting.environmentRotation), 0.0).rgb;
+}
+
+// The cosine-weighted mean radiance over the hemisphere about unit n (irradiance / π): the six diffuse cones'
+// weights (lib/cone.glsl), each reading the map at its aperture, the estimate the cone tracer makes of an open
+// sky, so that GI off and GI on agree where nothing occludes.
+vec3 environmentDiffuse(vec3 n) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+        sum += diffuseConeWeight(i) * environmentCone(diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF);
+    return sum;
+}
+
+#endif  // VCT_ENVIRONMENT_SAMPLE_GLSL
