@@ -96,6 +96,7 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     instances_ = scene.instances(0.0f);
+    deform_ = std::make_unique<GpuDeform>(context, scene, instances_);
     bounds_ = scene.bounds();
     instanceBuffer_ = vk::Buffer(context, std::max<size_t>(1, instances_.size()) * sizeof(gpu::GpuInstance),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::HostVisible);
@@ -238,6 +239,8 @@ void GpuScene::update(float timeSeconds, bool cut) {
     // Exact comparison: a scene without animation evaluates to the very same matrices every time.
     bool changed = !hasUpdated_ || next.size() != instances_.size();
     for (size_t i = 0; !changed && i < next.size(); ++i) changed = next[i].world != instances_[i].world;
+    // Joints or morph weights that moved change the geometry as a moved instance does.
+    if (deform_->update(next, world, cut)) changed = true;
     instances_ = std::move(next);
 
     const std::vector<gpu::GpuLight> previousLights = std::move(lights_);
