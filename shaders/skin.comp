@@ -63,8 +63,9 @@ void main() {
             weighted = true;
         }
     }
-    const DeformedVertex d = deformVertex(vec3(data[0], data[1], data[2]), vec3(data[3], data[4], data[5]),
-                                          vec4(data[8], data[9], data[10], data[11]), dp, dn, dt, skin, weighted);
+    const DeformedVertex d =
+        deformVertex(vec3(data[0], data[1], data[2]), vec3(data[3], data[4], data[5]),
+                     vec4(data[8], data[9], data[10], data[11]), dp, dn, dt, skin, weighted);
     data[0] = d.position.x;
     data[1] = d.position.y;
     data[2] = d.position.z;

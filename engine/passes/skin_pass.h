@@ -1,4 +1,4 @@
-// skin: the deformation of skinned and morphed instances (docs/design.md §2.3), first in the frame: a compute
+// skin: the deformation of skinned and morphed instances (docs/design.md §2.5), first in the frame: a compute
 // pass that writes their morphed and skinned vertices into the deformed vertex buffer (render/gpu_deform.h),
 // from which shadow, voxelize and gbuffer draw them (the static vertex buffer is untouched); last frame's
 // deformed vertices are copied aside first, for the G-buffer's motion vectors. Made only for scenes that have

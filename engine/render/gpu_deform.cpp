@@ -35,8 +35,8 @@ GpuDeform::GpuDeform(const vk::Context& context, const Scene& scene, const std::
             const bool skinned = instance.skin >= 0 && prim.skinVertexOffset >= 0;
             job.push.vertices = glm::uvec4(uint32_t(prim.vertexOffset), prim.vertexCount, deformedVertices_,
                                            skinned ? uint32_t(prim.skinVertexOffset) : VCT_SKIN_NONE);
-            job.push.morph = glm::uvec4(prim.morphDeltaOffset, std::min(prim.morphTargetCount, targets), weights,
-                                        joints);
+            job.push.morph =
+                glm::uvec4(prim.morphDeltaOffset, std::min(prim.morphTargetCount, targets), weights, joints);
             job.push.flags = glm::uvec4(0, jointCount, 0, 0);
             if (prim.vertexCount > 0) jobs_.push_back(job);
             deformedVertices_ += prim.vertexCount;
@@ -50,9 +50,11 @@ GpuDeform::GpuDeform(const vk::Context& context, const Scene& scene, const std::
     const VkDeviceSize maxRange = context.properties().limits.maxStorageBufferRange;
     if (bytes > maxRange)
         throw Error("scene '" + scene.name + "': its deformed vertices take " + std::to_string(bytes) +
-                    " bytes, more than the device's maxStorageBufferRange (" + std::to_string(maxRange) + ")");
+                    " bytes, more than the device's maxStorageBufferRange (" + std::to_string(maxRange) +
+                    ")");
     const VkBufferUsageFlags deformedUsage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kStorage |
-                                             VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+                                             VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     current_ = vk::Buffer(context, bytes, deformedUsage, vk::MemoryUsage::DeviceLocal);
     previous_ = vk::Buffer(context, bytes, deformedUsage, vk::MemoryUsage::DeviceLocal);
     if (!active()) return;  // the placeholders above are all a static scene needs
@@ -60,8 +62,8 @@ GpuDeform::GpuDeform(const vk::Context& context, const Scene& scene, const std::
                                          scene.skinVertices.size() * sizeof(SkinVertex), kStorage);
     morphDeltas_ = vk::Buffer::withData(context, scene.morphDeltas.data(),
                                         scene.morphDeltas.size() * sizeof(MorphDelta), kStorage);
-    jointMatrices_ = vk::Buffer(context, std::max(joints, 1u) * sizeof(glm::mat4), kStorage,
-                                vk::MemoryUsage::HostVisible);
+    jointMatrices_ =
+        vk::Buffer(context, std::max(joints, 1u) * sizeof(glm::mat4), kStorage, vk::MemoryUsage::HostVisible);
     morphWeights_ =
         vk::Buffer(context, std::max(weights, 1u) * sizeof(float), kStorage, vk::MemoryUsage::HostVisible);
     joints_.assign(joints, glm::mat4(1.0f));
@@ -73,7 +75,8 @@ int32_t GpuDeform::deformedOffset(uint32_t instance, uint32_t slot) const {
     return slotOffsets_[size_t(firstSlot_[instance]) + slot];
 }
 
-bool GpuDeform::update(const std::vector<Instance>& instances, const std::vector<glm::mat4>& world, bool cut) {
+bool GpuDeform::update(const std::vector<Instance>& instances, const std::vector<glm::mat4>& world,
+                       bool cut) {
     if (!active()) return false;
     std::vector<glm::mat4> joints(joints_.size());
     std::vector<float> weights(weights_.size());
@@ -92,8 +95,10 @@ bool GpuDeform::update(const std::vector<Instance>& instances, const std::vector
     hasUpdated_ = true;
     joints_ = std::move(joints);
     weights_ = std::move(weights);
-    if (!joints_.empty()) std::memcpy(jointMatrices_.mapped(), joints_.data(), joints_.size() * sizeof(glm::mat4));
-    if (!weights_.empty()) std::memcpy(morphWeights_.mapped(), weights_.data(), weights_.size() * sizeof(float));
+    if (!joints_.empty())
+        std::memcpy(jointMatrices_.mapped(), joints_.data(), joints_.size() * sizeof(glm::mat4));
+    if (!weights_.empty())
+        std::memcpy(morphWeights_.mapped(), weights_.data(), weights_.size() * sizeof(float));
     return changed;
 }
 

@@ -1,4 +1,4 @@
-// Skinned and morphed instances on the GPU (docs/design.md §2.3): the skin pass's inputs (the rest vertices'
+// Skinned and morphed instances on the GPU (docs/design.md §2.5): the skin pass's inputs (the rest vertices'
 // skin influences and morph deltas, uploaded once; this frame's joint matrices and morph weights, written by
 // update()) and its outputs, the deformed vertex buffer the draws and the voxelization take those instances'
 // vertices from, and last frame's copy of it (their motion vectors). A scene without skins or morph targets
@@ -52,8 +52,8 @@ class GpuDeform {
 
   private:
     const Scene& scene_;
-    std::vector<int32_t> firstSlot_;         // per instance: its first entry in slotOffsets_, -1 if static
-    std::vector<int32_t> slotOffsets_;       // per deformed instance × primitive: first deformed vertex
+    std::vector<int32_t> firstSlot_;    // per instance: its first entry in slotOffsets_, -1 if static
+    std::vector<int32_t> slotOffsets_;  // per deformed instance × primitive: first deformed vertex
     std::vector<uint32_t> jointBase_, weightBase_;  // per instance
     std::vector<Job> jobs_;
     uint32_t deformedVertices_ = 0;

@@ -90,7 +90,8 @@ std::vector<std::vector<float>> morphWeights(const Scene& scene, float timeSecon
         for (const WeightsChannel& ch : anim.weightChannels) {
             if (ch.node < 0 || size_t(ch.node) >= weights.size() || ch.times.empty()) continue;
             std::vector<float>& w = weights[size_t(ch.node)];
-            const size_t needed = ch.times.size() * ch.count * (ch.interpolation == Interpolation::CubicSpline ? 3 : 1);
+            const size_t needed =
+                ch.times.size() * ch.count * (ch.interpolation == Interpolation::CubicSpline ? 3 : 1);
             if (w.empty() || ch.count != w.size() || ch.values.size() < needed) continue;
             w = sampleWeights(ch, t);
         }
@@ -112,7 +113,8 @@ std::vector<glm::mat4> jointMatrices(const Scene& scene, int skin, const std::ve
     std::vector<glm::mat4> out(s.joints.size(), glm::mat4(1.0f));
     for (size_t j = 0; j < s.joints.size(); ++j) {
         const int node = s.joints[j];
-        const glm::mat4 jointWorld = node >= 0 && size_t(node) < world.size() ? world[size_t(node)] : glm::mat4(1.0f);
+        const glm::mat4 jointWorld =
+            node >= 0 && size_t(node) < world.size() ? world[size_t(node)] : glm::mat4(1.0f);
         out[j] = jointWorld * (j < s.inverseBindMatrices.size() ? s.inverseBindMatrices[j] : glm::mat4(1.0f));
     }
     return out;
@@ -124,7 +126,8 @@ std::vector<Vertex> deformPrimitive(const Scene& scene, const Instance& instance
     std::vector<Vertex> out(scene.vertices.begin() + prim.vertexOffset,
                             scene.vertices.begin() + prim.vertexOffset + prim.vertexCount);
     const bool skinned = instance.skin >= 0 && prim.skinVertexOffset >= 0;
-    const uint32_t targets = std::min<uint32_t>(prim.morphTargetCount, uint32_t(instance.morphWeights.size()));
+    const uint32_t targets =
+        std::min<uint32_t>(prim.morphTargetCount, uint32_t(instance.morphWeights.size()));
     // The order of skin.comp: targets in order, then the 8 influences in order.
     for (uint32_t v = 0; v < prim.vertexCount; ++v) {
         glm::vec3 dp(0.0f), dn(0.0f), dt(0.0f);
@@ -164,7 +167,8 @@ Aabb deformedBounds(const Scene& scene, const Instance& instance, const std::vec
         if (p >= scene.primitives.size()) continue;
         const Primitive& prim = scene.primitives[p];
         Aabb rest = prim.bounds;
-        const uint32_t targets = std::min<uint32_t>(prim.morphTargetCount, uint32_t(instance.morphWeights.size()));
+        const uint32_t targets =
+            std::min<uint32_t>(prim.morphTargetCount, uint32_t(instance.morphWeights.size()));
         if (!rest.empty() && targets > 0) {
             glm::vec3 lo(0.0f), hi(0.0f);
             for (uint32_t t = 0; t < targets; ++t) {
@@ -172,8 +176,9 @@ Aabb deformedBounds(const Scene& scene, const Instance& instance, const std::vec
                 if (w == 0.0f) continue;
                 Aabb delta;
                 for (uint32_t v = 0; v < prim.vertexCount; ++v)
-                    delta.extend(glm::vec3(
-                        scene.morphDeltas[prim.morphDeltaOffset + size_t(t) * prim.vertexCount + v].position));
+                    delta.extend(
+                        glm::vec3(scene.morphDeltas[prim.morphDeltaOffset + size_t(t) * prim.vertexCount + v]
+                                      .position));
                 if (delta.empty()) continue;
                 lo += glm::min(delta.min * w, delta.max * w);
                 hi += glm::max(delta.min * w, delta.max * w);
@@ -214,8 +219,10 @@ void validateDeformation(const Scene& scene) {
             size_t(prim.skinVertexOffset) + prim.vertexCount > scene.skinVertices.size())
             fail(where + "skin vertex range is past the end of the skin vertices");
         if (prim.morphTargetCount > 0) {
-            const size_t end = size_t(prim.morphDeltaOffset) + size_t(prim.morphTargetCount) * prim.vertexCount;
-            if (end > scene.morphDeltas.size()) fail(where + "morph target range is past the end of the deltas");
+            const size_t end =
+                size_t(prim.morphDeltaOffset) + size_t(prim.morphTargetCount) * prim.vertexCount;
+            if (end > scene.morphDeltas.size())
+                fail(where + "morph target range is past the end of the deltas");
             for (size_t d = prim.morphDeltaOffset; d < end; ++d) {
                 const MorphDelta& delta = scene.morphDeltas[d];
                 if (!finite(delta.position) || !finite(delta.normal) || !finite(delta.tangent))
@@ -232,12 +239,13 @@ void validateDeformation(const Scene& scene) {
     for (size_t n = 0; n < scene.nodes.size(); ++n) {
         const Node& node = scene.nodes[n];
         const std::string where = named("node", node.name, n) + ": ";
-        if (node.skin >= 0 && size_t(node.skin) >= scene.skins.size()) fail(where + "skin index is out of range");
+        if (node.skin >= 0 && size_t(node.skin) >= scene.skins.size())
+            fail(where + "skin index is out of range");
         if (node.mesh < 0 || size_t(node.mesh) >= scene.meshes.size()) continue;
         const uint32_t targets = meshMorphTargets(scene, node.mesh);
         if (!node.weights.empty() && node.weights.size() != targets)
-            fail(where + std::to_string(node.weights.size()) + " morph weights for " + std::to_string(targets) +
-                 " morph targets");
+            fail(where + std::to_string(node.weights.size()) + " morph weights for " +
+                 std::to_string(targets) + " morph targets");
         for (float w : node.weights)
             if (!std::isfinite(w)) fail(where + "a morph weight is not finite");
         if (node.skin < 0) continue;
@@ -245,9 +253,9 @@ void validateDeformation(const Scene& scene) {
         for (uint32_t p : scene.meshes[size_t(node.mesh)].primitives)
             if (p < scene.primitives.size() && scene.primitives[p].skinVertexOffset >= 0 &&
                 scene.primitives[p].maxJoint >= joints)
-                fail(where + "its mesh names joint " + std::to_string(scene.primitives[p].maxJoint) + ", but " +
-                     named("skin", scene.skins[size_t(node.skin)].name, size_t(node.skin)) + " has " +
-                     std::to_string(joints) + " joints");
+                fail(where + "its mesh names joint " + std::to_string(scene.primitives[p].maxJoint) +
+                     ", but " + named("skin", scene.skins[size_t(node.skin)].name, size_t(node.skin)) +
+                     " has " + std::to_string(joints) + " joints");
     }
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];

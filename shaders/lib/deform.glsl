@@ -16,14 +16,10 @@ struct DeformedVertex {
 
 // One influence added to a vertex's skin matrix (each language reads joints and weights its own way; both
 // start from mat4(0) and add the influences in the same order, so both sum the same floats).
-VCT_INLINE mat4 skinInfluence(mat4 skin, mat4 joint, float weight) {
-    return skin + joint * weight;
-}
+VCT_INLINE mat4 skinInfluence(mat4 skin, mat4 joint, float weight) { return skin + joint * weight; }
 
 // One target's delta added to a morphed attribute.
-VCT_INLINE vec3 morphInfluence(vec3 sum, vec3 delta, float weight) {
-    return sum + delta * weight;
-}
+VCT_INLINE vec3 morphInfluence(vec3 sum, vec3 delta, float weight) { return sum + delta * weight; }
 
 // Normals transform by the inverse transpose of the linear part. Its direction is the cofactor matrix's
 // times the determinant's sign, which also exists where a joint is scaled to 0 (no inverse: NaN).
