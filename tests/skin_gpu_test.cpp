@@ -31,7 +31,8 @@ Scene sceneNamed(const std::string& name) {
     if (name == "strip" || name == "morph") {
         const fs::path dir = test::freshOutputDir("skin_gpu/" + name);
         return loadGltf(
-            hostile::writeGltf(dir, name == "strip" ? twoBoneStrip() : morphTriangle(WeightSource::Linear)).string());
+            hostile::writeGltf(dir, name == "strip" ? twoBoneStrip() : morphTriangle(WeightSource::Linear))
+                .string());
     }
     return loadScene(sharedModel(name).string());
 }
@@ -117,10 +118,10 @@ TEST_P(SkinGpu, DeformedBufferMatchesTheCpuTwin) {
         renderer.render(fixedStepFrame(scene, frame, 0));
         if (frame != 0 && frame != 1 && frame != kLast) continue;
         const float t = float(frame) / 60.0f, previous = float(frame == 0 ? 0 : frame - 1) / 60.0f;
-        const float current =
-            maxDifference(scene, deform, readVertices(deform.currentBuffer(), deform.deformedVertexCount()), t);
-        const float last = maxDifference(scene, deform,
-                                         readVertices(deform.previousBuffer(), deform.deformedVertexCount()), previous);
+        const float current = maxDifference(
+            scene, deform, readVertices(deform.currentBuffer(), deform.deformedVertexCount()), t);
+        const float last = maxDifference(
+            scene, deform, readVertices(deform.previousBuffer(), deform.deformedVertexCount()), previous);
         EXPECT_LE(current, 1e-4f) << "frame " << frame;
         EXPECT_LE(last, 1e-4f) << "previous of frame " << frame;
     }
@@ -147,7 +148,8 @@ Pose poseAt(Renderer& renderer, const Scene& scene, uint32_t frame) {
     for (const Instance& instance : scene.instances(t))
         for (uint32_t p : scene.meshes[size_t(instance.mesh)].primitives) {
             std::vector<glm::vec3> positions;
-            for (const Vertex& v : deformPrimitive(scene, instance, p, jointMatrices(scene, instance.skin, world)))
+            for (const Vertex& v :
+                 deformPrimitive(scene, instance, p, jointMatrices(scene, instance.skin, world)))
                 positions.push_back(glm::vec3(instance.world * glm::vec4(v.position, 1.0f)));
             pose.world.push_back(std::move(positions));
         }
@@ -157,7 +159,8 @@ Pose poseAt(Renderer& renderer, const Scene& scene, uint32_t frame) {
 // Pixels whose centre a triangle covers (its projection, no depth test). `filter(primitive, triangle)` picks
 // the triangles.
 template <typename Filter>
-std::vector<uint8_t> coverage(const Scene& scene, const Pose& pose, const glm::mat4& viewProj, Filter filter) {
+std::vector<uint8_t> coverage(const Scene& scene, const Pose& pose, const glm::mat4& viewProj,
+                              Filter filter) {
     std::vector<uint8_t> mask(size_t(kWidth) * kHeight, 0);
     size_t slot = 0;
     for (const Instance& instance : scene.instances(0.0f))
@@ -168,10 +171,13 @@ std::vector<uint8_t> coverage(const Scene& scene, const Pose& pose, const glm::m
                 if (!filter(slot, tri)) continue;
                 glm::vec2 s[3];
                 for (int c = 0; c < 3; ++c) {
-                    const glm::vec4 clip = viewProj * glm::vec4(positions[scene.indices[prim.firstIndex + tri * 3 + c]], 1);
-                    s[c] = glm::vec2((clip.x / clip.w * 0.5f + 0.5f) * kWidth, (clip.y / clip.w * 0.5f + 0.5f) * kHeight);
+                    const glm::vec4 clip =
+                        viewProj * glm::vec4(positions[scene.indices[prim.firstIndex + tri * 3 + c]], 1);
+                    s[c] = glm::vec2((clip.x / clip.w * 0.5f + 0.5f) * kWidth,
+                                     (clip.y / clip.w * 0.5f + 0.5f) * kHeight);
                 }
-                const float area = (s[1].x - s[0].x) * (s[2].y - s[0].y) - (s[1].y - s[0].y) * (s[2].x - s[0].x);
+                const float area =
+                    (s[1].x - s[0].x) * (s[2].y - s[0].y) - (s[1].y - s[0].y) * (s[2].x - s[0].x);
                 if (area == 0.0f) continue;
                 for (uint32_t y = 0; y < kHeight; ++y)
                     for (uint32_t x = 0; x < kWidth; ++x) {
@@ -197,7 +203,8 @@ std::vector<uint8_t> eroded(const std::vector<uint8_t>& mask) {
         for (uint32_t x = 1; x + 1 < kWidth; ++x) {
             bool all = true;
             for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) all = all && mask[size_t(int(y) + dy) * kWidth + size_t(int(x) + dx)];
+                for (int dx = -1; dx <= 1; ++dx)
+                    all = all && mask[size_t(int(y) + dy) * kWidth + size_t(int(x) + dx)];
             out[size_t(y) * kWidth + x] = all;
         }
     return out;
@@ -205,7 +212,7 @@ std::vector<uint8_t> eroded(const std::vector<uint8_t>& mask) {
 
 struct PoseComparison {
     size_t entered = 0, enteredChanged = 0;  // covered in one pose only; of those, depth changed
-    size_t still = 0, stillSame = 0;         // seen only through still triangles; of those, depth and normal equal
+    size_t still = 0, stillSame = 0;  // seen only through still triangles; of those, depth and normal equal
     size_t moving = 0, movingWithMotion = 0;  // seen only through triangles that moved since the last frame;
                                               // of those, motion ≠ 0
     size_t stillZeroMotion = 0;
@@ -243,7 +250,8 @@ PoseComparison comparePoses(const std::string& name, uint32_t a, uint32_t b) {
     };
     auto all = [](size_t, uint32_t) { return true; };
     auto stillTri = [&](size_t slot, uint32_t tri) { return !movingTri(slot, tri); };
-    const std::vector<uint8_t> coverA = coverage(scene, poseA, viewProj, all), coverB = coverage(scene, poseB, viewProj, all);
+    const std::vector<uint8_t> coverA = coverage(scene, poseA, viewProj, all),
+                               coverB = coverage(scene, poseB, viewProj, all);
     const std::vector<uint8_t> movingA = coverage(scene, poseA, viewProj, movingTri),
                                movingB = coverage(scene, poseB, viewProj, movingTri),
                                stillB = coverage(scene, poseB, viewProj, stillTri);
@@ -270,7 +278,8 @@ PoseComparison comparePoses(const std::string& name, uint32_t a, uint32_t b) {
         if (still[i]) {
             ++r.still;
             bool same = dDepth == 0.0f;
-            for (int c = 0; c < 3; ++c) same = same && poseA.normal[i * 4 + size_t(c)] == poseB.normal[i * 4 + size_t(c)];
+            for (int c = 0; c < 3; ++c)
+                same = same && poseA.normal[i * 4 + size_t(c)] == poseB.normal[i * 4 + size_t(c)];
             r.stillSame += same;
             r.stillZeroMotion += poseB.motion[i * 4] == 0.0f && poseB.motion[i * 4 + 1] == 0.0f;
         }
@@ -285,10 +294,11 @@ PoseComparison comparePoses(const std::string& name, uint32_t a, uint32_t b) {
 void expectPoseChange(const std::string& name, uint32_t a, uint32_t b, size_t minEntered, size_t minStill) {
     const uint32_t before = vk::validationMessageCount();
     const PoseComparison r = comparePoses(name, a, b);
-    std::printf("%s frames %u/%u: entered %zu (%zu changed), still %zu (%zu same, %zu zero motion), moving %zu (%zu "
-                "with motion)\n",
-                name.c_str(), a, b, r.entered, r.enteredChanged, r.still, r.stillSame, r.stillZeroMotion, r.moving,
-                r.movingWithMotion);
+    std::printf(
+        "%s frames %u/%u: entered %zu (%zu changed), still %zu (%zu same, %zu zero motion), moving %zu (%zu "
+        "with motion)\n",
+        name.c_str(), a, b, r.entered, r.enteredChanged, r.still, r.stillSame, r.stillZeroMotion, r.moving,
+        r.movingWithMotion);
     EXPECT_GE(r.entered, minEntered);
     EXPECT_EQ(r.enteredChanged, r.entered);
     EXPECT_GE(r.still, minStill);
@@ -328,13 +338,13 @@ struct DirectAgreement {
 // `vct render --aux` of frame K against `vct reference --frame K --bounces 0` (direct light only) at 160x90.
 DirectAgreement directAgainstReference(const std::string& name, const fs::path& scene, uint32_t frame) {
     const fs::path dir = test::freshOutputDir("skin_gpu/reference-" + name);
-    const test::RunResult render =
-        test::runVct({"render", "--scene", scene.string(), "--size", "160x90", "--frames", std::to_string(frame + 1),
-                      "--voxels", "32", "--aux", "--validate", "--out", (dir / "vct").string()});
+    const test::RunResult render = test::runVct({"render", "--scene", scene.string(), "--size", "160x90",
+                                                 "--frames", std::to_string(frame + 1), "--voxels", "32",
+                                                 "--aux", "--validate", "--out", (dir / "vct").string()});
     EXPECT_TRUE(render.exited() && render.exitCode == 0) << render.describe();
-    const test::RunResult reference = test::runVct({"reference", "--scene", scene.string(), "--size", "160x90",
-                                                    "--frame", std::to_string(frame), "--spp", "16", "--bounces", "0",
-                                                    "--out", (dir / "reference").string()});
+    const test::RunResult reference = test::runVct({"reference", "--scene", scene.string(), "--size",
+                                                    "160x90", "--frame", std::to_string(frame), "--spp", "16",
+                                                    "--bounces", "0", "--out", (dir / "reference").string()});
     EXPECT_TRUE(reference.exited() && reference.exitCode == 0) << reference.describe();
     const ImageRgba32f a = readExr(dir / "vct" / "direct.exr"), b = readExr(dir / "reference" / "direct.exr");
     DirectAgreement r;
@@ -351,8 +361,8 @@ DirectAgreement directAgainstReference(const std::string& name, const fs::path& 
     }
     r.ratio = sumB > 0.0 ? sumA / sumB : 0.0;
     r.coverage = double(agree) / double(pixels);
-    std::printf("%s frame %u: direct vct / reference %.4f, lit pixels %zu, coverage agreement %.4f\n", name.c_str(),
-                frame, r.ratio, r.lit, r.coverage);
+    std::printf("%s frame %u: direct vct / reference %.4f, lit pixels %zu, coverage agreement %.4f\n",
+                name.c_str(), frame, r.ratio, r.lit, r.coverage);
     return r;
 }
 
@@ -360,17 +370,19 @@ TEST(SkinReference, StripDirectLightAgreesOnTheBentFrame) {
     const fs::path dir = test::freshOutputDir("skin_gpu/strip-file");
     const fs::path scene = hostile::writeGltf(dir, twoBoneStrip());
     const DirectAgreement r = directAgainstReference("strip", scene, 60);
+    // Measured: ratio 1.0072, coverage agreement 1.0000 (16 spp reference).
     EXPECT_GT(r.lit, 100u);
-    EXPECT_NEAR(r.ratio, 1.0, 0.05);
-    EXPECT_GE(r.coverage, 0.98);
+    EXPECT_NEAR(r.ratio, 1.0, 0.03);
+    EXPECT_GE(r.coverage, 0.99);
 }
 
 TEST(SkinReference, RiggedSimpleDirectLightAgreesAtFrameThirty) {
     if (!available("RiggedSimple")) GTEST_SKIP() << "shared scenes not available";
     const DirectAgreement r = directAgainstReference("RiggedSimple", sharedModel("RiggedSimple"), 30);
+    // Measured: ratio 1.0060, coverage agreement 0.9983 (edge pixels).
     EXPECT_GT(r.lit, 100u);
-    EXPECT_NEAR(r.ratio, 1.0, 0.05);
-    EXPECT_GE(r.coverage, 0.98);
+    EXPECT_NEAR(r.ratio, 1.0, 0.03);
+    EXPECT_GE(r.coverage, 0.99);
 }
 
 }  // namespace

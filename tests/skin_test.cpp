@@ -33,8 +33,8 @@ std::vector<Vertex> deformedAt(const Scene& scene, float t, size_t k = 0, size_t
 
 void expectNear(const glm::vec3& got, const glm::vec3& want, float tolerance, const std::string& what) {
     EXPECT_LE(glm::length(got - want), tolerance)
-        << what << ": got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", " << want.y
-        << ", " << want.z << ")";
+        << what << ": got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", "
+        << want.y << ", " << want.z << ")";
 }
 
 TEST(SkinCpu, TwoBoneStripTurnedByNinetyDegrees) {
@@ -49,8 +49,10 @@ TEST(SkinCpu, TwoBoneStripTurnedByNinetyDegrees) {
     ASSERT_EQ(at1.size(), size_t(2 * kStripColumns));
     for (int v = 0; v < 2 * kStripColumns; ++v) {
         // float's rotation of 90° from a quaternion is exact to ~1e-7.
-        expectNear(at1[size_t(v)].position, stripExpectedAtOneSecond(v), 1e-6f, "vertex " + std::to_string(v));
-        expectNear(at0[size_t(v)].position, scene.vertices[size_t(v)].position, 1e-6f, "rest vertex " + std::to_string(v));
+        expectNear(at1[size_t(v)].position, stripExpectedAtOneSecond(v), 1e-6f,
+                   "vertex " + std::to_string(v));
+        expectNear(at0[size_t(v)].position, scene.vertices[size_t(v)].position, 1e-6f,
+                   "rest vertex " + std::to_string(v));
         expectNear(at1[size_t(v)].normal, glm::vec3(0, 0, 1), 1e-6f, "normal " + std::to_string(v));
     }
     // The bounds hold the deformed strip.
@@ -62,16 +64,19 @@ TEST(SkinCpu, TwoBoneStripTurnedByNinetyDegrees) {
 
 TEST(SkinCpu, SecondWeightSetQuantisedAndUnnormalisedWeights) {
     for (const auto& [name, options] :
-         {std::pair{"second-set", StripOptions{.secondSet = true}}, {"quantised", StripOptions{.quantised = true}},
+         {std::pair{"second-set", StripOptions{.secondSet = true}},
+          {"quantised", StripOptions{.quantised = true}},
           {"scaled", StripOptions{.weightScale = 0.25f}},
-          {"quantised-second-scaled", StripOptions{.secondSet = true, .quantised = true, .weightScale = 0.5f}}}) {
+          {"quantised-second-scaled",
+           StripOptions{.secondSet = true, .quantised = true, .weightScale = 0.5f}}}) {
         SCOPED_TRACE(name);
         const Scene scene = loadWritten(std::string("strip-") + name, twoBoneStrip(options));
         const std::vector<Vertex> at1 = deformedAt(scene, 1.0f);
         // Quantised half weights are 128/255 and 127/255 before renormalising: 1/255 of the 1-unit lever.
         const float tolerance = options.quantised ? 5e-3f : 1e-6f;
         for (int v = 0; v < 2 * kStripColumns; ++v)
-            expectNear(at1[size_t(v)].position, stripExpectedAtOneSecond(v), tolerance, "vertex " + std::to_string(v));
+            expectNear(at1[size_t(v)].position, stripExpectedAtOneSecond(v), tolerance,
+                       "vertex " + std::to_string(v));
         for (const SkinVertex& s : scene.skinVertices)
             EXPECT_NEAR(glm::dot(s.weights0, glm::vec4(1)) + glm::dot(s.weights1, glm::vec4(1)), 1.0f, 1e-6f);
     }
@@ -80,7 +85,8 @@ TEST(SkinCpu, SecondWeightSetQuantisedAndUnnormalisedWeights) {
 TEST(SkinCpu, AllZeroWeightsKeepTheBindPoseWithANote) {
     const Scene scene = loadWritten("strip-zero", twoBoneStrip({.zeroWeights = true}));
     bool noted = false;
-    for (const std::string& note : scene.notes) noted |= note.find("all-zero skin weights") != std::string::npos;
+    for (const std::string& note : scene.notes)
+        noted |= note.find("all-zero skin weights") != std::string::npos;
     EXPECT_TRUE(noted);
     const std::vector<Vertex> at1 = deformedAt(scene, 1.0f);
     for (int v = 0; v < 2 * kStripColumns; ++v)
@@ -188,8 +194,10 @@ TEST(SkinSamples, SimpleMorphFollowsItsWeights) {
     const Scene scene = loadScene(sharedModel("SimpleMorph").string());
     // The file: base (0,0,0), (1,0,0), (0.5,0.5,0); targets move vertex 2 by (-1,1,0) and (1,1,0); weights
     // (0,0), (0,1), (1,1), (1,0), (0,0) at t = 0..4 s (LINEAR).
-    for (const auto& [t, want] : {std::pair{0.0f, glm::vec3(0.5f, 0.5f, 0)}, {0.5f, glm::vec3(1.0f, 1.0f, 0)},
-                                  {1.5f, glm::vec3(1.0f, 2.0f, 0)}, {2.5f, glm::vec3(0.0f, 2.0f, 0)}}) {
+    for (const auto& [t, want] : {std::pair{0.0f, glm::vec3(0.5f, 0.5f, 0)},
+                                  {0.5f, glm::vec3(1.0f, 1.0f, 0)},
+                                  {1.5f, glm::vec3(1.0f, 2.0f, 0)},
+                                  {2.5f, glm::vec3(0.0f, 2.0f, 0)}}) {
         const std::vector<Vertex> v = deformedAt(scene, t);
         expectNear(v[2].position, want, 1e-6f, "vertex 2 at t = " + std::to_string(t));
         expectNear(v[0].position, {0, 0, 0}, 0.0f, "vertex 0");

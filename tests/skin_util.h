@@ -35,7 +35,11 @@ inline int addAccessor(GltfScene& s, const void* data, size_t bytes, int compone
 }
 
 inline int addFloats(GltfScene& s, const std::vector<float>& values, const std::string& type) {
-    const size_t components = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : type == "VEC4" ? 4 : 16;
+    const size_t components = type == "SCALAR" ? 1
+                              : type == "VEC2" ? 2
+                              : type == "VEC3" ? 3
+                              : type == "VEC4" ? 4
+                                               : 16;
     return addAccessor(s, values.data(), values.size() * 4, kFloat, values.size() / components, type);
 }
 
@@ -57,11 +61,11 @@ inline float stripX(int column) {
 }
 
 struct StripOptions {
-    bool secondSet = false;     // joint 1's influence in JOINTS_1/WEIGHTS_1 (JOINTS_0 holds joint 0's)
-    bool quantised = false;     // unsigned byte joints and normalized unsigned byte weights
-    float weightScale = 1.0f;   // weights that do not sum to 1 (the loader renormalises)
-    bool zeroWeights = false;   // every weight 0: the bind pose, with a note
-    uint32_t badJoint = 0;      // > 0: vertex 4 names this joint (out of range for 2 joints)
+    bool secondSet = false;    // joint 1's influence in JOINTS_1/WEIGHTS_1 (JOINTS_0 holds joint 0's)
+    bool quantised = false;    // unsigned byte joints and normalized unsigned byte weights
+    float weightScale = 1.0f;  // weights that do not sum to 1 (the loader renormalises)
+    bool zeroWeights = false;  // every weight 0: the bind pose, with a note
+    uint32_t badJoint = 0;     // > 0: vertex 4 names this joint (out of range for 2 joints)
     bool nanInverseBind = false;
 };
 
@@ -78,7 +82,8 @@ inline GltfScene twoBoneStrip(const StripOptions& o = {}) {
         }
     std::vector<uint16_t> indices;
     for (uint16_t c = 0; c + 1 < kStripColumns; ++c) {
-        const uint16_t a = c, b = uint16_t(c + 1), d = uint16_t(c + kStripColumns), e = uint16_t(c + 1 + kStripColumns);
+        const uint16_t a = c, b = uint16_t(c + 1), d = uint16_t(c + kStripColumns),
+                       e = uint16_t(c + 1 + kStripColumns);
         indices.insert(indices.end(), {a, b, e, a, e, d});
     }
     // Per vertex: (joint, weight) of joint 0 and of joint 1.
@@ -123,26 +128,32 @@ inline GltfScene twoBoneStrip(const StripOptions& o = {}) {
     }
     s.doc["accessors"][0]["min"] = {0, 0, 0};
     s.doc["accessors"][0]["max"] = {2, 0.2, 0};
-    const int indexAccessor = addAccessor(s, indices.data(), indices.size() * 2, kUnsignedShort, indices.size(), "SCALAR");
+    const int indexAccessor =
+        addAccessor(s, indices.data(), indices.size() * 2, kUnsignedShort, indices.size(), "SCALAR");
     // Inverse bind matrices (column-major): joint 0 identity, joint 1 a translation by -1 along x.
-    std::vector<float> inverseBind = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+    std::vector<float> inverseBind = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0,  0, 0, 1,
                                       1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, 0, 0, 1};
     if (o.nanInverseBind) inverseBind[17] = std::nanf("");
     const int inverseBindAccessor = addFloats(s, inverseBind, "MAT4");
     const float h = std::sqrt(0.5f);
     const int times = addFloats(s, {0.0f, 1.0f, 2.0f}, "SCALAR");
     const int rotations = addFloats(s, {0, 0, 0, 1, 0, 0, h, h, 0, 0, 0, 1}, "VEC4");
-    s.doc["meshes"] = {{{"name", "strip"},
-                        {"primitives", {{{"attributes", attributes}, {"indices", indexAccessor}, {"material", 0}}}}}};
+    s.doc["meshes"] = {
+        {{"name", "strip"},
+         {"primitives", {{{"attributes", attributes}, {"indices", indexAccessor}, {"material", 0}}}}}};
     s.doc["materials"] = {{{"name", "grey"}, {"doubleSided", true}}};
     s.doc["nodes"] = {{{"name", "strip"}, {"mesh", 0}, {"skin", 0}},
                       {{"name", "root"}, {"children", {2}}},
                       {{"name", "tip"}, {"translation", {1, 0, 0}}}};
     s.doc["scenes"] = {{{"nodes", {0, 1}}}};
-    s.doc["skins"] = {{{"name", "bones"}, {"joints", {1, 2}}, {"inverseBindMatrices", inverseBindAccessor}, {"skeleton", 1}}};
+    s.doc["skins"] = {{{"name", "bones"},
+                       {"joints", {1, 2}},
+                       {"inverseBindMatrices", inverseBindAccessor},
+                       {"skeleton", 1}}};
     json sampler = {{"input", times}, {"output", rotations}, {"interpolation", "LINEAR"}};
     json channel = {{"sampler", 0}, {"target", {{"node", 2}, {"path", "rotation"}}}};
-    json animation = {{"name", "bend"}, {"samplers", json::array({sampler})}, {"channels", json::array({channel})}};
+    json animation = {
+        {"name", "bend"}, {"samplers", json::array({sampler})}, {"channels", json::array({channel})}};
     s.doc["animations"] = json::array({animation});
     return s;
 }
@@ -198,11 +209,13 @@ inline GltfScene morphTriangle(WeightSource source = WeightSource::MeshDefault, 
     s.doc["nodes"] = {{{"name", "triangle"}, {"mesh", 0}}};
     if (source == WeightSource::NodeOverride) s.doc["nodes"][0]["weights"] = {0.5};
     s.doc["scenes"] = {{{"nodes", {0}}}};
-    auto animate = [&](const std::vector<float>& times, const std::vector<float>& values, const char* interpolation) {
+    auto animate = [&](const std::vector<float>& times, const std::vector<float>& values,
+                       const char* interpolation) {
         const int in = addFloats(s, times, "SCALAR"), out = addFloats(s, values, "SCALAR");
         json sampler = {{"input", in}, {"output", out}, {"interpolation", interpolation}};
         json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
-        s.doc["animations"] = json::array({json{{"samplers", json::array({sampler})}, {"channels", json::array({channel})}}});
+        s.doc["animations"] =
+            json::array({json{{"samplers", json::array({sampler})}, {"channels", json::array({channel})}}});
     };
     if (source == WeightSource::Linear) animate({0, 2}, {0, 1}, "LINEAR");
     if (source == WeightSource::Step) animate({0, 1, 2}, {0, 0.5f, 1}, "STEP");
