@@ -15,7 +15,7 @@ set(VCT_LAYER_core_DEPENDS "")
 set(VCT_LAYER_vk_DIRS vk)  # Vulkan: device, buffers, images, pipelines, reflection of a shader's bindings
 set(VCT_LAYER_vk_DEPENDS core)
 set(VCT_LAYER_scene_DIRS scene)  # the scene in memory, glTF in and out, built-in scenes, cameras, input limits
-set(VCT_LAYER_scene_DEPENDS core)
+set(VCT_LAYER_scene_DEPENDS gpu core)  # gpu: the deformation math shared with skin.comp
 set(VCT_LAYER_io_DIRS io)  # files without a renderer: EXR/PNG images, OpenVDB voxel files, safe writes
 set(VCT_LAYER_io_DEPENDS gpu core scene)
 set(VCT_LAYER_render_DIRS render passes)  # the frame: renderer, frame targets, voxel grid, the passes

@@ -8,6 +8,9 @@
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
 layout(push_constant) uniform Push { DrawPushConstants draw; };
+// Last frame's deformed vertices (Vertex layout as floats), for skinned and morphed instances (draw.indices.z
+// = 1): their motion starts where the skin pass put them a frame ago (engine/passes/skin_pass.h).
+layout(set = 0, binding = 8) readonly buffer PreviousVertices { float previousVertexData[]; };
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
@@ -29,6 +32,11 @@ void main() {
     outUv = inUv;
     outWorld = world.xyz;
     outClip = frame.viewProj * world;
-    outPrevClip = frame.prevViewProj * (instance.prevWorld * vec4(inPosition, 1.0));
+    vec3 prevPosition = inPosition;
+    if (draw.indices.z != 0u) {
+        const uint v = uint(gl_VertexIndex) * 12u;
+        prevPosition = vec3(previousVertexData[v], previousVertexData[v + 1], previousVertexData[v + 2]);
+    }
+    outPrevClip = frame.prevViewProj * (instance.prevWorld * vec4(prevPosition, 1.0));
     gl_Position = outClip;
 }

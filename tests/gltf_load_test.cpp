@@ -233,8 +233,11 @@ TEST(GltfLoad, CamerasLightsMaterialsAndNotes) {
     EXPECT_EQ(s.materials[0].alphaMode, AlphaMode::Mask);
     EXPECT_TRUE(s.materials[0].doubleSided);
     EXPECT_FLOAT_EQ(s.materials[0].roughnessFactor, 0.3f);
-    ASSERT_EQ(s.notes.size(), 1u);
-    EXPECT_EQ(s.notes[0], "skins are not supported: rendering the bind pose");
+    // Skins load since issue 20 (was the note "skins are not supported: rendering the bind pose"): one skin of
+    // one joint, identity inverse bind matrices, and nothing to note.
+    ASSERT_EQ(s.skins.size(), 1u);
+    EXPECT_EQ(s.skins[0].inverseBindMatrices, std::vector<glm::mat4>{glm::mat4(1.0f)});
+    EXPECT_TRUE(s.notes.empty());
 
     Scene t = loadScene(validTriangle("texture_transform", [](json& g) {
                             g["extensionsUsed"] = {"KHR_texture_transform"};

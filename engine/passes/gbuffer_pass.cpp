@@ -6,8 +6,14 @@ namespace vct {
 
 namespace {
 
+// Last frame's deformed vertices (shaders/gbuffer.vert: the motion of skinned and morphed instances), written
+// by drawScene; the skin pass's barrier makes them visible to the vertex shader.
+constexpr uint32_t kPreviousVertices = 8;
+
 ResourceTable gbufferResources() {
     std::vector<ResourceRow> rows = sceneDrawRows();
+    rows.push_back({kPreviousVertices, Resource::perDraw("previousVertices", true), Access::Read,
+                    VK_SHADER_STAGE_VERTEX_BIT});
     // The colour attachments in the order of gbuffer.frag's outputs (location 0, 1, …), then the depth.
     for (Target target :
          {Target::normalRoughness, Target::baseColorMetallic, Target::emissiveOcclusion, Target::motion})
@@ -60,7 +66,7 @@ void GBufferPass::execute(const FrameContext& frame) {
     VkRect2D scissor{{0, 0}, {t.width, t.height}};
     vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
     vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
-    drawScene(frame, pipeline_, resources_);
+    drawScene(frame, pipeline_, resources_, kPreviousVertices);
     vkCmdEndRendering(frame.cmd);
 }
 

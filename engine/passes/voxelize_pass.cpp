@@ -5,7 +5,7 @@ namespace vct {
 namespace {
 
 // Binding numbers: shaders/voxelize.comp's (the per-draw ones are written in voxelizeInstances).
-constexpr uint32_t kBaseColor = 5, kEmissive = 6, kAccumulator = 7;
+constexpr uint32_t kVertices = 3, kBaseColor = 5, kEmissive = 6, kAccumulator = 7;
 
 // Binding numbers: shaders/voxel_resolve.comp's.
 ResourceTable resolveResources(VoxelGrid& grid) {
@@ -31,7 +31,9 @@ VoxelizePass::VoxelizePass(const vk::Context& context, VoxelGrid& grid)
                          {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
                           {1, Resource::scene(SceneBuffer::Instances), Access::Read},
                           {2, Resource::scene(SceneBuffer::Materials), Access::Read},
-                          {3, Resource::scene(SceneBuffer::Vertices), Access::Read},  // read as floats
+                          // Read as floats: the scene's static vertices, or the skin pass's deformed ones
+                          // (written per dispatch; the skin pass's barrier orders them).
+                          {kVertices, Resource::perDraw("vertices", true), Access::Read},
                           {4, Resource::scene(SceneBuffer::Indices), Access::Read},
                           // The material's textures, and the accumulator of the instances being voxelized.
                           {kBaseColor, Resource::perDraw("baseColorTexture"), Access::Sampled},
@@ -50,15 +52,20 @@ void VoxelizePass::voxelizeInstances(const FrameContext& frame, bool moving, con
     VkCommandBuffer cmd = frame.cmd;
     voxelize_.bind(cmd);
     int boundMaterial = -1;
+    VkBuffer boundVertices = VK_NULL_HANDLE;
+    const GpuDeform& deform = gpuScene.deform();
     const auto& instances = gpuScene.instances();
     for (uint32_t i = 0; i < instances.size(); ++i) {
         if (instances[i].moving != moving) continue;
-        for (uint32_t primitiveIndex : scene.meshes[size_t(instances[i].mesh)].primitives) {
-            const Primitive& primitive = scene.primitives[primitiveIndex];
+        const bool deformed = deform.deformed(i);
+        const VkBuffer vertices = deformed ? deform.currentBuffer() : gpuScene.vertexBuffer();
+        const auto& meshPrimitives = scene.meshes[size_t(instances[i].mesh)].primitives;
+        for (uint32_t k = 0; k < meshPrimitives.size(); ++k) {
+            const Primitive& primitive = scene.primitives[meshPrimitives[k]];
             const uint32_t triangles = primitive.indexCount / 3;
             if (triangles == 0) continue;
-            // Descriptors change only with the material (its textures), as in scene_draw.cpp.
-            if (int(primitive.material) != boundMaterial) {
+            // Descriptors change only with the material (its textures) or the vertex source, as in scene_draw.cpp.
+            if (int(primitive.material) != boundMaterial || vertices != boundVertices) {
                 const Material& material = scene.materials[primitive.material];
                 using Slot = GpuScene::Slot;
                 voxelizeResources_.writer(frame)
@@ -67,12 +74,15 @@ void VoxelizePass::voxelizeInstances(const FrameContext& frame, bool moving, con
                     .sampled(kEmissive, gpuScene.textureView(material, Slot::Emissive),
                              gpuScene.textureSampler(material, Slot::Emissive))
                     .storageBuffer(kAccumulator, accumulator.handle())
+                    .storageBuffer(kVertices, vertices)
                     .push(frame.context, cmd, voxelize_);
                 boundMaterial = int(primitive.material);
+                boundVertices = vertices;
             }
             gpu::VoxelizePushConstants push{};
             push.draw = glm::uvec4(i, primitive.material, primitive.firstIndex, triangles);
-            push.params = glm::uvec4(uint32_t(primitive.vertexOffset), 0, 0, 0);
+            const int32_t vertexOffset = deformed ? deform.deformedOffset(i, k) : primitive.vertexOffset;
+            push.params = glm::uvec4(uint32_t(vertexOffset), 0, 0, 0);
             voxelize_.pushConstants(cmd, &push, sizeof(push));
             vkCmdDispatch(cmd, (triangles + VCT_VOXEL_GROUP_SIZE - 1) / VCT_VOXEL_GROUP_SIZE, 1, 1);
         }

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "scene/deform.h"
 
 namespace vct::reference {
 
@@ -56,8 +57,10 @@ std::string nodeName(const Scene& scene, int node) {
 RayScene::RayScene(const Scene& scene, float timeSeconds, const MaterialEvaluator& materials)
     : scene_(scene), materials_(materials) {
     Aabb bounds;
+    const std::vector<glm::mat4> world = scene.evaluate(timeSeconds);
     for (const Instance& instance : scene.instances(timeSeconds)) {
         const Mesh& mesh = scene.meshes[size_t(instance.mesh)];
+        const std::vector<glm::mat4> joints = jointMatrices(scene, instance.skin, world);
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.world)));
         for (uint32_t primitiveIndex : mesh.primitives) {
             const Primitive& primitive = scene.primitives[primitiveIndex];
@@ -81,10 +84,11 @@ RayScene::RayScene(const Scene& scene, float timeSeconds, const MaterialEvaluato
             g.normalMatrix = std::isfinite(normalMatrix[0][0]) ? normalMatrix : glm::mat3(1.0f);
             g.vertexOffset = primitive.vertexOffset;
             g.positions.reserve(primitive.vertexCount);
+            if (instance.deformed)
+                g.deformedVertices = deformPrimitive(scene, instance, primitiveIndex, joints);
+            const Vertex* source = vertexData(g);
             for (uint32_t i = 0; i < primitive.vertexCount; ++i) {
-                const glm::vec3 p =
-                    glm::vec3(instance.world *
-                              glm::vec4(scene.vertices[size_t(primitive.vertexOffset) + i].position, 1.0f));
+                const glm::vec3 p = glm::vec3(instance.world * glm::vec4(source[i].position, 1.0f));
                 g.positions.push_back(p);
                 bounds.extend(p);
             }
@@ -188,9 +192,13 @@ bool RayScene::occluded(glm::vec3 origin, glm::vec3 direction, float tnear, floa
     return ray.tfar == -std::numeric_limits<float>::infinity();
 }
 
+const Vertex* RayScene::vertexData(const RayGeometry& g) const {
+    return g.deformedVertices.empty() ? &scene_.vertices[size_t(g.vertexOffset)] : g.deformedVertices.data();
+}
+
 glm::vec2 RayScene::uvAt(uint32_t geometry, uint32_t triangle, float u, float v) const {
     const RayGeometry& g = geometries_[geometry];
-    const Vertex* base = &scene_.vertices[size_t(g.vertexOffset)];
+    const Vertex* base = vertexData(g);
     const uint32_t* tri = &g.indices[size_t(triangle) * 3];
     return (1.0f - u - v) * base[tri[0]].uv + u * base[tri[1]].uv + v * base[tri[2]].uv;
 }
@@ -207,7 +215,7 @@ bool RayScene::rejects(uint32_t geometry, uint32_t triangle, float u, float v, g
 
 SurfaceGeometry RayScene::geometryAt(const RayHit& hit, glm::vec3 rayDirection) const {
     const RayGeometry& g = geometries_[hit.geometry];
-    const Vertex* base = &scene_.vertices[size_t(g.vertexOffset)];
+    const Vertex* base = vertexData(g);
     const uint32_t* tri = &g.indices[size_t(hit.triangle) * 3];
     const float w = 1.0f - hit.u - hit.v;
     SurfaceGeometry s;

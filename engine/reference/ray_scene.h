@@ -39,6 +39,9 @@ struct RayGeometry {
     std::vector<glm::vec3> positions;  // world space, the primitive's vertex range
     std::vector<uint32_t> indices;     // relative to positions
     int32_t vertexOffset = 0;          // of the primitive's range in Scene::vertices
+    // A skinned or morphed instance's vertices at the frame's time (scene/deform.h: the CPU twin of the skin
+    // pass), in the instance's space; empty for the others, which read Scene::vertices.
+    std::vector<Vertex> deformedVertices;
 };
 
 class RayScene {
@@ -66,6 +69,8 @@ class RayScene {
     float extent() const { return extent_; }
 
   private:
+    const Vertex* vertexData(const RayGeometry& g) const;
+
     const Scene& scene_;
     const MaterialEvaluator& materials_;
     std::vector<RayGeometry> geometries_;

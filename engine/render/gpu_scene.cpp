@@ -96,6 +96,7 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     instances_ = scene.instances(0.0f);
+    deform_ = std::make_unique<GpuDeform>(context, scene, instances_);
     bounds_ = scene.bounds();
     instanceBuffer_ = vk::Buffer(context, std::max<size_t>(1, instances_.size()) * sizeof(gpu::GpuInstance),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::HostVisible);
@@ -220,12 +221,6 @@ VkSampler GpuScene::textureSampler(const Material& material, Slot slot) const {
     return index >= 0 ? textureSamplers_[size_t(index)] : defaultSampler_;
 }
 
-Aabb GpuScene::meshBounds(int mesh) const {
-    Aabb box;
-    for (uint32_t p : scene_.meshes[size_t(mesh)].primitives) box.extend(scene_.primitives[p].bounds);
-    return box;
-}
-
 void GpuScene::update(float timeSeconds, bool cut) {
     std::vector<glm::quat> rotations;
     const std::vector<glm::mat4> world = scene_.evaluate(timeSeconds, &rotations);
@@ -249,10 +244,19 @@ void GpuScene::update(float timeSeconds, bool cut) {
         if (next[i].world != instances_[i].world) {
             changed = true;
             // Where the instance was and where it is: the voxels whose content its move changed.
-            const Aabb mesh = meshBounds(next[i].mesh);
-            movedBounds_.extend(mesh.transformed(instances_[i].world));
-            movedBounds_.extend(mesh.transformed(next[i].world));
+            movedBounds_.extend(instances_[i].bounds);
+            movedBounds_.extend(next[i].bounds);
         }
+    // Joints or morph weights that moved change the geometry as a moved instance does: the deformed instances'
+    // bounds before and after join the moved bounds.
+    if (deform_->update(next, world, cut)) {
+        changed = true;
+        for (size_t i = 0; onlyInstancesMoved_ && i < next.size(); ++i)
+            if (next[i].deformed) {
+                movedBounds_.extend(instances_[i].bounds);
+                movedBounds_.extend(next[i].bounds);
+            }
+    }
     instances_ = std::move(next);
 
     const std::vector<gpu::GpuLight> previousLights = std::move(lights_);

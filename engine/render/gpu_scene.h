@@ -3,9 +3,11 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "lib/shared.h"
+#include "render/gpu_deform.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
@@ -46,6 +48,9 @@ class GpuScene {
     bool onlyInstancesMovedInLastUpdate() const { return onlyInstancesMoved_; }
     const Aabb& movedBounds() const { return movedBounds_; }
     const std::vector<Instance>& instances() const { return instances_; }
+    // Skinned and morphed instances: their deformed vertices (the skin pass writes them; render/gpu_deform.h).
+    const GpuDeform& deform() const { return *deform_; }
+    GpuDeform& deform() { return *deform_; }
     uint32_t lightCount() const { return uint32_t(lights_.size()); }
     const std::vector<gpu::GpuLight>& lights() const { return lights_; }
     // The main light: the first directional or spot light, which casts the shadow map; -1 when none.
@@ -60,7 +65,6 @@ class GpuScene {
     VkSampler textureSampler(const Material& material, Slot slot) const;
 
   private:
-    Aabb meshBounds(int mesh) const;
     void uploadTextures();
     vk::Image uploadTexture(const Texture& texture);
     VkSampler samplerFor(TextureWrap s, TextureWrap t);
@@ -75,6 +79,7 @@ class GpuScene {
     VkSampler defaultSampler_ = VK_NULL_HANDLE;
     std::map<std::pair<int, int>, vk::Sampler> samplers_;
     std::vector<Instance> instances_;
+    std::unique_ptr<GpuDeform> deform_;
     std::vector<glm::mat4> previousWorld_;  // per instance
     std::vector<gpu::GpuLight> lights_;
     int shadowLight_ = -1;

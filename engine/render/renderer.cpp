@@ -10,6 +10,7 @@
 #include "passes/inject_pass.h"
 #include "passes/resample_pass.h"
 #include "passes/shadow_pass.h"
+#include "passes/skin_pass.h"
 #include "passes/trace_pass.h"
 #include "passes/upsample_pass.h"
 #include "passes/voxel_bounce_pass.h"
@@ -53,7 +54,10 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     environmentMap_ = std::make_shared<const EnvironmentMap>(sceneEnvironment(scene, settings_));
     gpuEnvironment_ = std::make_unique<GpuEnvironment>(context, *environmentMap_);
     const EnvironmentSource environment = gpuEnvironment_->source();
-    // The frame, in order (docs/design.md §2.1).
+    // The frame, in order (docs/design.md §2.1). Skinned and morphed instances are deformed before anything
+    // draws them; a scene without any has no skin pass.
+    if (gpuScene_.deform().active())
+        passes_.push_back(std::make_unique<SkinPass>(context, gpuScene_.deform()));
     passes_.push_back(std::make_unique<ShadowPass>(context));
     if (settings.gi) {
         // The voxel grid and its light (docs/design.md §5.1–5.2); inject reads the shadow map drawn just before.

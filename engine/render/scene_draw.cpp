@@ -23,7 +23,8 @@ std::vector<ResourceRow> sceneDrawRows() {
     };
 }
 
-void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources) {
+void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources,
+               uint32_t previousVerticesBinding) {
     const GpuScene& gpuScene = frame.scene;
     const Scene& scene = gpuScene.scene();
     VkCommandBuffer cmd = frame.cmd;
@@ -31,13 +32,22 @@ void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const Re
     VkDeviceSize offset = 0;
     VkBuffer vertexBuffer = gpuScene.vertexBuffer();
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+    const GpuDeform& deform = gpuScene.deform();
     vkCmdBindIndexBuffer(cmd, gpuScene.indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
 
     int boundMaterial = -1;
     const auto& instances = gpuScene.instances();
     for (uint32_t i = 0; i < instances.size(); ++i) {
-        for (uint32_t primitiveIndex : scene.meshes[size_t(instances[i].mesh)].primitives) {
-            const Primitive& primitive = scene.primitives[primitiveIndex];
+        // Deformed instances from the skin pass's buffer; the static vertex buffer for everything else.
+        const bool deformed = deform.deformed(i);
+        const VkBuffer source = deformed ? deform.currentBuffer() : gpuScene.vertexBuffer();
+        if (source != vertexBuffer) {
+            vertexBuffer = source;
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+        }
+        const auto& meshPrimitives = scene.meshes[size_t(instances[i].mesh)].primitives;
+        for (uint32_t k = 0; k < meshPrimitives.size(); ++k) {
+            const Primitive& primitive = scene.primitives[meshPrimitives[k]];
             const Material& material = scene.materials[primitive.material];
             // Descriptors change only with the material (textures); instances differ by push constant.
             if (int(primitive.material) != boundMaterial) {
@@ -51,8 +61,10 @@ void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const Re
                 auto [normalView, normalSampler] = texture(Slot::Normal);
                 auto [emissiveView, emissiveSampler] = texture(Slot::Emissive);
                 auto [aoView, aoSampler] = texture(Slot::Occlusion);
-                resources.writer(frame)
-                    .sampled(kBaseColor, baseView, baseSampler)
+                vk::DescriptorWriter writer = resources.writer(frame);
+                if (previousVerticesBinding != kNoBinding)
+                    writer.storageBuffer(previousVerticesBinding, deform.previousBuffer());
+                writer.sampled(kBaseColor, baseView, baseSampler)
                     .sampled(kMetallicRoughness, mrView, mrSampler)
                     .sampled(kNormal, normalView, normalSampler)
                     .sampled(kEmissive, emissiveView, emissiveSampler)
@@ -61,9 +73,10 @@ void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const Re
                 vkCmdSetCullMode(cmd, material.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
                 boundMaterial = int(primitive.material);
             }
-            gpu::DrawPushConstants push{glm::uvec4(i, primitive.material, 0, 0)};
+            gpu::DrawPushConstants push{glm::uvec4(i, primitive.material, deformed ? 1u : 0u, 0)};
             pipeline.pushConstants(cmd, &push, sizeof(push));
-            vkCmdDrawIndexed(cmd, primitive.indexCount, 1, primitive.firstIndex, primitive.vertexOffset, 0);
+            const int32_t vertexOffset = deformed ? deform.deformedOffset(i, k) : primitive.vertexOffset;
+            vkCmdDrawIndexed(cmd, primitive.indexCount, 1, primitive.firstIndex, vertexOffset, 0);
         }
     }
 }

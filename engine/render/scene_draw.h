@@ -12,7 +12,10 @@ namespace vct {
 // shaders/gbuffer.vert, gbuffer.frag and shadow.vert.
 std::vector<ResourceRow> sceneDrawRows();
 
-// `resources`: the pass's table, which starts with sceneDrawRows().
-void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources);
+// `resources`: the pass's table, which starts with sceneDrawRows(). Skinned and morphed instances are drawn
+// from the deformed vertex buffer (render/gpu_deform.h), with DrawPushConstants.indices.z = 1; where
+// `previousVerticesBinding` is a binding, last frame's deformed vertices are written there (gbuffer's motion).
+void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources,
+               uint32_t previousVerticesBinding = kNoBinding);
 
 }  // namespace vct

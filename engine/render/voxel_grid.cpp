@@ -60,10 +60,7 @@ Aabb voxelSceneBounds(const Scene& scene) {
     constexpr int kSamples = 32;
     for (int s = 1; s <= kSamples; ++s)
         for (const Instance& instance : scene.instances(duration * float(s) / float(kSamples)))
-            if (instance.moving)
-                for (uint32_t p : scene.meshes[size_t(instance.mesh)].primitives)
-                    if (p < scene.primitives.size())
-                        box.extend(scene.primitives[p].bounds.transformed(instance.world));
+            if (instance.moving) box.extend(instance.bounds);  // deformed too (skins, morph targets)
     return box;
 }
 

@@ -16,6 +16,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "scene/deform.h"
 #include "scene/input_limits.h"
 #include "scene/tangents.h"
 
@@ -210,7 +211,6 @@ class GltfImporter {
             if (!supported(ext)) fail("requires the unsupported extension " + ext);
         for (const std::string& ext : model_.extensionsUsed)
             if (!supported(ext)) note("extension " + ext + " is not supported: ignored");
-        if (model_.skins.size() > 0) note("skins are not supported: rendering the bind pose");
         checkTotals();
         for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(material(i));
         for (size_t i = 0; i < model_.meshes.size(); ++i) mesh(i);
@@ -218,6 +218,7 @@ class GltfImporter {
         for (const tinygltf::Camera& cam : model_.cameras) camera(cam);
         for (const tinygltf::Light& light : model_.lights) punctualLight(light);
         nodes();
+        skins();
         for (const tinygltf::Animation& anim : model_.animations) animation(anim);
         return std::move(scene_);
     }
@@ -240,7 +241,14 @@ class GltfImporter {
                 auto position = prim.attributes.find("POSITION");
                 add(elements, position == prim.attributes.end() ? 0 : count(position->second));
                 add(elements, count(prim.indices));
+                // Skin influences and morph target deltas are built per vertex too.
+                for (const auto& [name, index] : prim.attributes)
+                    if (name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0)
+                        add(elements, count(index));
+                for (const auto& target : prim.targets)
+                    for (const auto& [name, index] : target) add(elements, count(index));
             }
+        for (const tinygltf::Skin& skin : model_.skins) add(elements, count(skin.inverseBindMatrices));
         for (const tinygltf::Animation& animation : model_.animations)
             for (const tinygltf::AnimationChannel& channel : animation.channels)
                 if (channel.sampler >= 0 && size_t(channel.sampler) < animation.samplers.size()) {
@@ -459,7 +467,6 @@ class GltfImporter {
         for (size_t p = 0; p < src.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = src.primitives[p];
             std::string where = "mesh '" + out.name + "' primitive " + std::to_string(p);
-            if (!prim.targets.empty()) note("morph targets are not supported: rendering the base shape");
             auto attribute = [&](const char* name) {
                 auto it = prim.attributes.find(name);
                 return it == prim.attributes.end() ? -1 : it->second;
@@ -516,15 +523,18 @@ class GltfImporter {
                 for (size_t i = 0; i < pos.count; ++i) idx.push_back(uint32_t(i));
             }
             idx = triangles(idx, prim.mode, where);
-            idx.resize(idx.size() - idx.size() % 3);
+            idx.erase(idx.end() - std::ptrdiff_t(idx.size() % 3), idx.end());  // whole triangles only
             for (size_t i = 0; i < idx.size(); ++i)
                 if (idx[i] >= verts.size())
                     fail(where + ": index " + std::to_string(i) + " (= " + std::to_string(idx[i]) +
                          ") is out of range (" + std::to_string(verts.size()) + " vertices)");
 
+            DeformData deform = deformAttributes(prim, where, pos.count);
             if (!hasNormals) {
+                const std::vector<uint32_t> welded = idx;  // flat vertex i is welded vertex welded[i]
                 makeFlatNormals(verts, idx);
                 hasTangents = false;  // the file's tangents belonged to the welded vertices
+                deform.unweld(welded);
             }
             if (!hasTangents) generateTangents(verts, idx);
 
@@ -539,9 +549,24 @@ class GltfImporter {
             for (const Vertex& v : verts) out_prim.bounds.extend(v.position);
             scene_.vertices.insert(scene_.vertices.end(), verts.begin(), verts.end());
             scene_.indices.insert(scene_.indices.end(), idx.begin(), idx.end());
+            if (!deform.skin.empty()) {
+                out_prim.skinVertexOffset = int32_t(scene_.skinVertices.size());
+                out_prim.maxJoint = deform.maxJoint;
+                scene_.skinVertices.insert(scene_.skinVertices.end(), deform.skin.begin(), deform.skin.end());
+            }
+            out_prim.morphTargetCount = deform.targets;
+            out_prim.morphDeltaOffset = uint32_t(scene_.morphDeltas.size());
+            scene_.morphDeltas.insert(scene_.morphDeltas.end(), deform.deltas.begin(), deform.deltas.end());
             out.primitives.push_back(uint32_t(scene_.primitives.size()));
             scene_.primitives.push_back(out_prim);
         }
+        for (uint32_t p : out.primitives)
+            if (scene_.primitives[p].morphTargetCount !=
+                scene_.primitives[out.primitives[0]].morphTargetCount)
+                fail("mesh '" + out.name + "': its primitives have different numbers of morph targets (" +
+                     std::to_string(scene_.primitives[out.primitives[0]].morphTargetCount) + " and " +
+                     std::to_string(scene_.primitives[p].morphTargetCount) + ")");
+        for (double w : src.weights) out.weights.push_back(float(w));
         scene_.meshes.push_back(std::move(out));
     }
 
@@ -620,6 +645,8 @@ class GltfImporter {
             };
             node.mesh = check(src.mesh, scene_.meshes.size(), "mesh");
             node.camera = check(src.camera, scene_.cameras.size(), "camera");
+            node.skin = check(src.skin, model_.skins.size(), "skin");
+            for (double w : src.weights) node.weights.push_back(float(w));
             if (auto light = extensionNumber(src.extensions, "KHR_lights_punctual", "light")) {
                 if (!(*light >= 0.0 && *light < double(scene_.lights.size())))
                     fail("node '" + node.name + "': light index " + numberText(*light) + " is out of range");
@@ -667,7 +694,7 @@ class GltfImporter {
         anim.name = src.name;
         for (const tinygltf::AnimationChannel& ch : src.channels) {
             if (ch.target_path == "weights") {
-                note("morph target weight animation is not supported: ignored");
+                weightsChannel(anim, src, ch);
                 continue;
             }
             if (ch.target_node < 0 || size_t(ch.target_node) >= scene_.nodes.size() || ch.sampler < 0 ||
@@ -721,7 +748,226 @@ class GltfImporter {
             anim.duration = std::max(anim.duration, out.times.back());
             anim.channels.push_back(std::move(out));
         }
-        if (!anim.channels.empty()) scene_.animations.push_back(std::move(anim));
+        if (!anim.channels.empty() || !anim.weightChannels.empty())
+            scene_.animations.push_back(std::move(anim));
+    }
+
+    // ---- skins and morph targets (scene/deform.h) ----
+
+    // A primitive's skin influences and morph target deltas, parallel to its vertices.
+    struct DeformData {
+        std::vector<SkinVertex> skin;  // empty without JOINTS_0/WEIGHTS_0
+        uint32_t maxJoint = 0;         // the largest joint index with a weight
+        uint32_t targets = 0;
+        std::vector<MorphDelta> deltas;  // target-major
+        size_t vertexCount = 0;
+
+        // makeFlatNormals gave every triangle corner its own vertex: the same for the per-vertex data (normal
+        // deltas belonged to the welded normals and are dropped with them).
+        void unweld(const std::vector<uint32_t>& welded) {
+            if (!skin.empty()) {
+                std::vector<SkinVertex> flat(welded.size());
+                for (size_t i = 0; i < welded.size(); ++i) flat[i] = skin[welded[i]];
+                skin = std::move(flat);
+            }
+            std::vector<MorphDelta> flat(size_t(targets) * welded.size());
+            for (size_t t = 0; t < targets; ++t)
+                for (size_t i = 0; i < welded.size(); ++i) {
+                    flat[t * welded.size() + i] = deltas[t * vertexCount + welded[i]];
+                    flat[t * welded.size() + i].normal = glm::vec4(0.0f);
+                }
+            deltas = std::move(flat);
+            vertexCount = welded.size();
+        }
+    };
+
+    DeformData deformAttributes(const tinygltf::Primitive& prim, const std::string& where, size_t count) {
+        DeformData out;
+        out.vertexCount = count;
+        auto attribute = [&](const std::string& name) {
+            auto it = prim.attributes.find(name);
+            return it == prim.attributes.end() ? -1 : it->second;
+        };
+        auto chargeVertices = [&](int index, const std::string& what) {
+            if (index >= 0 && size_t(index) < model_.accessors.size())
+                charge(elementsLeft_, model_.accessors[size_t(index)].count, what, "vertices and indices");
+        };
+        // Two weight sets (8 influences per vertex); glTF allows more, which are named and left out.
+        for (int set = 0; set < 2; ++set) {
+            const std::string jointsName = "JOINTS_" + std::to_string(set),
+                              weightsName = "WEIGHTS_" + std::to_string(set);
+            const int joints = attribute(jointsName), weights = attribute(weightsName);
+            if (joints < 0 && weights < 0) continue;
+            if (joints < 0 || weights < 0)
+                fail(where + " has " +
+                     (joints < 0 ? weightsName + " without " + jointsName
+                                 : jointsName + " without " + weightsName));
+            for (auto [index, name] : {std::pair{joints, jointsName}, {weights, weightsName}}) {
+                if (size_t(index) >= model_.accessors.size())
+                    fail(where + " " + name + ": accessor index out of range");
+                const tinygltf::Accessor& a = model_.accessors[size_t(index)];
+                const bool integer = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                     a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+                if (name == jointsName
+                        ? !integer
+                        : !(a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || (integer && a.normalized)))
+                    fail(where + " " + name + " has component type " + std::to_string(a.componentType) +
+                         (name == jointsName ? ", not unsigned byte or short"
+                                             : ", not float or normalized unsigned byte or short"));
+                chargeVertices(index, where + " " + name);
+            }
+            const AccessorData j = accessor(joints, where + " " + jointsName);
+            const AccessorData w = accessor(weights, where + " " + weightsName);
+            for (const auto& [a, name] : {std::pair{&j, jointsName}, {&w, weightsName}})
+                if (a->count != count || a->components != 4)
+                    fail(where + " " + name + " has " + std::to_string(a->count) + " elements of " +
+                         std::to_string(a->components) + " components, expected " + std::to_string(count) +
+                         " VEC4");
+            if (out.skin.empty()) out.skin.resize(count);
+            for (size_t v = 0; v < count; ++v)
+                for (int c = 0; c < 4; ++c) {
+                    const double weight = w.at(v, c);
+                    if (!(weight >= 0.0) || !std::isfinite(weight))
+                        fail(where + " " + weightsName + " of vertex " + std::to_string(v) + " is " +
+                             numberText(weight) + ", not finite and non-negative");
+                    const auto joint = uint32_t(j.at(v, c));
+                    SkinVertex& s = out.skin[v];
+                    (set == 0 ? s.joints0 : s.joints1)[c] = joint;
+                    (set == 0 ? s.weights0 : s.weights1)[c] = float(weight);
+                    if (weight > 0.0) out.maxJoint = std::max(out.maxJoint, joint);
+                }
+        }
+        if (attribute("JOINTS_2") >= 0 || attribute("WEIGHTS_2") >= 0)
+            note(
+                "skin weight sets past JOINTS_1/WEIGHTS_1 are not supported: left out (the others "
+                "renormalised)");
+        if (!out.skin.empty() && attribute("JOINTS_0") < 0) fail(where + " has JOINTS_1 without JOINTS_0");
+        // Weights that do not sum to 1 are renormalised (quantised weights rarely do exactly); all zero: the
+        // vertex keeps its bind pose.
+        size_t unweighted = 0;
+        for (SkinVertex& s : out.skin) {
+            const float sum = s.weights0.x + s.weights0.y + s.weights0.z + s.weights0.w + s.weights1.x +
+                              s.weights1.y + s.weights1.z + s.weights1.w;
+            if (!(sum > 0.0f)) {
+                ++unweighted;
+            } else if (sum != 1.0f) {
+                s.weights0 /= sum;
+                s.weights1 /= sum;
+            }
+        }
+        if (unweighted > 0)
+            note(where + ": " + std::to_string(unweighted) +
+                 " vertices have all-zero skin weights: drawn in the bind pose");
+
+        out.targets = uint32_t(prim.targets.size());
+        out.deltas.resize(size_t(out.targets) * count);
+        for (size_t t = 0; t < prim.targets.size(); ++t)
+            for (const auto& [name, index] : prim.targets[t]) {
+                const int slot = name == "POSITION" ? 0 : name == "NORMAL" ? 1 : name == "TANGENT" ? 2 : -1;
+                if (slot < 0) {
+                    note("morph target attribute " + printableText(name, 40) + " is not supported: ignored");
+                    continue;
+                }
+                const std::string what = where + " morph target " + std::to_string(t) + " " + name;
+                chargeVertices(index, what);
+                const AccessorData a = accessor(index, what);
+                if (a.count != count || a.components != 3)
+                    fail(what + " has " + std::to_string(a.count) + " elements of " +
+                         std::to_string(a.components) + " components, expected " + std::to_string(count) +
+                         " VEC3");
+                for (size_t v = 0; v < count; ++v) {
+                    const glm::vec4 d(a.at(v, 0), a.at(v, 1), a.at(v, 2), 0.0);
+                    if (!std::isfinite(d.x + d.y + d.z))
+                        fail(what + " of vertex " + std::to_string(v) + " is not finite");
+                    MorphDelta& delta = out.deltas[t * count + v];
+                    (slot == 0 ? delta.position : slot == 1 ? delta.normal : delta.tangent) = d;
+                }
+            }
+        return out;
+    }
+
+    void skins() {
+        for (size_t i = 0; i < model_.skins.size(); ++i) {
+            const tinygltf::Skin& src = model_.skins[i];
+            Skin skin;
+            skin.name = src.name.empty() ? "skin " + std::to_string(i) : src.name;
+            const std::string where = "skin '" + skin.name + "'";
+            if (src.joints.empty()) fail(where + " has no joints");
+            for (int joint : src.joints)
+                if (joint < 0 || size_t(joint) >= scene_.nodes.size())
+                    fail(where + ": joint node " + std::to_string(joint) + " is out of range (" +
+                         std::to_string(scene_.nodes.size()) + " nodes)");
+            if (src.skeleton >= 0 && size_t(src.skeleton) >= scene_.nodes.size())
+                fail(where + ": skeleton node " + std::to_string(src.skeleton) + " is out of range");
+            skin.joints = src.joints;
+            skin.skeleton = src.skeleton;
+            skin.inverseBindMatrices.assign(skin.joints.size(), glm::mat4(1.0f));  // glTF: absent = identity
+            if (src.inverseBindMatrices >= 0) {
+                const std::string what = where + " inverseBindMatrices";
+                if (size_t(src.inverseBindMatrices) < model_.accessors.size())
+                    charge(elementsLeft_, model_.accessors[size_t(src.inverseBindMatrices)].count, what,
+                           "vertices and indices");
+                const AccessorData m = accessor(src.inverseBindMatrices, what);
+                if (m.components != 16 || m.count != skin.joints.size())
+                    fail(what + " has " + std::to_string(m.count) + " elements of " +
+                         std::to_string(m.components) + " components, expected " +
+                         std::to_string(skin.joints.size()) + " MAT4 (one per joint)");
+                for (size_t j = 0; j < m.count; ++j)
+                    for (int c = 0; c < 16; ++c) {
+                        const double value = m.at(j, c);
+                        if (!std::isfinite(float(value)))
+                            fail(what + ": matrix " + std::to_string(j) + " is not finite");
+                        skin.inverseBindMatrices[j][c / 4][c % 4] = float(value);  // column-major, as glm
+                    }
+            }
+            scene_.skins.push_back(std::move(skin));
+        }
+    }
+
+    void weightsChannel(Animation& anim, const tinygltf::Animation& src,
+                        const tinygltf::AnimationChannel& ch) {
+        const std::string where = "animation '" + src.name + "' channel weights";
+        if (ch.target_node < 0 || size_t(ch.target_node) >= scene_.nodes.size() || ch.sampler < 0 ||
+            size_t(ch.sampler) >= src.samplers.size())
+            fail("animation '" + src.name + "': channel has an invalid node or sampler");
+        const uint32_t targets = meshMorphTargets(scene_, scene_.nodes[size_t(ch.target_node)].mesh);
+        if (targets == 0) {
+            note("weights channels on nodes without morph targets are ignored");
+            return;
+        }
+        const tinygltf::AnimationSampler& sampler = src.samplers[size_t(ch.sampler)];
+        if (!sampler.interpolation.empty() && sampler.interpolation != "LINEAR" &&
+            sampler.interpolation != "STEP" && sampler.interpolation != "CUBICSPLINE")
+            fail("animation '" + src.name + "': interpolation '" + printableText(sampler.interpolation, 40) +
+                 "' is not LINEAR, STEP or CUBICSPLINE");
+        for (int index : {sampler.input, sampler.output})
+            if (index >= 0 && size_t(index) < model_.accessors.size())
+                charge(keysLeft_, model_.accessors[size_t(index)].count, where, "animation keys");
+        WeightsChannel out;
+        out.node = ch.target_node;
+        out.count = targets;
+        out.interpolation = sampler.interpolation == "STEP"          ? Interpolation::Step
+                            : sampler.interpolation == "CUBICSPLINE" ? Interpolation::CubicSpline
+                                                                     : Interpolation::Linear;
+        const AccessorData in = accessor(sampler.input, where + " input");
+        const AccessorData values = accessor(sampler.output, where + " output");
+        const size_t perKey = (out.interpolation == Interpolation::CubicSpline ? 3 : 1) * size_t(targets);
+        if (in.count == 0 || values.components != 1 || values.count != in.count * perKey)
+            fail(where + ": " + std::to_string(values.count) + " output values do not match " +
+                 std::to_string(in.count) + " key times x " + std::to_string(targets) + " morph targets");
+        for (size_t k = 0; k < in.count; ++k) {
+            const double t = in.at(k, 0);
+            if (!std::isfinite(t) || (k > 0 && t < out.times.back()))
+                fail(where + ": key times are not increasing");
+            out.times.push_back(float(t));
+        }
+        for (size_t k = 0; k < values.count; ++k) {
+            if (!std::isfinite(float(values.at(k, 0))))
+                fail(where + ": key value " + std::to_string(k) + " is not finite");
+            out.values.push_back(float(values.at(k, 0)));
+        }
+        anim.duration = std::max(anim.duration, out.times.back());
+        anim.weightChannels.push_back(std::move(out));
     }
 
     const tinygltf::Model& model_;
@@ -984,10 +1230,7 @@ void checkAnimatedExtent(const Scene& scene) {
     for (int k = 1; k <= 32; ++k) times.push_back(duration * float(k) / 32.0f);
     Aabb box = scene.bounds();
     for (float t : times)
-        for (const Instance& instance : scene.instances(t))
-            for (uint32_t p : scene.meshes[size_t(instance.mesh)].primitives)
-                if (p < scene.primitives.size())
-                    box.extend(scene.primitives[p].bounds.transformed(instance.world));
+        for (const Instance& instance : scene.instances(t)) box.extend(instance.bounds);
     if (box.empty()) return;
     const glm::dvec3 size = glm::dvec3(box.max) - glm::dvec3(box.min);
     const double extent = std::max(size.x, std::max(size.y, size.z));

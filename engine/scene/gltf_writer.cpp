@@ -98,6 +98,10 @@ class GltfExporter {
     explicit GltfExporter(const Scene& scene) : scene_(scene) {}
 
     tinygltf::Model run() {
+        // Not written yet: refused rather than exported as the bind pose (the file would not load back as the
+        // same scene).
+        if (!scene_.skins.empty() || !scene_.morphDeltas.empty())
+            fail("skins and morph targets are not exported yet (the file would lose them)");
         model_.asset.version = "2.0";
         model_.asset.generator = "vct export-scene";
         model_.buffers.emplace_back();

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "scene/deform.h"
 #include "scene/input_limits.h"
 
 namespace vct {
@@ -265,21 +266,48 @@ std::vector<bool> Scene::animatedNodes() const {
 std::vector<Instance> Scene::instances(float timeSeconds) const {
     std::vector<glm::mat4> world = evaluate(timeSeconds);
     std::vector<bool> animated = animatedNodes();
+    const bool deforms = !skins.empty() || !morphDeltas.empty();
+    std::vector<std::vector<float>> weights;
+    std::vector<bool> weightAnimated;
+    if (deforms) {
+        weights = morphWeights(*this, timeSeconds);
+        weightAnimated = weightAnimatedNodes(*this);
+    }
     std::vector<Instance> out;
     for (int n : topologicalOrder(nodes, roots)) {
         const Node& node = nodes[static_cast<size_t>(n)];
         if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= meshes.size()) continue;
-        out.push_back(
-            Instance{n, node.mesh, world[static_cast<size_t>(n)], animated[static_cast<size_t>(n)]});
+        Instance instance{n, node.mesh, world[static_cast<size_t>(n)], animated[static_cast<size_t>(n)]};
+        if (deforms) {
+            // A skinned mesh is placed by its joints alone (glTF ignores its node's transform); it moves when a
+            // joint does. Morphed meshes move when their weights are animated.
+            instance.skin = node.skin >= 0 && static_cast<size_t>(node.skin) < skins.size() ? node.skin : -1;
+            instance.morphWeights = weights[static_cast<size_t>(n)];
+            instance.deformed = instance.skin >= 0 || !instance.morphWeights.empty();
+            if (instance.skin >= 0) {
+                instance.world = glm::mat4(1.0f);
+                instance.moving = false;
+                for (int joint : skins[static_cast<size_t>(instance.skin)].joints)
+                    if (joint >= 0 && static_cast<size_t>(joint) < animated.size())
+                        instance.moving = instance.moving || animated[static_cast<size_t>(joint)];
+            }
+            instance.moving = instance.moving || weightAnimated[static_cast<size_t>(n)];
+        }
+        if (instance.deformed) {
+            instance.bounds = deformedBounds(*this, instance, jointMatrices(*this, instance.skin, world));
+        } else {
+            for (uint32_t p : meshes[static_cast<size_t>(node.mesh)].primitives)
+                if (p < primitives.size())
+                    instance.bounds.extend(primitives[p].bounds.transformed(instance.world));
+        }
+        out.push_back(std::move(instance));
     }
     return out;
 }
 
 Aabb Scene::bounds() const {
     Aabb box;
-    for (const Instance& inst : instances(0.0f))
-        for (uint32_t p : meshes[static_cast<size_t>(inst.mesh)].primitives)
-            if (p < primitives.size()) box.extend(primitives[p].bounds.transformed(inst.world));
+    for (const Instance& inst : instances(0.0f)) box.extend(inst.bounds);
     return box;
 }
 
@@ -346,6 +374,11 @@ void Scene::normalizeScale() {
         for (int k = 0; k < 3; ++k) verticesLeaveFloat |= subnormalOrInfinite(scaled(v.position[k]));
     if (!verticesLeaveFloat) {
         for (Vertex& v : vertices) v.position = scaled3(v.position);
+        // Skins and morph targets: world' = S world S^-1 for every node, so inverse bind matrices (inverses of
+        // joint worlds) become S IBM S^-1 (their translation scaled), and position deltas scale like positions.
+        for (Skin& skin : skins)
+            for (glm::mat4& m : skin.inverseBindMatrices) m[3] = glm::vec4(scaled3(glm::vec3(m[3])), m[3].w);
+        for (MorphDelta& d : morphDeltas) d.position = glm::vec4(scaled3(glm::vec3(d.position)), d.position.w);
         for (Primitive& prim : primitives)
             if (!prim.bounds.empty()) prim.bounds = Aabb{scaled3(prim.bounds.min), scaled3(prim.bounds.max)};
         for (Node& node : nodes) {
@@ -623,6 +656,7 @@ void Scene::validate() const {
     validateMaterials(*this);
     validateMeshes(*this);
     validateNodes(*this);
+    validateDeformation(*this);
     validateLights(*this);
     validateCameras(*this);
     validateWorldTransforms(*this);

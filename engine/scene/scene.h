@@ -1,5 +1,6 @@
 // The CPU-side scene: what a glTF file (or a built-in scene made in code) holds, in one flat form that the
-// renderer uploads once. Per frame only the node transforms change (rigid TRS animation).
+// renderer uploads once. Per frame the node transforms change (rigid TRS animation), and skinned or morphed
+// meshes deform (their joint matrices and morph weights change; scene/deform.h, passes/skin_pass.h).
 #pragma once
 
 #include <cstdint>
@@ -79,12 +80,47 @@ struct Primitive {
     int32_t vertexOffset = 0;
     uint32_t vertexCount = 0;
     uint32_t material = 0;  // index into Scene::materials (a default material is always present)
-    Aabb bounds;            // object space
+    Aabb bounds;            // object space (the rest shape: scene/deform.h bounds the deformed one)
+    // Skinning and morphing (kept outside the Vertex, in Scene::skinVertices and Scene::morphDeltas): the first
+    // of vertexCount SkinVertex, -1 when the primitive has no JOINTS_0/WEIGHTS_0; its morph targets'
+    // deltas, target-major (target t, vertex v at morphDeltaOffset + t * vertexCount + v).
+    int32_t skinVertexOffset = -1;
+    uint32_t maxJoint = 0;  // the largest joint index its skin vertices name (checked against each skin)
+    uint32_t morphTargetCount = 0;
+    uint32_t morphDeltaOffset = 0;
+};
+
+// The joint influences of one skinned vertex: up to 8 (glTF JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1),
+// indices into the skin's joint list, weights summing to 1 (all 0: the vertex stays in the bind pose). The
+// layout of shaders/skin.comp's SkinVertex (std430).
+struct SkinVertex {
+    glm::uvec4 joints0{0u};
+    glm::uvec4 joints1{0u};
+    glm::vec4 weights0{0.0f};
+    glm::vec4 weights1{0.0f};
+};
+static_assert(sizeof(SkinVertex) == 64);
+
+// One vertex's offsets in one morph target (xyz; w is 0): the layout of shaders/skin.comp's MorphDelta.
+struct MorphDelta {
+    glm::vec4 position{0.0f};
+    glm::vec4 normal{0.0f};
+    glm::vec4 tangent{0.0f};
+};
+static_assert(sizeof(MorphDelta) == 48);
+
+// glTF skin: the joint nodes and their inverse bind matrices (identity when the file gives none).
+struct Skin {
+    std::string name;
+    std::vector<int> joints;
+    std::vector<glm::mat4> inverseBindMatrices;  // one per joint
+    int skeleton = -1;                           // informative only (glTF: joints carry the pose)
 };
 
 struct Mesh {
     std::string name;
     std::vector<uint32_t> primitives;  // indices into Scene::primitives
+    std::vector<float> weights;        // default morph target weights (one per target; empty: all 0)
 };
 
 enum class LightType { Directional, Point, Spot };
@@ -121,6 +157,8 @@ struct Node {
     int mesh = -1;
     int camera = -1;
     int light = -1;
+    int skin = -1;               // index into Scene::skins: the node's mesh is skinned by it
+    std::vector<float> weights;  // morph weights overriding the mesh's (empty: the mesh's)
     glm::mat4 localMatrix() const;
 };
 
@@ -137,18 +175,33 @@ struct AnimationChannel {
     std::vector<glm::vec4> values;
 };
 
+// A channel with path "weights": all the node's morph target weights per key (`count` of them; for CubicSpline
+// in-tangents, values, out-tangents of `count` each, as in glTF).
+struct WeightsChannel {
+    int node = -1;
+    Interpolation interpolation = Interpolation::Linear;
+    uint32_t count = 0;
+    std::vector<float> times;
+    std::vector<float> values;
+};
+
 struct Animation {
     std::string name;
     std::vector<AnimationChannel> channels;
     float duration = 0.0f;  // max key time; playback loops
+    std::vector<WeightsChannel> weightChannels;
 };
 
 // One mesh placed in the world for one frame.
 struct Instance {
     int node = -1;
     int mesh = -1;
-    glm::mat4 world{1.0f};
-    bool moving = false;  // transform animated (the node or an ancestor has a channel)
+    glm::mat4 world{1.0f};  // identity for a skinned instance: its joints place it (glTF)
+    bool moving = false;    // transform animated (the node or an ancestor has a channel), or its deformation
+    int skin = -1;          // Scene::skins index when the mesh is skinned
+    bool deformed = false;  // skinned or morphed: drawn from the deformed vertex buffer
+    std::vector<float> morphWeights;  // one per morph target of its mesh (empty without targets)
+    Aabb bounds;                      // world space, deformed (conservative for deformed instances)
 };
 
 struct Scene {
@@ -164,6 +217,9 @@ struct Scene {
     std::vector<Node> nodes;
     std::vector<int> roots;
     std::vector<Animation> animations;
+    std::vector<Skin> skins;
+    std::vector<SkinVertex> skinVertices;  // Primitive::skinVertexOffset
+    std::vector<MorphDelta> morphDeltas;   // Primitive::morphDeltaOffset
     std::vector<std::string>
         notes;  // things the loader changed or added, printed once ("no light: added ...")
 

@@ -123,8 +123,19 @@ struct GpuInstance {
 
 // Push constants of the scene-drawing passes.
 struct DrawPushConstants {
-    uvec4 indices;  // x: instance, y: material
+    uvec4 indices;  // x: instance, y: material, z: 1 when drawn from the skin pass's deformed vertices
 };
+
+// skin (skinned and morphed primitives → the deformed vertex buffer): one dispatch per instance × primitive,
+// one invocation per vertex.
+#define VCT_SKIN_GROUP_SIZE 64
+struct SkinPushConstants {
+    uvec4 vertices;  // x: first rest vertex, y: vertex count, z: first deformed vertex, w: first SkinVertex
+                     // (VCT_SKIN_NONE: not skinned)
+    uvec4 morph;     // x: first MorphDelta, y: target count, z: first morph weight, w: first joint matrix
+    uvec4 flags;     // x: 1 also writes the previous-frame buffer (a cut: no motion), y: joint count
+};
+#define VCT_SKIN_NONE 0xFFFFFFFFu
 
 // ---- binding numbers ----
 // Each pass declares its resources, with their binding numbers, once in its resource table
@@ -207,6 +218,7 @@ static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(GpuInstance) == 192);
 static_assert(sizeof(DrawPushConstants) == 16);
 static_assert(sizeof(VoxelizePushConstants) == 48);
+static_assert(sizeof(SkinPushConstants) == 48);
 static_assert(sizeof(InjectPushConstants) == 32);
 static_assert(sizeof(VoxelMipsPushConstants) == 16);
 }  // namespace vct::gpu
