@@ -92,7 +92,8 @@ TEST(ShadowPcf, FourTapsEqualNineTaps) {
         EXPECT_NEAR(allLit.fourTaps(t), 1.0f, 1e-6f);
     }
     EXPECT_LE(maxDifference, 1e-5f);
-    EXPECT_GE(partial, 4000);  // penumbrae, not only wholly lit or shadowed positions (measured: 5032 of 8000)
+    // Penumbrae, not only wholly lit or shadowed positions (measured: 5032 of 8000).
+    EXPECT_GE(partial, 4000);
 }
 
 }  // namespace
