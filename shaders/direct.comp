@@ -8,6 +8,7 @@
 #include "lib/gbuffer_read.glsl"
 #include "lib/lights.glsl"
 #include "lib/cone.glsl"
+#include "lib/shadow_pcf.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
@@ -25,8 +26,9 @@ layout(set = 0, binding = 8) uniform sampler2D environmentMap;  // lib/environme
 
 #include "lib/environment_sample.glsl"
 
-// 3x3 PCF on the main light's shadow map; the position is pushed along the normal by a texel or so,
-// which removes acne on surfaces at grazing light angles without detaching shadows.
+// 3x3 PCF on the main light's shadow map, as four bilinear compare taps (lib/shadow_pcf.glsl); the position is
+// pushed along the normal by a texel or so, which removes acne on surfaces at grazing light angles without
+// detaching shadows.
 float shadowVisibility(vec3 worldPosition, vec3 normal) {
     const vec3 offsetPosition = worldPosition + normal * frame.lighting.shadowNormalOffset * 1.5;
     const vec4 clip = frame.lightViewProj * vec4(offsetPosition, 1.0);
@@ -34,10 +36,14 @@ float shadowVisibility(vec3 worldPosition, vec3 normal) {
     const vec3 ndc = clip.xyz / clip.w;
     const vec2 uv = ndc.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z >= 1.0) return 1.0;
-    float visible = 0.0;
-    for (int y = -1; y <= 1; ++y)
-        for (int x = -1; x <= 1; ++x)
-            visible += texture(shadowMap, vec3(uv + vec2(x, y) * frame.lighting.shadowTexelSize, ndc.z));
+    const float texelSize = frame.lighting.shadowTexelSize;
+    const PcfTaps taps = pcfTaps(uv / texelSize - 0.5);
+    const vec2 first = (taps.first + 0.5) * texelSize, last = (taps.last + 0.5) * texelSize;
+    const float visible =
+        taps.firstWeight.x * taps.firstWeight.y * texture(shadowMap, vec3(first, ndc.z)) +
+        taps.lastWeight.x * taps.firstWeight.y * texture(shadowMap, vec3(last.x, first.y, ndc.z)) +
+        taps.firstWeight.x * taps.lastWeight.y * texture(shadowMap, vec3(first.x, last.y, ndc.z)) +
+        taps.lastWeight.x * taps.lastWeight.y * texture(shadowMap, vec3(last, ndc.z));
     return visible / 9.0;
 }
 
