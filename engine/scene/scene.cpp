@@ -378,7 +378,8 @@ void Scene::normalizeScale() {
         // joint worlds) become S IBM S^-1 (their translation scaled), and position deltas scale like positions.
         for (Skin& skin : skins)
             for (glm::mat4& m : skin.inverseBindMatrices) m[3] = glm::vec4(scaled3(glm::vec3(m[3])), m[3].w);
-        for (MorphDelta& d : morphDeltas) d.position = glm::vec4(scaled3(glm::vec3(d.position)), d.position.w);
+        for (MorphDelta& d : morphDeltas)
+            d.position = glm::vec4(scaled3(glm::vec3(d.position)), d.position.w);
         for (Primitive& prim : primitives)
             if (!prim.bounds.empty()) prim.bounds = Aabb{scaled3(prim.bounds.min), scaled3(prim.bounds.max)};
         for (Node& node : nodes) {
