@@ -122,31 +122,26 @@ float planeLogWeightFrom(vec4 plane, vec3 q) {
     return WEIGHTS == VCT_WEIGHTS_BILINEAR ? 0.0 : planeLogWeightScaled(plane, q);
 }
 
-// Reconstructs one full-res pixel from its cell's samples and its history; writes it and lists it for
-// re-tracing when its sum of weights is low.
-void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
-    const ivec2 size = ivec2(frame.imageSize);
-    const float depth = texelFetch(depthTexture, pixel, 0).r;
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
-    const vec3 position = worldFromDepth(frame.invViewProj, uv, depth);
-    // A position that cannot be shaded (lib/gbuffer_read.glsl) is treated as the background, as the trace does.
-    const bool background = isBackground(depth) || isDegeneratePosition(position);
-    const float kappa = frame.upsample.kappa;
-    // A background pixel's "position" is at the far plane (or infinite): its weights may be garbage, even NaN;
-    // its outputs are replaced by zeros at the end, without a branch around the work.
-    const Guide here =
-        guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0), position, frame.cameraPosition, kappa);
-    const vec4 herePlane = scaledTangentPlane(here.n, here.p, here.cameraDistance);
-    const vec3 hereSharpness =
-        WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.specularSharpness) : vec3(0.0);
+// The pixel being reconstructed: its guide, tangent plane and prepared lobe sharpness.
+struct PixelGuide {
+    Guide guide;
+    vec4 plane;
+    vec3 sharpness;
+};
 
-    // ---- spatial: the cell's low-res samples, each at its own jittered full-res position ----
-    // Two sums of the same weights: spatialWeight (the sum of weights W_s of docs/design.md §6.5, for τ and the
-    // weights view) and the accumulation weights, in which a sample traced at this very pixel counts
-    // EXACT_SAMPLE_WEIGHT (lib/upsample_weights.glsl), as many interpolated neighbourhoods as make it dominate
-    // the history.
-    vec3 spatialDiffuse = vec3(0.0), spatialSpecular = vec3(0.0);
-    vec2 spatialWeight = vec2(0.0), accumulationWeight = vec2(0.0);
+// Sums over the cell's samples (spatial) or over the history (temporal) of weighted diffuse and specular light.
+struct WeightedLight {
+    vec3 diffuse, specular;
+    vec2 weight;              // the sum of weights W_s (spatial) or the history's weight (temporal)
+    vec2 accumulationWeight;  // spatial only: the same weights with the pixel-own sample counted more
+};
+
+// ---- spatial: the cell's low-res samples, each at its own jittered full-res position ----
+// Two sums of the same weights: weight (the sum of weights W_s of docs/design.md §6.5, for τ and the weights
+// view) and the accumulation weights, in which a sample traced at this very pixel counts EXACT_SAMPLE_WEIGHT
+// (lib/upsample_weights.glsl), as many interpolated neighbourhoods as make it dominate the history.
+WeightedLight spatialLight(ivec2 pixel, PixelGuide here, Sample samples[MAX_SAMPLES]) {
+    WeightedLight sum = WeightedLight(vec3(0.0), vec3(0.0), vec2(0.0), vec2(0.0));
     [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {
         const Sample j = samples[k];
         // Kernel × validity: 0 outside the image and on the background.
@@ -154,31 +149,34 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         const float f =
             (WEIGHTS == VCT_WEIGHTS_BILINEAR ? tentKernel(offset, 1.0) : bsplineKernel(offset)) * j.valid;
         const vec2 w =
-            f * (exp(planeLogWeightFrom(herePlane, j.p) +
-                     lobeLogWeights(here, hereSharpness, j.n, j.specularAxis, j.preparedSharpness)) +
+            f * (exp(planeLogWeightFrom(here.plane, j.p) +
+                     lobeLogWeights(here.guide, here.sharpness, j.n, j.specularAxis, j.preparedSharpness)) +
                  FALLBACK_SHARE);
         const float share = WEIGHTS != VCT_WEIGHTS_BILINEAR && all(equal(j.at, vec2(pixel)))
                                 ? EXACT_SAMPLE_WEIGHT / BSPLINE_CENTRE
                                 : 1.0;
         const vec2 a = share * w;
-        spatialDiffuse += a.x * j.diffuse;
-        spatialSpecular += a.y * j.specular;
-        spatialWeight += w;
-        accumulationWeight += a;
+        sum.diffuse += a.x * j.diffuse;
+        sum.specular += a.y * j.specular;
+        sum.weight += w;
+        sum.accumulationWeight += a;
     }
+    return sum;
+}
 
-    // ---- temporal: last frame's output where this surface was, validated against last frame's G-buffer ----
-    // With a guide: the nearest texel to the reprojected position, weighted by the guide against last frame's G-buffer there
-    // × the weight it had accumulated (alpha). Nearest, not bilinear: indirect light is smooth, so the
-    // sub-texel shift costs little, while bilinear taps blur the history a little more with every moving frame,
-    // and 4 validated taps cost more than the 1/16-res trace on lavapipe (measured: 3.4 ms of 22 ms at
-    // 640×360). With a static camera the two are the same (the reprojection lands on texel centres).
-    vec3 historyDiffuse = vec3(0.0), historySpecular = vec3(0.0);
-    vec2 historyWeight = vec2(0.0);
-    // Valid history (not the first frame, not a cut): uniform per frame, set by the renderer.
-    // Without a guide (bilinear) nothing can validate a tap, so the history is resampled bilinearly over the 4
-    // texels around the reprojected position (outside the image or on the background: weight 0), the
-    // guide-free baseline as a whole.
+// ---- temporal: last frame's output where this surface was, validated against last frame's G-buffer ----
+// With a guide: the nearest texel to the reprojected position, weighted by the guide against last frame's
+// G-buffer there × the weight it had accumulated (alpha). Nearest, not bilinear: indirect light is smooth, so the
+// sub-texel shift costs little, while bilinear taps blur the history a little more with every moving frame,
+// and 4 validated taps cost more than the 1/16-res trace on lavapipe (measured: 3.4 ms of 22 ms at
+// 640×360). With a static camera the two are the same (the reprojection lands on texel centres).
+// Valid history (not the first frame, not a cut): uniform per frame, set by the renderer.
+// Without a guide (bilinear) nothing can validate a tap, so the history is resampled bilinearly over the 4
+// texels around the reprojected position (outside the image or on the background: weight 0), the
+// guide-free baseline as a whole.
+WeightedLight historyLight(ivec2 pixel, vec2 uv, PixelGuide here) {
+    const ivec2 size = ivec2(frame.imageSize);
+    WeightedLight sum = WeightedLight(vec3(0.0), vec3(0.0), vec2(0.0), vec2(0.0));
     if (WEIGHTS == VCT_WEIGHTS_BILINEAR && TEMPORAL && (frame.flags & VCT_FLAG_HISTORY) != 0u) {
         const vec2 prevCoord = (uv - texelFetch(motionTexture, pixel, 0).xy) * frame.imageSize - 0.5;
         const ivec2 prevBase = ivec2(floor(prevCoord));
@@ -196,9 +194,9 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
             const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
             const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
             const vec2 w = share * vec2(diffuseTexel.a, specularTexel.a);
-            historyDiffuse += w.x * diffuseTexel.rgb;
-            historySpecular += w.y * specularTexel.rgb;
-            historyWeight += w;
+            sum.diffuse += w.x * diffuseTexel.rgb;
+            sum.specular += w.y * specularTexel.rgb;
+            sum.weight += w;
         }
     }
     if (WEIGHTS != VCT_WEIGHTS_BILINEAR && TEMPORAL && (frame.flags & VCT_FLAG_HISTORY) != 0u) {
@@ -210,34 +208,39 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         const vec2 atUv = (vec2(at) + 0.5) * frame.texelSize;
         const Guide then = guideFromGBuffer(texelFetch(prevNormalRoughnessTexture, at, 0),
                                             worldFromDepth(frame.prevInvViewProj, atUv, prevDepth),
-                                            frame.prevCameraPosition, kappa);
+                                            frame.prevCameraPosition, frame.upsample.kappa);
         const vec3 thenSharpness =
             WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(then.specularSharpness) : vec3(0.0);
         const uvec4 historyTexel = texelFetch(indirectHistory, at, 0);
         const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
         const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
-        const vec2 guide = exp(planeLogWeightFrom(herePlane, then.p) +
-                               lobeLogWeights(here, hereSharpness, then.n, then.specularAxis, thenSharpness));
+        const vec2 guide =
+            exp(planeLogWeightFrom(here.plane, then.p) +
+                lobeLogWeights(here.guide, here.sharpness, then.n, then.specularAxis, thenSharpness));
         // Outside last frame's image or on its background: no history (the select also keeps the garbage
         // guide of a far-plane position out of the sums).
-        historyWeight = inside && !isBackground(prevDepth) && !isDegeneratePosition(then.p)
-                            ? guide * vec2(diffuseTexel.a, specularTexel.a)
-                            : vec2(0.0);
-        historyDiffuse = historyWeight.x * diffuseTexel.rgb;
-        historySpecular = historyWeight.y * specularTexel.rgb;
+        sum.weight = inside && !isBackground(prevDepth) && !isDegeneratePosition(then.p)
+                         ? guide * vec2(diffuseTexel.a, specularTexel.a)
+                         : vec2(0.0);
+        sum.diffuse = sum.weight.x * diffuseTexel.rgb;
+        sum.specular = sum.weight.y * specularTexel.rgb;
     }
+    return sum;
+}
 
+// ---- output: the two sums combined, written, and the pixel listed for re-tracing when its weights are low ----
+void writePixel(ivec2 pixel, bool background, WeightedLight spatial, WeightedLight history) {
     const float gamma = frame.upsample.gamma;
-    const vec2 accumulated = accumulationWeight + gamma * historyWeight;
+    const vec2 accumulated = spatial.accumulationWeight + gamma * history.weight;
     // The sum of weights τ tests: this frame's neighbourhood by its kernel weights, plus the history counted
     // in pixel-own samples (EXACT_SAMPLE_WEIGHT each). Where the guide rejects most neighbours (silhouettes,
     // thin features) the pixel is then re-traced unless its own sample is recent, instead of resting on the
     // interpolated light that a history capped in neighbourhood units would keep for good.
-    const vec2 weightSum = spatialWeight + gamma * historyWeight / EXACT_SAMPLE_WEIGHT;
+    const vec2 weightSum = spatial.weight + gamma * history.weight / EXACT_SAMPLE_WEIGHT;
     // A sum below the floor has no valid sample and no history behind it (its numerator is as small): black.
     const float minSum = 1e-30;
-    const vec3 diffuse = (spatialDiffuse + gamma * historyDiffuse) / max(accumulated.x, minSum);
-    const vec3 specular = (spatialSpecular + gamma * historySpecular) / max(accumulated.y, minSum);
+    const vec3 diffuse = (spatial.diffuse + gamma * history.diffuse) / max(accumulated.x, minSum);
+    const vec3 specular = (spatial.specular + gamma * history.specular) / max(accumulated.y, minSum);
     const float maxWeight = frame.upsample.maxHistoryWeight;
     // Nothing to light on the background: no indirect light, never re-traced.
     // τ is 0 without adaptive re-tracing (nothing is listed). A uniform, not a specialization constant: the
@@ -255,6 +258,24 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
         // One more workgroup of the resample pass for every VCT_RESAMPLE_GROUP_SIZE entries.
         if (index % uint(VCT_RESAMPLE_GROUP_SIZE) == 0u) atomicAdd(resampleList.header.dispatch.x, 1u);
     }
+}
+
+// Reconstructs one full-res pixel from its cell's samples and its history; writes it and lists it for
+// re-tracing when its sum of weights is low.
+void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
+    const float depth = texelFetch(depthTexture, pixel, 0).r;
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
+    const vec3 position = worldFromDepth(frame.invViewProj, uv, depth);
+    // A position that cannot be shaded (lib/gbuffer_read.glsl) is treated as the background, as the trace does.
+    const bool background = isBackground(depth) || isDegeneratePosition(position);
+    // A background pixel's "position" is at the far plane (or infinite): its weights may be garbage, even NaN;
+    // its outputs are replaced by zeros at the end, without a branch around the work.
+    PixelGuide here;
+    here.guide = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0), position,
+                                  frame.cameraPosition, frame.upsample.kappa);
+    here.plane = scaledTangentPlane(here.guide.n, here.guide.p, here.guide.cameraDistance);
+    here.sharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.guide.specularSharpness) : vec3(0.0);
+    writePixel(pixel, background, spatialLight(pixel, here, samples), historyLight(pixel, uv, here));
 }
 
 void main() {
