@@ -169,23 +169,19 @@ void timerWindow(const PanelInfo& info) {
 
 }  // namespace
 
-void drawPanel(DemoControls& c, PanelInfo& info, char* sceneField, size_t sceneFieldSize) {
-    Setter set{c, info};
-    const RenderSettings& s = c.settings;
-    if (c.split) {
-        // The wipe, and a handle the user drags (app/demo/demo_command.cpp moves it).
-        const ImGuiViewport* viewport = ImGui::GetMainViewport();
-        const float x = c.wipe * viewport->Size.x;
-        ImDrawList* draw = ImGui::GetBackgroundDrawList();
-        draw->AddLine(ImVec2(x, 0.0f), ImVec2(x, viewport->Size.y), IM_COL32(255, 255, 255, 200), 2.0f);
-        draw->AddText(ImVec2(x - 18.0f, viewport->Size.y - 20.0f), IM_COL32(255, 255, 255, 255), "A|B");
-    }
-    timerWindow(info);
+namespace {
 
-    ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(330.0f, 0.0f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowBgAlpha(0.85f);
-    ImGui::Begin("vct (F1 hides)");
+// The split view's wipe, and a handle the user drags (app/demo/demo_command.cpp moves it).
+void wipeHandle(float wipe) {
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    const float x = wipe * viewport->Size.x;
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    draw->AddLine(ImVec2(x, 0.0f), ImVec2(x, viewport->Size.y), IM_COL32(255, 255, 255, 200), 2.0f);
+    draw->AddText(ImVec2(x - 18.0f, viewport->Size.y - 20.0f), IM_COL32(255, 255, 255, 255), "A|B");
+}
+
+// Progress, a refused value (dismissable) and the last script or loader message, above the sections.
+void messageLines(PanelInfo& info) {
     if (!info.progress.empty())
         ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "%s", info.progress.c_str());
     if (!info.error.empty()) {
@@ -195,75 +191,98 @@ void drawPanel(DemoControls& c, PanelInfo& info, char* sceneField, size_t sceneF
         if (ImGui::SmallButton("dismiss")) info.error.clear();
     }
     if (!info.message.empty()) ImGui::TextWrapped("%s", info.message.c_str());
+}
 
+// What is shown: the view, the voxel mip, and the split view with its B side (settings or the reference).
+void viewSection(Setter& set, DemoControls& c, PanelInfo& info) {
+    const RenderSettings& s = c.settings;
+    choice(
+        set, "view", "view", auxViewName(c.view),
+        {"final", "direct", "diffuse", "specular", "normals", "roughness", "weights", "resample", "voxels"});
+    if (c.view == AuxView::Voxels) {
+        int mip = int(c.voxelMip);
+        if (ImGui::SliderInt("voxel mip", &mip, 0, int(info.voxelMips) - 1))
+            set("voxel-mip", std::to_string(mip));
+    }
+    if (auxViewNeedsGi(c.view) && !s.gi) ImGui::TextUnformatted("(needs GI: showing final)");
+    toggle(set, "split view (B right of the wipe)", "split", c.split);
+    if (c.split) {
+        slider(set, "wipe", "wipe", c.wipe, 0.0f, 1.0f, false);
+        const bool reference = c.splitSource == SplitSource::Reference;
+        if (ImGui::BeginCombo("B source", reference ? "path-traced reference" : "vct settings")) {
+            if (ImGui::Selectable("vct settings", !reference)) set("split-source", "vct");
+            if (ImGui::Selectable("path-traced reference", reference)) set("split-source", "reference");
+            ImGui::EndCombo();
+        }
+    }
+    if (c.showsReference()) {
+        choice(set, "B bounces", "reference-bounces", referenceBouncesText(c.referenceBounces), {"1", "all"});
+        referenceLine(info);
+        ImGui::TextWrapped(
+            "B is the path-traced truth of A's frame, converging on the CPU: a camera move restarts it, "
+            "a playing animation rebuilds it every frame (pause to let it converge).");
+    } else if (c.split) {
+        ImGui::PushID("b");
+        settingWidgets(set, c.settingsB(), "b-");
+        ImGui::PopID();
+        ImGui::TextWrapped(
+            "Both sides are rendered in full every frame: the split view costs a second frame "
+            "(B's GPU time in the timers).");
+    }
+}
+
+// Time, history and camera controls.
+void animationSection(Setter& set, const DemoControls& c, const PanelInfo& info) {
+    ImGui::Text("t = %.2f s", double(info.animationTime));
+    ImGui::SameLine();
+    toggle(set, "pause (P)", "pause", c.paused);
+    ImGui::SameLine();
+    if (ImGui::Button("step (N)")) set("step", "on");
+    if (ImGui::Button("reset history (H)")) set("reset-history", "on");
+    ImGui::SameLine();
+    if (ImGui::Button("camera cut (C)")) set("camera-cut", "on");
+    if (info.hasCameraPath) toggle(set, "play camera path", "play-path", c.playPath);
+    if (ImGui::Button(info.recording ? "stop recording (R)" : "record camera path (R)")) set("record", "on");
+    if (info.recording) {
+        ImGui::SameLine();
+        ImGui::Text("%zu keys", info.recordedKeys);
+    }
+    if (!info.recordPath.empty()) ImGui::TextDisabled("-> %s", info.recordPath.c_str());
+}
+
+// The scene field (or drag and drop), shader reload and the screenshot button.
+void sceneSection(Setter& set, const PanelInfo& info, char* sceneField, size_t sceneFieldSize) {
+    ImGui::Text("scene: %s", info.scene.c_str());
+    ImGui::InputText("##scene", sceneField, sceneFieldSize);
+    ImGui::SameLine();
+    if (ImGui::Button("open")) set("scene", sceneField);
+    ImGui::TextDisabled("or drop a .gltf/.glb on the window");
+    if (ImGui::Button("reload shaders (F5)")) set("hot-reload", "on");
+    ImGui::SameLine();
+    if (ImGui::Button("screenshot (F12)")) set("screenshot", "vct-demo.png");
+}
+
+}  // namespace
+
+void drawPanel(DemoControls& c, PanelInfo& info, char* sceneField, size_t sceneFieldSize) {
+    Setter set{c, info};
+    if (c.split) wipeHandle(c.wipe);
+    timerWindow(info);
+
+    ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(330.0f, 0.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    ImGui::Begin("vct (F1 hides)");
+    messageLines(info);
     if (ImGui::CollapsingHeader("Method", ImGuiTreeNodeFlags_DefaultOpen)) {
         // What a renderer resolves (voxels, anisotropy) is shown as renderer A chose it.
-        settingWidgets(set, withResolvedSettings(info.resolved, s), "");
+        settingWidgets(set, withResolvedSettings(info.resolved, c.settings), "");
     }
-    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
-        choice(set, "view", "view", auxViewName(c.view),
-               {"final", "direct", "diffuse", "specular", "normals", "roughness", "weights", "resample",
-                "voxels"});
-        if (c.view == AuxView::Voxels) {
-            int mip = int(c.voxelMip);
-            if (ImGui::SliderInt("voxel mip", &mip, 0, int(info.voxelMips) - 1))
-                set("voxel-mip", std::to_string(mip));
-        }
-        if (auxViewNeedsGi(c.view) && !s.gi) ImGui::TextUnformatted("(needs GI: showing final)");
-        toggle(set, "split view (B right of the wipe)", "split", c.split);
-        if (c.split) {
-            slider(set, "wipe", "wipe", c.wipe, 0.0f, 1.0f, false);
-            const bool reference = c.splitSource == SplitSource::Reference;
-            if (ImGui::BeginCombo("B source", reference ? "path-traced reference" : "vct settings")) {
-                if (ImGui::Selectable("vct settings", !reference)) set("split-source", "vct");
-                if (ImGui::Selectable("path-traced reference", reference)) set("split-source", "reference");
-                ImGui::EndCombo();
-            }
-        }
-        if (c.showsReference()) {
-            choice(set, "B bounces", "reference-bounces", referenceBouncesText(c.referenceBounces),
-                   {"1", "all"});
-            referenceLine(info);
-            ImGui::TextWrapped(
-                "B is the path-traced truth of A's frame, converging on the CPU: a camera move restarts it, "
-                "a playing animation rebuilds it every frame (pause to let it converge).");
-        } else if (c.split) {
-            ImGui::PushID("b");
-            settingWidgets(set, c.settingsB(), "b-");
-            ImGui::PopID();
-            ImGui::TextWrapped(
-                "Both sides are rendered in full every frame: the split view costs a second frame "
-                "(B's GPU time in the timers).");
-        }
-    }
-    if (ImGui::CollapsingHeader("Animation and camera", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::Text("t = %.2f s", double(info.animationTime));
-        ImGui::SameLine();
-        toggle(set, "pause (P)", "pause", c.paused);
-        ImGui::SameLine();
-        if (ImGui::Button("step (N)")) set("step", "on");
-        if (ImGui::Button("reset history (H)")) set("reset-history", "on");
-        ImGui::SameLine();
-        if (ImGui::Button("camera cut (C)")) set("camera-cut", "on");
-        if (info.hasCameraPath) toggle(set, "play camera path", "play-path", c.playPath);
-        if (ImGui::Button(info.recording ? "stop recording (R)" : "record camera path (R)"))
-            set("record", "on");
-        if (info.recording) {
-            ImGui::SameLine();
-            ImGui::Text("%zu keys", info.recordedKeys);
-        }
-        if (!info.recordPath.empty()) ImGui::TextDisabled("-> %s", info.recordPath.c_str());
-    }
-    if (ImGui::CollapsingHeader("Scene and shaders", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::Text("scene: %s", info.scene.c_str());
-        ImGui::InputText("##scene", sceneField, sceneFieldSize);
-        ImGui::SameLine();
-        if (ImGui::Button("open")) set("scene", sceneField);
-        ImGui::TextDisabled("or drop a .gltf/.glb on the window");
-        if (ImGui::Button("reload shaders (F5)")) set("hot-reload", "on");
-        ImGui::SameLine();
-        if (ImGui::Button("screenshot (F12)")) set("screenshot", "vct-demo.png");
-    }
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSection(set, c, info);
+    if (ImGui::CollapsingHeader("Animation and camera", ImGuiTreeNodeFlags_DefaultOpen))
+        animationSection(set, c, info);
+    if (ImGui::CollapsingHeader("Scene and shaders", ImGuiTreeNodeFlags_DefaultOpen))
+        sceneSection(set, info, sceneField, sceneFieldSize);
     ImGui::End();
 }
 
