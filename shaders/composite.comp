@@ -4,7 +4,7 @@
 // With GI on (VCT_FLAG_GI): direct + albedo·diffuse·occlusion + specularDfg(F0, DFG)·specular, where
 // diffuse and specular are the demodulated cone-traced incoming radiance (lib/cone.glsl) and DFG the split-sum
 // table with multiple-scattering energy compensation (brdf.glsl). With GI off, direct already holds the
-// constant ambient term.
+// environment's light, unoccluded (direct.comp).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"

@@ -4,8 +4,8 @@
 // voxel grid's radiance texture at mip M with a 3D DDA over that level's texels (Amanatides & Woo), reading
 // each texel it crosses unfiltered (texelFetch, so the voxels show as cubes) and compositing its premultiplied
 // radiance + opacity front to back, the opacity corrected for the length of ray inside the texel. It stops at
-// opacity ≥ VOXEL_VIEW_MAX_OPACITY or where the ray leaves the grid; what is left sees the environment (the
-// constant ambient radiance, as the trace's cones do).
+// opacity ≥ VOXEL_VIEW_MAX_OPACITY or where the ray leaves the grid; what is left sees the environment's mean
+// radiance (the trace's cones read the environment map in their own direction instead).
 //
 // Unlit voxels (in shadow, never injected) have no radiance and would be invisible against a dark background,
 // so each texel also shows VOXEL_VIEW_GREY × opacity of grey radiance, shaded by the axis of the texel face the

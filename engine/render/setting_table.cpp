@@ -27,7 +27,7 @@ using S = RenderSettings;
 const SettingSpec kTable[] = {
     // ---- global illumination (docs/design.md §5) ----
     {.name = "gi", .valueName = "on|off",
-     .help = "cone-traced indirect light; off: the constant ambient term instead",
+     .help = "cone-traced indirect light; off: the environment's light, unoccluded, instead",
      .value = OnOffValue{&S::gi}, .apply = A::Rebuild, .group = G::Gi, .demo = true, .json = true,
      .widget = W::Checkbox, .label = "GI (cone tracing)", .sideB = true},
     {.name = "trace-scale", .valueName = "1|2|4",

@@ -51,7 +51,7 @@ struct RenderSettings {
     float shadowSlopeBias = 1.75f;
 
     // ---- global illumination (voxel cone tracing) ----
-    bool gi = true;                // false: the constant ambient term instead of cone-traced indirect light
+    bool gi = true;  // false: the environment, unoccluded, instead of cone-traced indirect light
     uint32_t voxelResolution = 0;  // N for the N³ grid (32..256); 0 = chosen from the scene
     // Bounces of indirect light (1: light from directly lit surfaces; N: the voxels also send on light that
     // has bounced N − 1 times, docs/design.md §5.7).
