@@ -13,7 +13,8 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
 }  // namespace
 
-GpuDeform::GpuDeform(const vk::Context& context, const Scene& scene, const std::vector<Instance>& instances)
+GpuDeform::GpuDeform(const vk::Context& context, const Scene& scene, const std::vector<Instance>& instances,
+                     uint32_t framesInFlight)
     : scene_(scene) {
     uint32_t joints = 0, weights = 0;
     firstSlot_.assign(instances.size(), -1);
@@ -66,8 +67,21 @@ GpuDeform::GpuDeform(const vk::Context& context, const Scene& scene, const std::
         vk::Buffer(context, std::max(joints, 1u) * sizeof(glm::mat4), kStorage, vk::MemoryUsage::HostVisible);
     morphWeights_ =
         vk::Buffer(context, std::max(weights, 1u) * sizeof(float), kStorage, vk::MemoryUsage::HostVisible);
+    if (framesInFlight > 1) {
+        spareJointMatrices_ = vk::Buffer(context, std::max(joints, 1u) * sizeof(glm::mat4), kStorage,
+                                         vk::MemoryUsage::HostVisible);
+        spareMorphWeights_ = vk::Buffer(context, std::max(weights, 1u) * sizeof(float), kStorage,
+                                        vk::MemoryUsage::HostVisible);
+    }
     joints_.assign(joints, glm::mat4(1.0f));
     weights_.assign(weights, 0.0f);
+}
+
+void GpuDeform::useFrameSlot(uint32_t slot) {
+    if (slot == frameSlot_ || spareJointMatrices_.handle() == VK_NULL_HANDLE) return;
+    std::swap(jointMatrices_, spareJointMatrices_);
+    std::swap(morphWeights_, spareMorphWeights_);
+    frameSlot_ = slot;
 }
 
 int32_t GpuDeform::deformedOffset(uint32_t instance, uint32_t slot) const {

@@ -15,10 +15,15 @@ namespace vct {
 
 class GpuDeform {
   public:
-    // `instances`: Scene::instances, whose order every later update keeps.
-    GpuDeform(const vk::Context& context, const Scene& scene, const std::vector<Instance>& instances);
+    // `instances`: Scene::instances, whose order every later update keeps. `framesInFlight` (1 or 2): copies
+    // of the joint matrices and morph weights, which the CPU writes while the GPU may run the frame before.
+    GpuDeform(const vk::Context& context, const Scene& scene, const std::vector<Instance>& instances,
+              uint32_t framesInFlight = 1);
 
     bool active() const { return !jobs_.empty(); }
+    // Makes copy `slot` of the joint matrices and morph weights the one update() writes and the skin pass
+    // binds (jointMatrices(), morphWeights() keep naming the same objects: the copies are swapped into them).
+    void useFrameSlot(uint32_t slot);
     // This frame's joint matrices and morph weights (`world`: Scene::evaluate at the frame's time). Returns
     // whether they differ from the last update's (the first: true).
     bool update(const std::vector<Instance>& instances, const std::vector<glm::mat4>& world, bool cut);
@@ -60,6 +65,8 @@ class GpuDeform {
     std::vector<glm::mat4> joints_;  // this frame's, as written
     std::vector<float> weights_;
     vk::Buffer skinVertices_, morphDeltas_, jointMatrices_, morphWeights_, current_, previous_;
+    vk::Buffer spareJointMatrices_, spareMorphWeights_;  // the other frame's, with two in flight
+    uint32_t frameSlot_ = 0;
     bool changed_ = true, changedBefore_ = true, cut_ = true, hasUpdated_ = false;
 };
 

@@ -66,7 +66,8 @@ uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested) {
     return level < 2 ? 0 : level;
 }
 
-GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy)
+GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy,
+                   uint32_t framesInFlight)
     : context_(context), scene_(scene), anisotropy_(anisotropy) {
     // The voxelize pass binds both whole as storage buffers.
     const VkDeviceSize maxRange = context.properties().limits.maxStorageBufferRange;
@@ -96,7 +97,7 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     instances_ = scene.instances(0.0f);
-    deform_ = std::make_unique<GpuDeform>(context, scene, instances_);
+    deform_ = std::make_unique<GpuDeform>(context, scene, instances_, framesInFlight);
     bounds_ = scene.bounds();
     instanceBuffer_ = vk::Buffer(context, std::max<size_t>(1, instances_.size()) * sizeof(gpu::GpuInstance),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::HostVisible);
@@ -104,6 +105,12 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
     for (const Node& node : scene.nodes) lightNodes += node.light >= 0 ? 1 : 0;
     lightBuffer_ = vk::Buffer(context, std::max<size_t>(1, lightNodes) * sizeof(gpu::GpuLight),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::HostVisible);
+    if (framesInFlight > 1) {
+        spareInstanceBuffer_ = vk::Buffer(context, instanceBuffer_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                          vk::MemoryUsage::HostVisible);
+        spareLightBuffer_ = vk::Buffer(context, lightBuffer_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                       vk::MemoryUsage::HostVisible);
+    }
     uploadTextures();
     update(0.0f, true);
 }
@@ -219,6 +226,15 @@ VkImageView GpuScene::textureView(const Material& material, Slot slot) const {
 VkSampler GpuScene::textureSampler(const Material& material, Slot slot) const {
     const int index = textureIndex(material, slot);
     return index >= 0 ? textureSamplers_[size_t(index)] : defaultSampler_;
+}
+
+void GpuScene::useFrameSlot(uint32_t slot) {
+    deform_->useFrameSlot(slot);
+    if (slot == frameSlot_ || spareInstanceBuffer_.handle() == VK_NULL_HANDLE) return;
+    // update() writes every instance and light each frame, so the copy swapped in needs nothing carried over.
+    std::swap(instanceBuffer_, spareInstanceBuffer_);
+    std::swap(lightBuffer_, spareLightBuffer_);
+    frameSlot_ = slot;
 }
 
 void GpuScene::update(float timeSeconds, bool cut) {

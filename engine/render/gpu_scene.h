@@ -24,8 +24,10 @@ uint32_t chooseAnisotropy(const vk::Context& context, uint32_t requested);
 
 class GpuScene {
   public:
-    // `anisotropy`: the material sampler's level, as chosen by chooseAnisotropy (0: off).
-    GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy);
+    // `anisotropy`: the material sampler's level, as chosen by chooseAnisotropy (0: off). `framesInFlight`
+    // (1 or 2): how many copies of what update() writes (instances, lights, joints, morph weights) there are.
+    GpuScene(const vk::Context& context, const Scene& scene, uint32_t anisotropy,
+             uint32_t framesInFlight = 1);
     ~GpuScene();
     GpuScene(const GpuScene&) = delete;
     GpuScene& operator=(const GpuScene&) = delete;
@@ -37,6 +39,9 @@ class GpuScene {
     VkBuffer instanceBuffer() const { return instanceBuffer_.handle(); }
     VkBuffer lightBuffer() const { return lightBuffer_.handle(); }
 
+    // Makes copy `slot` (< framesInFlight) of the per-frame buffers the one that update() writes and the
+    // passes bind, its frame's fence having been waited for.
+    void useFrameSlot(uint32_t slot);
     // Writes this frame's instances (world and previous-world matrices) and lights at time t.
     // The first call (or one after a cut) uses the current transforms as the previous ones.
     void update(float timeSeconds, bool cut);
@@ -73,6 +78,9 @@ class GpuScene {
     const Scene& scene_;
     uint32_t anisotropy_ = 0;
     vk::Buffer vertices_, indices_, materials_, instanceBuffer_, lightBuffer_;
+    // The other frame's instance and light buffers with two frames in flight (swapped by useFrameSlot).
+    vk::Buffer spareInstanceBuffer_, spareLightBuffer_;
+    uint32_t frameSlot_ = 0;
     std::vector<vk::Image> textures_;
     std::vector<VkSampler> textureSamplers_;  // parallel to textures_
     vk::Image defaultWhite_, defaultNormal_, defaultBlack_;

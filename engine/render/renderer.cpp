@@ -35,13 +35,13 @@ RenderSettings resolveForDevice(const vk::Context& context, RenderSettings setti
 
 }  // namespace
 
-Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings)
+Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings,
+                   uint32_t framesInFlight)
     : context_(context),
       settings_(resolveForDevice(context, settings)),
-      gpuScene_(context, scene, settings_.anisotropy),
-      frameUniforms_(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                     vk::MemoryUsage::HostVisible),
-      timer_(context) {
+      gpuScene_(context, scene, settings_.anisotropy, std::clamp(framesInFlight, 1u, 2u)),
+      slots_(std::clamp(framesInFlight, 1u, 2u)),
+      timer_(context, 64, uint32_t(slots_.size())) {
     const VkPhysicalDeviceLimits& limits = context.properties().limits;
     if (settings.width > limits.maxImageDimension2D || settings.height > limits.maxImageDimension2D)
         throw UsageError("size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
@@ -92,19 +92,30 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     }
     passes_.push_back(std::make_unique<CompositePass>(context));
 
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = context.commandPool();
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VK_CHECK(vkAllocateCommandBuffers(context.device(), &alloc, &cmd_));
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VK_CHECK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence_));
+    for (FrameSlot& slot : slots_) {
+        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        alloc.commandPool = context.commandPool();
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        VK_CHECK(vkAllocateCommandBuffers(context.device(), &alloc, &slot.cmd));
+        VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        VK_CHECK(vkCreateFence(context.device(), &fenceInfo, nullptr, &slot.fence));
+        slot.uniforms = vk::Buffer(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                   vk::MemoryUsage::HostVisible);
+        if (settings.gi) {
+            slot.resampleCount = vk::Buffer(context, sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                            vk::MemoryUsage::HostVisible);
+            *static_cast<uint32_t*>(slot.resampleCount.mapped()) = 0;
+        }
+    }
 }
 
 Renderer::~Renderer() {
     vkDeviceWaitIdle(context_.device());
-    vkDestroyFence(context_.device(), fence_, nullptr);
-    vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &cmd_);
+    for (FrameSlot& slot : slots_) {
+        vkDestroyFence(context_.device(), slot.fence, nullptr);
+        vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &slot.cmd);
+    }
 }
 
 void Renderer::createSamplers() {
@@ -128,6 +139,7 @@ void Renderer::createSamplers() {
 }
 
 void Renderer::resize(uint32_t width, uint32_t height) {
+    finishFrames();
     vkDeviceWaitIdle(context_.device());
     settings_.width = width;
     settings_.height = height;
@@ -145,7 +157,7 @@ void Renderer::applyLive(const RenderSettings& wanted) {
     settings_ = withResolvedSettings(settings_, wanted);
 }
 
-void Renderer::writeFrameUniforms(const FrameInput& input) {
+void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms) {
     gpu::FrameUniforms u{};
     const float aspect = float(settings_.width) / float(settings_.height);
     u.view = input.camera.view;
@@ -193,7 +205,7 @@ void Renderer::writeFrameUniforms(const FrameInput& input) {
               (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) |
               (settings_.textureLod0 ? VCT_FLAG_TEXTURE_LOD0 : 0u) | (history ? VCT_FLAG_HISTORY : 0u);
 
-    std::memcpy(frameUniforms_.mapped(), &u, sizeof(u));
+    std::memcpy(uniforms.mapped(), &u, sizeof(u));
     previousViewProj_ = u.viewProj;
     previousInvViewProj_ = u.invViewProj;
     previousCameraPosition_ = u.cameraPosition;
@@ -211,6 +223,11 @@ FrameInput fixedStepFrame(const Scene& scene, uint32_t index, uint32_t warmup, c
 }
 
 void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
+    // The slot's previous frame (two frames back with two in flight) must be done before its copies of what
+    // the CPU writes are written again.
+    FrameSlot& slot = slots_[submitted_ % slots_.size()];
+    finishSlot(slot);
+    gpuScene_.useFrameSlot(submitted_ % uint32_t(slots_.size()));
     gpuScene_.update(input.timeSeconds, input.cut || !hasPrevious_);
     // What this frame must recompute (a pass that has nothing to do does not run; its output persists):
     // - the shadow map and voxel grid depend only on the scene's geometry and lights: rebuilt when they
@@ -231,50 +248,77 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     const bool reuseView = stableFrames_ >= 2;
     // Last frame's indirect light and G-buffer become the history (before the uniforms say whether it is valid).
     if (hasPrevious_) targets_.swapHistory(!reuseView);
-    writeFrameUniforms(input);
+    writeFrameUniforms(input, slot.uniforms);
     ++frameIndex_;
 
-    VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+    const VkCommandBuffer cmd = slot.cmd;
+    VK_CHECK(vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
-    timer_.beginFrame(cmd_);
-    FrameContext frame{context_, cmd_, gpuScene_, targets_, frameUniforms_.handle(), settings_, samplers_};
-    for (const auto& pass : passes_) {
-        const PassReuse reuse = pass->reuse();
-        if ((reuse == PassReuse::WhileSceneUnchanged && !sceneChanged) ||
-            (reuse == PassReuse::WhileViewUnchanged && reuseView)) {
-            timer_.skipScope(pass->name());  // timed as 0 ms, with a run count (vk/timer.h)
-            continue;
+    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    timer_.beginFrame(cmd);
+    // The slot's re-trace count is the one the resample pass copies into while this frame is recorded.
+    std::swap(targets_.resampleCount, slot.resampleCount);
+    try {
+        FrameContext frame{context_, cmd, gpuScene_, targets_, slot.uniforms.handle(), settings_, samplers_};
+        for (const auto& pass : passes_) {
+            const PassReuse reuse = pass->reuse();
+            if ((reuse == PassReuse::WhileSceneUnchanged && !sceneChanged) ||
+                (reuse == PassReuse::WhileViewUnchanged && reuseView)) {
+                timer_.skipScope(pass->name());  // timed as 0 ms, with a run count (vk/timer.h)
+                continue;
+            }
+            timer_.beginScope(cmd, pass->name());
+            pass->execute(frame);  // its barriers first, from its resource table
+            timer_.endScope(cmd);
         }
-        timer_.beginScope(cmd_, pass->name());
-        pass->execute(frame);  // its barriers first, from its resource table
-        timer_.endScope(cmd_);
-    }
-    if (submit.afterPasses) submit.afterPasses(cmd_);
-    VK_CHECK(vkEndCommandBuffer(cmd_));
+        if (submit.afterPasses) submit.afterPasses(cmd);
+        VK_CHECK(vkEndCommandBuffer(cmd));
 
-    VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    info.commandBufferCount = 1;
-    info.pCommandBuffers = &cmd_;
-    if (submit.wait) {
-        info.waitSemaphoreCount = 1;
-        info.pWaitSemaphores = &submit.wait;
-        info.pWaitDstStageMask = &submit.waitStage;
+        VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        info.commandBufferCount = 1;
+        info.pCommandBuffers = &cmd;
+        if (submit.wait) {
+            info.waitSemaphoreCount = 1;
+            info.pWaitSemaphores = &submit.wait;
+            info.pWaitDstStageMask = &submit.waitStage;
+        }
+        if (submit.signal) {
+            info.signalSemaphoreCount = 1;
+            info.pSignalSemaphores = &submit.signal;
+        }
+        VK_CHECK(vkResetFences(context_.device(), 1, &slot.fence));
+        VK_CHECK(vkQueueSubmit(context_.queue(), 1, &info, slot.fence));
+    } catch (...) {
+        // An error while recording: the frame never runs, its timestamps are never written.
+        std::swap(targets_.resampleCount, slot.resampleCount);
+        timer_.cancelFrame();
+        throw;
     }
-    if (submit.signal) {
-        info.signalSemaphoreCount = 1;
-        info.pSignalSemaphores = &submit.signal;
-    }
-    VK_CHECK(vkResetFences(context_.device(), 1, &fence_));
-    VK_CHECK(vkQueueSubmit(context_.queue(), 1, &info, fence_));
-    VK_CHECK(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
-    timer_.collect(input.recordTimings);
+    std::swap(targets_.resampleCount, slot.resampleCount);
+    slot.pending = true;
+    slot.recordTimings = input.recordTimings;
+    ++submitted_;
     sceneBuilt_ = true;
+    if (slots_.size() == 1) finishSlot(slot);
+}
+
+void Renderer::finishSlot(FrameSlot& slot) {
+    if (!slot.pending) return;
+    VK_CHECK(vkWaitForFences(context_.device(), 1, &slot.fence, VK_TRUE, UINT64_MAX));
+    slot.pending = false;
+    timer_.collect(slot.recordTimings);
+    if (slot.resampleCount.handle() != VK_NULL_HANDLE)
+        resampleCount_ = *static_cast<const uint32_t*>(slot.resampleCount.mapped());
     if (voxelGrid_) {
-        // A voxel cache's staging buffer, uploaded by this frame's voxelize pass, is no longer needed.
+        // A voxel cache's staging buffer, uploaded by the first frame's voxelize pass, is no longer needed.
         if (voxelGrid_->staticVoxelized() && voxelGrid_->hasStaticCache()) voxelGrid_->releaseStaticCache();
     }
+}
+
+void Renderer::finishFrames() {
+    // Oldest first, so that the timestamps are collected in the order the frames ran.
+    for (size_t k = 0; k < slots_.size(); ++k) finishSlot(slots_[(submitted_ + k) % slots_.size()]);
 }
 
 namespace {
@@ -352,8 +396,7 @@ std::vector<float> Renderer::readFloatImage(vk::Image& image) {
 
 float Renderer::resampledFraction() const {
     if (!targets_.gi) return 0.0f;  // nothing traced, nothing re-traced
-    const uint32_t count = *static_cast<const uint32_t*>(targets_.resampleCount.mapped());
-    return float(count) / float(std::max<uint64_t>(uint64_t(targets_.width) * targets_.height, 1));
+    return float(resampleCount_) / float(std::max<uint64_t>(uint64_t(targets_.width) * targets_.height, 1));
 }
 
 Renderer::IndirectLight Renderer::readIndirect() {
@@ -385,7 +428,8 @@ vk::Image& Renderer::renderVoxelView(uint32_t mip) {
     voxelView_->prepare(mip, targets_.width, targets_.height);
     // The frame uniforms still hold the last frame's camera and grid placement.
     context_.submitAndWait([&](VkCommandBuffer cmd) {
-        FrameContext frame{context_, cmd, gpuScene_, targets_, frameUniforms_.handle(), settings_, samplers_};
+        FrameContext frame{context_,  cmd,      gpuScene_, targets_, lastSubmitted().uniforms.handle(),
+                           settings_, samplers_};
         voxelView_->execute(frame);
     });
     return voxelView_->output();

@@ -48,13 +48,24 @@ class VoxelViewPass;
 
 class Renderer {
   public:
-    Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings);
+    // `framesInFlight` (1 or 2): how many frames may be submitted and not yet finished. With 1 (headless
+    // runs, tests, benchmarks) render() waits for its frame; with 2 (the demo) it returns after the submit
+    // and waits, before it records a frame, for the one two frames back: the CPU records frame k + 1 while the
+    // GPU runs frame k. What the CPU writes for a frame (uniforms, instance transforms, lights, joint
+    // matrices, morph weights) and reads back (timestamps, the re-trace count) has one copy per frame in
+    // flight; everything else is GPU-only and ordered by the queue.
+    Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings,
+             uint32_t framesInFlight = 1);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    // Records, submits and waits for one frame; then reads its timestamps.
+    // Records and submits one frame. With one frame in flight it then waits for it and reads its timestamps;
+    // with two, the timestamps (timer()) and the re-trace fraction are those of the last frame finished.
     void render(const FrameInput& input, const FrameSubmit& submit = {});
+    // Waits for every submitted frame and reads its timestamps (the demo before it reports statistics).
+    // Image readbacks need no call: they are submitted after the frames and wait for them.
+    void finishFrames();
     void resize(uint32_t width, uint32_t height);
     // The demo's live controls. True when going from the settings this renderer runs with to `wanted` changes
     // only what the next frame reads from its uniforms and specialization constants: every setting that
@@ -80,7 +91,8 @@ class Renderer {
     // of the frame or its timings. Throws when GI is off (no grid) or the mip is out of range.
     vk::Image& renderVoxelView(uint32_t mip);
 
-    // Fraction of the pixels the resample pass re-traced in the last frame (0 without adaptive re-tracing).
+    // Fraction of the pixels the resample pass re-traced in the last finished frame (0 without adaptive
+    // re-tracing).
     float resampledFraction() const;
 
     // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones).
@@ -95,8 +107,21 @@ class Renderer {
     IndirectLight readIndirect();
 
   private:
+    // What one frame in flight owns (see the constructor).
+    struct FrameSlot {
+        VkCommandBuffer cmd = VK_NULL_HANDLE;
+        VkFence fence = VK_NULL_HANDLE;
+        vk::Buffer uniforms;  // gpu::FrameUniforms
+        vk::Buffer
+            resampleCount;     // the re-trace count copied back (FrameTargets::resampleCount while recorded)
+        bool pending = false;  // submitted, its fence not waited yet
+        bool recordTimings = false;
+    };
+    // Waits for the slot's frame if it is pending: its timestamps, its re-trace count.
+    void finishSlot(FrameSlot& slot);
+    FrameSlot& lastSubmitted() { return slots_[(submitted_ + slots_.size() - 1) % slots_.size()]; }
     vk::Buffer copyToHost(vk::Image& image);
-    void writeFrameUniforms(const FrameInput& input);
+    void writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms);
     void createSamplers();
 
     const vk::Context& context_;
@@ -105,15 +130,15 @@ class Renderer {
     FrameTargets targets_;
     std::array<vk::Sampler, 3> samplerOwners_;  // linear, nearest, shadow compare: what samplers_ names
     Samplers samplers_;
-    vk::Buffer frameUniforms_;
+    std::vector<FrameSlot> slots_;  // one per frame in flight; frame k uses slot k mod size
+    uint32_t submitted_ = 0;        // frames submitted
+    uint32_t resampleCount_ = 0;    // re-traced pixels of the last finished frame
     vk::GpuTimer timer_;
     std::shared_ptr<const EnvironmentMap> environmentMap_;
     std::unique_ptr<GpuEnvironment> gpuEnvironment_;  // before passes_: they bind it
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
     std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_
-    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
     glm::mat4 previousViewProj_{1.0f};
     glm::mat4 previousInvViewProj_{1.0f};
     glm::vec3 previousCameraPosition_{0.0f};

@@ -21,10 +21,11 @@ PassTiming summarize(const std::string& name, std::vector<double> samples) {
     return timing;
 }
 
-GpuTimer::GpuTimer(const Context& context, uint32_t maxScopes) : context_(context), maxScopes_(maxScopes) {
+GpuTimer::GpuTimer(const Context& context, uint32_t maxScopes, uint32_t framesInFlight)
+    : context_(context), maxScopes_(maxScopes), frames_(std::max(framesInFlight, 1u)) {
     VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    info.queryCount = 2 * maxScopes;
+    info.queryCount = 2 * maxScopes * uint32_t(frames_.size());
     VK_CHECK(vkCreateQueryPool(context.device(), &info, nullptr, &pool_));
     uint32_t familyCount = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &familyCount, nullptr);
@@ -39,43 +40,58 @@ GpuTimer::~GpuTimer() {
 }
 
 void GpuTimer::beginFrame(VkCommandBuffer cmd) {
-    vkCmdResetQueryPool(cmd, pool_, 0, 2 * maxScopes_);
-    scopes_.clear();
-    timedScopes_ = 0;
+    // All sets in use by frames not collected: a caller that submits more frames than it declared in flight
+    // loses the oldest one's timestamps rather than reading queries that are reset again.
+    if (begun_ - collected_ == frames_.size()) ++collected_;
+    vkCmdResetQueryPool(cmd, pool_, firstQuery(begun_), 2 * maxScopes_);
+    ++begun_;
+    recording() = FrameQueries{};
+    openScope_ = -1;
+}
+
+void GpuTimer::cancelFrame() {
+    if (begun_ > collected_) --begun_;
     openScope_ = -1;
 }
 
 void GpuTimer::beginScope(VkCommandBuffer cmd, const std::string& name) {
+    FrameQueries& frame = recording();
     if (openScope_ >= 0)
-        throw Error("GpuTimer: scope '" + name + "' opened inside '" + scopes_.back().name + "'");
-    if (timedScopes_ == maxScopes_)
+        throw Error("GpuTimer: scope '" + name + "' opened inside '" + frame.scopes.back().name + "'");
+    if (frame.timedScopes == maxScopes_)
         throw Error("GpuTimer: more than " + std::to_string(maxScopes_) + " passes");
-    openScope_ = int(timedScopes_++);
-    scopes_.push_back({name, openScope_});
-    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * uint32_t(openScope_));
+    openScope_ = int(frame.timedScopes++);
+    frame.scopes.push_back({name, openScope_});
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_,
+                         firstQuery(begun_ - 1) + 2 * uint32_t(openScope_));
 }
 
 void GpuTimer::skipScope(const std::string& name) {
+    FrameQueries& frame = recording();
     if (openScope_ >= 0)
-        throw Error("GpuTimer: scope '" + name + "' skipped inside '" + scopes_.back().name + "'");
-    scopes_.push_back({name, -1});
+        throw Error("GpuTimer: scope '" + name + "' skipped inside '" + frame.scopes.back().name + "'");
+    frame.scopes.push_back({name, -1});
 }
 
 void GpuTimer::endScope(VkCommandBuffer cmd) {
-    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * uint32_t(openScope_) + 1);
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_,
+                         firstQuery(begun_ - 1) + 2 * uint32_t(openScope_) + 1);
     openScope_ = -1;
 }
 
 void GpuTimer::collect(bool record) {
+    if (collected_ == begun_) return;
+    const uint32_t first = firstQuery(collected_);
+    const FrameQueries& frame = frames_[collected_++ % frames_.size()];
     lastFrame_.clear();
-    if (timedScopes_ == 0) return;
-    std::vector<uint64_t> stamps(2 * size_t(timedScopes_));
-    VK_CHECK(vkGetQueryPoolResults(context_.device(), pool_, 0, uint32_t(stamps.size()),
+    if (frame.timedScopes == 0) return;
+    std::vector<uint64_t> stamps(2 * size_t(frame.timedScopes));
+    VK_CHECK(vkGetQueryPoolResults(context_.device(), pool_, first, uint32_t(stamps.size()),
                                    stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     const double msPerTick = double(context_.properties().limits.timestampPeriod) * 1e-6;
     auto ticks = [&](uint64_t begin, uint64_t end) { return double((end - begin) & validMask_) * msPerTick; };
-    for (const Scope& scope : scopes_) {
+    for (const Scope& scope : frame.scopes) {
         const size_t q = size_t(scope.query);
         const double ms = scope.query >= 0 ? ticks(stamps[2 * q], stamps[2 * q + 1]) : 0.0;
         lastFrame_.emplace_back(scope.name, ms);

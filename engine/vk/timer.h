@@ -1,5 +1,7 @@
 // Per-pass GPU timers from timestamp queries. The code that runs the passes opens a scope per pass by name;
-// nobody numbers query indices by hand. Durations use the device's timestampPeriod.
+// nobody numbers query indices by hand. Durations use the device's timestampPeriod. With several frames in
+// flight each frame has its own queries: beginFrame() takes the next set, collect() reads the oldest frame
+// not yet collected (after its fence), so every sample is still one frame's.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -22,19 +24,24 @@ struct PassTiming {
 
 class GpuTimer {
   public:
-    GpuTimer(const Context& context, uint32_t maxScopes = 64);
+    // `framesInFlight`: how many frames may be recorded before the first of them is collected.
+    GpuTimer(const Context& context, uint32_t maxScopes = 64, uint32_t framesInFlight = 1);
     ~GpuTimer();
     GpuTimer(const GpuTimer&) = delete;
     GpuTimer& operator=(const GpuTimer&) = delete;
 
-    // Resets the queries for a new frame (recorded into the frame's command buffer).
+    // Resets the next frame's queries (recorded into the frame's command buffer).
     void beginFrame(VkCommandBuffer cmd);
     void beginScope(VkCommandBuffer cmd, const std::string& name);
     void endScope(VkCommandBuffer cmd);
     // A pass with nothing to do this frame: no timestamps, a 0 ms sample (it cost the frame nothing), and
     // not counted in PassTiming::runs.
     void skipScope(const std::string& name);
-    // After the frame's fence: reads the timestamps; keeps them as samples when `record` is true.
+    // The frame begun last will not be submitted (an error while it was recorded): its queries are never
+    // written, so it is never collected.
+    void cancelFrame();
+    // After the fence of the oldest frame begun and not yet collected: reads its timestamps; keeps them as
+    // samples when `record` is true. Does nothing when no frame is waiting.
     void collect(bool record);
 
     // Median/p95/min per pass over the recorded frames, in the order the passes first ran.
@@ -45,16 +52,23 @@ class GpuTimer {
 
   private:
     const Context& context_;
-    VkQueryPool pool_ = VK_NULL_HANDLE;
+    VkQueryPool pool_ = VK_NULL_HANDLE;  // framesInFlight sets of 2 · maxScopes queries
     uint32_t maxScopes_;
     uint64_t validMask_;
     struct Scope {
         std::string name;
-        int query = -1;  // index of its pair of timestamps; -1: skipped
+        int query = -1;  // index of its pair of timestamps in the frame's set; -1: skipped
     };
-    std::vector<Scope> scopes_;  // this frame's scopes, in order
-    uint32_t timedScopes_ = 0;   // how many of them have timestamps
+    struct FrameQueries {
+        std::vector<Scope> scopes;  // the frame's scopes, in order
+        uint32_t timedScopes = 0;   // how many of them have timestamps
+    };
+    std::vector<FrameQueries> frames_;  // one per frame in flight
+    uint32_t begun_ = 0;                // frames begun
+    uint32_t collected_ = 0;            // frames collected (the oldest pending is collected_ % size)
     int openScope_ = -1;
+    FrameQueries& recording() { return frames_[(begun_ - 1) % frames_.size()]; }
+    uint32_t firstQuery(uint32_t frame) const { return uint32_t(frame % frames_.size()) * 2 * maxScopes_; }
     std::vector<std::string> passOrder_;
     std::vector<std::vector<double>> passSamples_;  // parallel to passOrder_
     std::vector<size_t> passRuns_;                  // parallel to passOrder_

@@ -68,6 +68,11 @@ CommandSpec makeDemoSpec() {
          "final"},
         {"voxel-mip", "M", "--view voxels: the mip shown", "0"},
         {"panel", "on|off", "show the panel and timers at start (F1 toggles)", "on"},
+        {"frames-in-flight", "1|2",
+         "frames the CPU may record ahead of the GPU: 2 overlaps recording with the frame before, 1 waits "
+         "for "
+         "each frame",
+         "2"},
         {"split", "on|off", "split view at start (V toggles): side A left of the wipe, B right", "off"},
         {"split-source", "vct|reference",
          "what side B shows: vct with its own settings (b-NAME in scripts) or the path-traced reference, "
@@ -126,6 +131,7 @@ struct DemoArgs {
     std::optional<DemoScript> script;
     std::optional<CameraPath> cameraPath;
     std::string recordPath;
+    uint32_t framesInFlight = 2;
     DemoControls controls;
 };
 
@@ -138,8 +144,9 @@ class DemoApp {
           context_(context),
           args_(args),
           controls_(args.controls),
-          renderers_(context, std::move(scene), withViewNeeds(args.controls.settings, args.controls.view)),
-          display_(context, window),
+          renderers_(context, std::move(scene), withViewNeeds(args.controls.settings, args.controls.view),
+                     args.framesInFlight),
+          display_(context, window, args.framesInFlight),
           input_(window.handle()) {
         fixedStep_ = args.frameLimit > 0 || args.script.has_value();
         resetCamera();
@@ -162,6 +169,8 @@ class DemoApp {
     // The frame loop; returns the number of frames shown.
     uint32_t run();
     Renderer& renderer() { return renderers_.a(); }
+    // Waits for the frames still in flight and takes their timings.
+    void finishFrames();
     void printTimers() const;
 
   private:
@@ -602,6 +611,16 @@ void DemoApp::present() {
     }
 }
 
+void DemoApp::finishFrames() {
+    renderers_.finishFrames();
+    display_.finishFrames();
+    if (args_.framesInFlight == 1) return;  // every frame's timings were taken in the loop
+    // The last frame's, taken now (the loop took each earlier frame's one frame late).
+    timersA_.add(renderers_.a().timer().lastFrame());
+    if (renderers_.b()) timersB_.add(renderers_.b()->timer().lastFrame());
+    timersDisplay_.add(display_.timer().lastFrame());
+}
+
 void DemoApp::printTimers() const {
     auto line = [](const char* what, const RollingTimers& timers) {
         if (timers.frames() == 0) return;
@@ -613,6 +632,13 @@ void DemoApp::printTimers() const {
     line("renderer A", timersA_);
     line("renderer B (split view)", timersB_);
     line("window (view, ui, blit)", timersDisplay_);
+    // The loop's own time per frame (input, panel, recording and submitting, waiting for the frame in flight):
+    // what the window's frame rate is, GPU and CPU overlapped or not.
+    const std::vector<float>& loop = frameTimes_.values();
+    if (!loop.empty())
+        std::printf(
+            "frame loop (wall clock, median of the last %zu frames): %.3f ms, %u frame(s) in flight\n",
+            loop.size(), median(std::vector<double>(loop.begin(), loop.end())), args_.framesInFlight);
     if (reference_) {
         const ReferenceSnapshot snapshot = reference_->snapshot();
         std::printf("reference (split view B): %u spp, %.3f Mrays/s on %u threads, %s\n",
@@ -630,6 +656,7 @@ int runDemoCommand(int argc, char** argv, int first) {
     DemoArgs args;
     args.session = sessionOptions(parsedArgs);
     args.frameLimit = parsedArgs.getUint("frames", 0, 100000000);
+    args.framesInFlight = parsedArgs.getUint("frames-in-flight", 1, 2);
     args.screenshot = parsedArgs.get("screenshot");
     args.recordPath = parsedArgs.get("record-path");
     if (parsedArgs.has("script"))
@@ -672,6 +699,7 @@ int runDemoCommand(int argc, char** argv, int first) {
                 "Esc quits\n");
             std::fflush(stdout);
             frames = app.run();
+            app.finishFrames();
             app.printTimers();
             if (!args.screenshot.empty()) {
                 if (frames == 0) throw Error("no frame was shown, so no screenshot was written");

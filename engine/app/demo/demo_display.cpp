@@ -22,7 +22,10 @@ void checkImGuiVk(VkResult result) {
 
 }  // namespace
 
-DemoDisplay::DemoDisplay(const vk::Context& context, Window& window) : context_(context), timer_(context, 8) {
+DemoDisplay::DemoDisplay(const vk::Context& context, Window& window, uint32_t framesInFlight)
+    : context_(context),
+      timer_(context, 8, std::clamp(framesInFlight, 1u, 2u)),
+      slots_(std::clamp(framesInFlight, 1u, 2u)) {
     const VkDevice device = context.device();
     // ImGui's font texture needs one combined-image-sampler set; a little room for more.
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8}};
@@ -80,20 +83,24 @@ DemoDisplay::DemoDisplay(const vk::Context& context, Window& window) : context_(
     info.Queue = context.queue();
     info.DescriptorPool = pool_;
     info.MinImageCount = 2;
-    info.ImageCount = 2;  // vertex buffers in rotation; every frame waits for its fence anyway
+    // ImGui's vertex buffers, one per frame in rotation: the one frame k writes was last drawn by frame k − 2,
+    // whose fence present() has waited for (with one frame in flight every frame is waited for anyway).
+    info.ImageCount = 2;
     info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
     info.CheckVkResultFn = checkImGuiVk;
     ImGui_ImplVulkan_Init(&info, renderPass_);
     context.submitAndWait([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
     ImGui_ImplVulkan_DestroyFontUploadObjects();
 
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = context.commandPool();
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &cmd_));
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &fence_));
+    for (FrameSlot& slot : slots_) {
+        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        alloc.commandPool = context.commandPool();
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &slot.cmd));
+        VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &slot.fence));
+    }
 }
 
 DemoDisplay::~DemoDisplay() {
@@ -102,8 +109,10 @@ DemoDisplay::~DemoDisplay() {
     ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
-    vkDestroyFence(device, fence_, nullptr);
-    vkFreeCommandBuffers(device, context_.commandPool(), 1, &cmd_);
+    for (FrameSlot& slot : slots_) {
+        vkDestroyFence(device, slot.fence, nullptr);
+        vkFreeCommandBuffers(device, context_.commandPool(), 1, &slot.cmd);
+    }
     vkDestroyFramebuffer(device, framebuffer_, nullptr);
     vkDestroyRenderPass(device, renderPass_, nullptr);
     vkDestroyDescriptorPool(device, pool_, nullptr);
@@ -189,52 +198,70 @@ void DemoDisplay::compose(VkCommandBuffer cmd, const DisplaySource& a, const Dis
     }
 }
 
+void DemoDisplay::finishSlot(FrameSlot& slot) {
+    if (!slot.pending) return;
+    VK_CHECK(vkWaitForFences(context_.device(), 1, &slot.fence, VK_TRUE, UINT64_MAX));
+    slot.pending = false;
+    timer_.collect(false);
+}
+
+void DemoDisplay::finishFrames() {
+    for (size_t k = 0; k < slots_.size(); ++k) finishSlot(slots_[(submitted_ + k) % slots_.size()]);
+}
+
 void DemoDisplay::present(Swapchain& swapchain, const SwapchainImage& target, const DisplaySource& a,
                           const DisplaySource& b, bool split, float wipe, bool ui) {
     ImGui::Render();  // ends the ImGui frame even when nothing is drawn
     const VkExtent2D extent = swapchain.extent();
     resize(extent.width, extent.height);
+    FrameSlot& slot = slots_[submitted_ % slots_.size()];
+    finishSlot(slot);
+    // A picture made on the CPU goes through one staging buffer per side, which the frame before may still
+    // be copying from.
+    if (a.pixels || b.pixels) finishFrames();
+    const VkCommandBuffer cmd = slot.cmd;
 
-    VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+    VK_CHECK(vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
-    timer_.beginFrame(cmd_);
-    timer_.beginScope(cmd_, "view");
-    compose(cmd_, a, b, split, wipe);
-    timer_.endScope(cmd_);
+    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    timer_.beginFrame(cmd);
+    timer_.beginScope(cmd, "view");
+    compose(cmd, a, b, split, wipe);
+    timer_.endScope(cmd);
     if (ui) {
-        timer_.beginScope(cmd_, "ui");
-        display_.use(cmd_, vk::ImageAccess::ColorAttachment);
+        timer_.beginScope(cmd, "ui");
+        display_.use(cmd, vk::ImageAccess::ColorAttachment);
         VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
         rp.renderPass = renderPass_;
         rp.framebuffer = framebuffer_;
         rp.renderArea.extent = {display_.width(), display_.height()};
-        vkCmdBeginRenderPass(cmd_, &rp, VK_SUBPASS_CONTENTS_INLINE);
-        ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd_);
-        vkCmdEndRenderPass(cmd_);
-        timer_.endScope(cmd_);
+        vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
+        ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+        vkCmdEndRenderPass(cmd);
+        timer_.endScope(cmd);
     } else {
         timer_.skipScope("ui");
     }
-    timer_.beginScope(cmd_, "blit");
-    swapchain.recordBlit(cmd_, display_, target);
-    timer_.endScope(cmd_);
-    VK_CHECK(vkEndCommandBuffer(cmd_));
+    timer_.beginScope(cmd, "blit");
+    swapchain.recordBlit(cmd, display_, target);
+    timer_.endScope(cmd);
+    VK_CHECK(vkEndCommandBuffer(cmd));
 
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
     VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     info.commandBufferCount = 1;
-    info.pCommandBuffers = &cmd_;
+    info.pCommandBuffers = &cmd;
     info.waitSemaphoreCount = 1;
     info.pWaitSemaphores = &target.available;
     info.pWaitDstStageMask = &waitStage;
     info.signalSemaphoreCount = 1;
     info.pSignalSemaphores = &target.rendered;
-    VK_CHECK(vkResetFences(context_.device(), 1, &fence_));
-    VK_CHECK(vkQueueSubmit(context_.queue(), 1, &info, fence_));
-    VK_CHECK(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
-    timer_.collect(false);
+    VK_CHECK(vkResetFences(context_.device(), 1, &slot.fence));
+    VK_CHECK(vkQueueSubmit(context_.queue(), 1, &info, slot.fence));
+    slot.pending = true;
+    ++submitted_;
+    if (slots_.size() == 1) finishSlot(slot);
 }
 
 std::vector<uint8_t> DemoDisplay::read() {

@@ -28,20 +28,24 @@ struct DisplaySource {
 
 class DemoDisplay {
   public:
-    // Sets up Dear ImGui (context, GLFW and Vulkan backends, font upload) for `window`.
-    DemoDisplay(const vk::Context& context, Window& window);
+    // Sets up Dear ImGui (context, GLFW and Vulkan backends, font upload) for `window`. `framesInFlight` (1
+    // or 2): frames submitted and not yet waited for, as for the renderers.
+    DemoDisplay(const vk::Context& context, Window& window, uint32_t framesInFlight);
     ~DemoDisplay();
     DemoDisplay(const DemoDisplay&) = delete;
     DemoDisplay& operator=(const DemoDisplay&) = delete;
 
     // Starts an ImGui frame (input from GLFW); the caller then issues ImGui calls for this frame.
     void beginUi();
-    // Composes, draws the UI when `ui` (ImGui::Render is called either way), blits to `target`, submits and
-    // waits. `b` and `wipe` (a fraction of the width) only when `split`.
+    // Composes, draws the UI when `ui` (ImGui::Render is called either way), blits to `target` and submits;
+    // with one frame in flight it then waits for it. `b` and `wipe` (a fraction of the width) only when
+    // `split`.
     void present(Swapchain& swapchain, const SwapchainImage& target, const DisplaySource& a,
                  const DisplaySource& b, bool split, float wipe, bool ui);
     // The last presented picture, RGBA8 at the display's size.
     std::vector<uint8_t> read();
+    // Waits for the frames in flight and takes their timings.
+    void finishFrames();
     uint32_t width() const { return display_.width(); }
     uint32_t height() const { return display_.height(); }
     const vk::GpuTimer& timer() const { return timer_; }
@@ -59,8 +63,14 @@ class DemoDisplay {
     vk::Image uploads_[2];  // CPU-made views of side A and B
     vk::Buffer staging_[2];
     vk::GpuTimer timer_;
-    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
+    struct FrameSlot {
+        VkCommandBuffer cmd = VK_NULL_HANDLE;
+        VkFence fence = VK_NULL_HANDLE;
+        bool pending = false;  // submitted, its fence not waited yet
+    };
+    void finishSlot(FrameSlot& slot);
+    std::vector<FrameSlot> slots_;  // frame k uses slot k mod size
+    uint32_t submitted_ = 0;
 };
 
 }  // namespace vct

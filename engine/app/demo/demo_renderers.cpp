@@ -14,8 +14,8 @@ RenderSettings withViewNeeds(RenderSettings settings, AuxView view) {
 }
 
 DemoRenderers::DemoRenderers(const vk::Context& context, std::unique_ptr<Scene> scene,
-                             const RenderSettings& settings)
-    : context_(context), scene_(std::move(scene)), appliedA_(settings) {
+                             const RenderSettings& settings, uint32_t framesInFlight)
+    : context_(context), framesInFlight_(framesInFlight), scene_(std::move(scene)), appliedA_(settings) {
     a_ = make(*scene_, settings);
 }
 
@@ -27,7 +27,7 @@ DemoRenderers::~DemoRenderers() {
 
 std::unique_ptr<Renderer> DemoRenderers::make(const Scene& scene, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
-    auto renderer = std::make_unique<Renderer>(context_, scene, settings);
+    auto renderer = std::make_unique<Renderer>(context_, scene, settings, framesInFlight_);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     char buffer[128];
@@ -88,6 +88,11 @@ void DemoRenderers::sync(DemoControls& controls) {
 void DemoRenderers::render(const FrameInput& input) {
     a_->render(input);
     if (b_) b_->render(input);
+}
+
+void DemoRenderers::finishFrames() {
+    a_->finishFrames();
+    if (b_) b_->finishFrames();
 }
 
 void DemoRenderers::replaceScene(std::unique_ptr<Scene> scene, const DemoControls& controls) {

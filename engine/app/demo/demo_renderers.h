@@ -18,7 +18,9 @@ namespace vct {
 
 class DemoRenderers {
   public:
-    DemoRenderers(const vk::Context& context, std::unique_ptr<Scene> scene, const RenderSettings& settings);
+    // `framesInFlight` (1 or 2): what every renderer it makes is given (render/renderer.h).
+    DemoRenderers(const vk::Context& context, std::unique_ptr<Scene> scene, const RenderSettings& settings,
+                  uint32_t framesInFlight);
     ~DemoRenderers();
 
     // Brings A (and B when controls.rendersB()) to the controls' settings. When a new renderer cannot be made
@@ -26,6 +28,8 @@ class DemoRenderers {
     void sync(DemoControls& controls);
     // Renders the frame on A and, with the split view, on B.
     void render(const FrameInput& input);
+    // Both renderers' frames still in flight waited for (their timings taken).
+    void finishFrames();
     // A new scene: renderers for it are made first; on failure the old scene and renderers keep running.
     void replaceScene(std::unique_ptr<Scene> scene, const DemoControls& controls);
     // New renderers (pipelines from the current shader directory: hot reload); the old ones kept on failure.
@@ -45,6 +49,7 @@ class DemoRenderers {
     void bring(std::unique_ptr<Renderer>& current, const RenderSettings& wanted, const char* side);
 
     const vk::Context& context_;
+    uint32_t framesInFlight_;
     std::shared_ptr<const Scene> scene_;
     std::unique_ptr<Renderer> a_, b_;
     RenderSettings appliedA_;  // the controls' settings A last accepted (the fallback on failure)

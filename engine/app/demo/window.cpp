@@ -100,7 +100,7 @@ Swapchain::Swapchain(const vk::Context& context, Window& window) : context_(cont
     }
     format_ = chooseFormat();
     VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VK_CHECK(vkCreateSemaphore(context.device(), &info, nullptr, &available_));
+    for (VkSemaphore& s : available_) VK_CHECK(vkCreateSemaphore(context.device(), &info, nullptr, &s));
 }
 
 Swapchain::~Swapchain() {
@@ -108,7 +108,7 @@ Swapchain::~Swapchain() {
     const VkDevice device = context_.device();
     vkDeviceWaitIdle(device);
     for (VkSemaphore s : rendered_) vkDestroySemaphore(device, s, nullptr);
-    vkDestroySemaphore(device, available_, nullptr);
+    for (VkSemaphore s : available_) vkDestroySemaphore(device, s, nullptr);
     vkDestroySwapchainKHR(device, swapchain_, nullptr);
     vkDestroySurfaceKHR(context_.instance(), surface_, nullptr);
 }
@@ -198,7 +198,8 @@ bool Swapchain::recreate() {
 }
 
 bool Swapchain::acquire(SwapchainImage& out) {
-    const VkResult result = vkAcquireNextImageKHR(context_.device(), swapchain_, UINT64_MAX, available_,
+    const VkSemaphore available = available_[acquires_ % available_.size()];
+    const VkResult result = vkAcquireNextImageKHR(context_.device(), swapchain_, UINT64_MAX, available,
                                                   VK_NULL_HANDLE, &out.index);
     if (result == VK_ERROR_OUT_OF_DATE_KHR) {
         stale_ = true;
@@ -210,7 +211,8 @@ bool Swapchain::acquire(SwapchainImage& out) {
     else
         VK_CHECK(result);
     out.image = images_[out.index];
-    out.available = available_;
+    out.available = available;
+    ++acquires_;  // only an acquire that signals moves on: an out-of-date one left the semaphore unsignalled
     out.rendered = rendered_[out.index];
     return true;
 }

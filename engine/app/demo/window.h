@@ -5,6 +5,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -80,7 +81,12 @@ class Swapchain {
     VkSurfaceFormatKHR format_{};
     VkExtent2D extent_{};
     std::vector<VkImage> images_;
-    VkSemaphore available_ = VK_NULL_HANDLE;
+    // Acquire semaphores in rotation. The demo's frame k waits on its acquire's semaphore; the next acquire
+    // that reuses it comes after the display has waited for frame k's fence, which with up to two frames in
+    // flight is at frame k + 2's present: three are enough (one alone must not be signalled again while a
+    // submitted wait on it may still be pending).
+    std::array<VkSemaphore, 3> available_{};
+    uint32_t acquires_ = 0;
     // One per image index: a present may still be waiting on the previous one when the next frame signals,
     // and these survive recreation because the old swapchain's presents may still hold them.
     std::vector<VkSemaphore> rendered_;
