@@ -45,7 +45,8 @@ bool sameBits(const glm::vec4& a, const glm::vec4& b) {
 
 TEST(VertexColors, BoxVertexColorsLoadAsItsAccessorHoldsThem) {
     const fs::path dir = fs::path(VCT_SHARED_SCENES) / "BoxVertexColors" / "glTF";
-    if (!fs::exists(dir / "BoxVertexColors.gltf")) GTEST_SKIP() << "no " << dir << " (shared scenes not available)";
+    if (!fs::exists(dir / "BoxVertexColors.gltf"))
+        GTEST_SKIP() << "no " << dir << " (shared scenes not available)";
     // The accessors by hand, from the JSON: float VEC4 COLOR_0 and VEC3 POSITION, tightly packed.
     const json doc = json::parse(std::ifstream(dir / "BoxVertexColors.gltf"));
     const std::vector<unsigned char> bin = readBytes(dir / "buffer.bin");
@@ -76,8 +77,9 @@ TEST(VertexColors, BoxVertexColorsLoadAsItsAccessorHoldsThem) {
         const glm::vec4 expected(floatAt(bin, colors + 16 * i), floatAt(bin, colors + 16 * i + 4),
                                  floatAt(bin, colors + 16 * i + 8), floatAt(bin, colors + 16 * i + 12));
         EXPECT_TRUE(sameBits(v.color, expected))
-            << "vertex " << i << ": (" << v.color.r << ", " << v.color.g << ", " << v.color.b << ", " << v.color.a
-            << ") vs (" << expected.r << ", " << expected.g << ", " << expected.b << ", " << expected.a << ")";
+            << "vertex " << i << ": (" << v.color.r << ", " << v.color.g << ", " << v.color.b << ", "
+            << v.color.a << ") vs (" << expected.r << ", " << expected.g << ", " << expected.b << ", "
+            << expected.a << ")";
         const glm::vec3 position(floatAt(bin, positions + 12 * i), floatAt(bin, positions + 12 * i + 4),
                                  floatAt(bin, positions + 12 * i + 8));
         // Same vertex order: the position's signs match the file's (a cube about the origin).
@@ -97,10 +99,12 @@ fs::path integerColorScene(const fs::path& dir, int componentType, const char* t
     hostile::GltfScene s;
     s.texture = false;
     for (size_t v = 0; v < vertices; ++v)  // a row of small triangles
-        hostile::appendFloats(s.bin, {float(v / 3) + (v % 3 == 1 ? 1.0f : 0.0f), v % 3 == 2 ? 1.0f : 0.0f, 0.0f});
+        hostile::appendFloats(s.bin,
+                              {float(v / 3) + (v % 3 == 1 ? 1.0f : 0.0f), v % 3 == 2 ? 1.0f : 0.0f, 0.0f});
     const size_t colorOffset = s.bin.size();
     for (uint32_t value : values) {
-        if (componentType == 5121) s.bin.push_back((unsigned char)value);
+        if (componentType == 5121)
+            s.bin.push_back((unsigned char)value);
         else {
             s.bin.push_back((unsigned char)(value & 0xFF));
             s.bin.push_back((unsigned char)(value >> 8));
@@ -125,7 +129,10 @@ fs::path integerColorScene(const fs::path& dir, int componentType, const char* t
            {"type", "VEC3"},
            {"min", {0, 0, 0}},
            {"max", {float((vertices - 1) / 3) + 1.0f, 1, 0}}},
-          {{"bufferView", 1}, {"componentType", componentType}, {"normalized", true}, {"count", vertices},
+          {{"bufferView", 1},
+           {"componentType", componentType},
+           {"normalized", true},
+           {"count", vertices},
            {"type", type}}}},
     };
     return hostile::writeGltf(dir, s);
@@ -201,9 +208,8 @@ std::string roomFile(const std::string& name, bool vertexColors) {
 
 fs::path render(const std::string& name, const std::string& scene, std::vector<std::string> extra = {}) {
     const fs::path dir = test::freshOutputDir("vertex_color/" + name);
-    std::vector<std::string> args = {"render", "--scene",  scene,  "--size",     "96x54", "--frames",
-                                     "1",      "--voxels", "32",   "--validate", "--aux", "--out",
-                                     dir.string()};
+    std::vector<std::string> args = {"render",   "--scene", scene,        "--size", "96x54", "--frames",  "1",
+                                     "--voxels", "32",      "--validate", "--aux",  "--out", dir.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const test::RunResult r = test::runVct(args);
     EXPECT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
@@ -238,10 +244,11 @@ TEST(VertexColors, RenderAsTheBaseColorTheyMultiply) {
     // The centre pixel is on the wall.
     const size_t centre = (size_t(albedo.height / 2) * albedo.width + albedo.width / 2) * 4;
     const glm::vec3 atCentre(albedo.pixels[centre], albedo.pixels[centre + 1], albedo.pixels[centre + 2]);
-    std::printf("vertex colours: %zu wall pixels, albedo vs c*b max %.5f, vs the factor render max %.5f; centre "
-                "(%.4f, %.4f, %.4f), c*b (%.4f, %.4f, %.4f)\n",
-                wall, albedoError, albedoDiff, atCentre.r, atCentre.g, atCentre.b, expected.r, expected.g,
-                expected.b);
+    std::printf(
+        "vertex colours: %zu wall pixels, albedo vs c*b max %.5f, vs the factor render max %.5f; centre "
+        "(%.4f, %.4f, %.4f), c*b (%.4f, %.4f, %.4f)\n",
+        wall, albedoError, albedoDiff, atCentre.r, atCentre.g, atCentre.b, expected.r, expected.g,
+        expected.b);
     // Measured: 1079 wall pixels; albedo within 0.00157 of c × b (the 8-bit target's rounding: half a step is
     // 0.00196), and the same bits as the factor render's.
     EXPECT_GT(wall, 800u) << "the wall is not in view";
@@ -259,10 +266,12 @@ TEST(VertexColors, RenderAsTheBaseColorTheyMultiply) {
     // And the bounce is coloured at all (red over blue on the floor below the wall), or the comparison is empty.
     const ImageRgba32f diffuse = readExr(colored / "diffuse_indirect.exr");
     for (size_t i = 0; i < diffuse.pixels.size(); i += 4)
-        floorTint = std::max(floorTint, double(diffuse.pixels[i]) / std::max(double(diffuse.pixels[i + 2]), 1e-6));
-    std::printf("vertex colours: final.exr vs the factor render, max relative difference %.2e; indirect r/b up to "
-                "%.2f\n",
-                maxRelative, floorTint);
+        floorTint =
+            std::max(floorTint, double(diffuse.pixels[i]) / std::max(double(diffuse.pixels[i + 2]), 1e-6));
+    std::printf(
+        "vertex colours: final.exr vs the factor render, max relative difference %.2e; indirect r/b up to "
+        "%.2f\n",
+        maxRelative, floorTint);
     // Measured: 0 (the same bits) and r/b 2.78.
     EXPECT_LE(maxRelative, 1e-6);
     EXPECT_GT(floorTint, 1.5) << "the wall's colour does not bounce";
