@@ -277,5 +277,43 @@ TEST(VertexColors, RenderAsTheBaseColorTheyMultiply) {
     EXPECT_GT(floorTint, 1.5) << "the wall's colour does not bounce";
 }
 
+// The vertex colour's alpha multiplies the base colour's, which an alpha-masked material compares with its
+// cutoff: a masked wall whose vertex alpha is 0.2 (cutoff 0.5) is cut out in vct's G-buffer and in the
+// reference alike, and the same wall with vertex alpha 1 is there in both.
+TEST(VertexColors, VertexAlphaBelowTheMaskCutoffCutsTheSurfaceOut) {
+    for (float alpha : {1.0f, 0.2f}) {
+        const std::string tag = alpha < 0.5f ? "masked-out" : "masked-in";
+        Scene scene = test::scenes::vertexColorRoom(true, glm::vec4(glm::vec3(kColor), alpha), kBase);
+        scene.materials[1].alphaMode = AlphaMode::Mask;
+        scene.materials[1].alphaCutoff = 0.5f;
+        const fs::path file = test::freshOutputDir("vertex_color/scene-" + tag) / (tag + ".glb");
+        writeGlb(scene, file);
+        const ImageRgba32f albedo = readExr(render(tag, file.string()) / "albedo.exr");
+        const glm::vec3 expected = glm::vec3(kColor) * kBase;
+        size_t wall = 0;
+        for (size_t i = 0; i < albedo.pixels.size(); i += 4)
+            wall += glm::length(glm::vec3(albedo.pixels[i], albedo.pixels[i + 1], albedo.pixels[i + 2]) -
+                                expected) < 0.02f;
+        // The reference: pixels whose centre sees a surface of the wall's material (reference.json, per surface).
+        const fs::path refDir = test::freshOutputDir("vertex_color/reference-" + tag);
+        const test::RunResult r = test::runVct({"reference", "--scene", file.string(), "--size", "96x54",
+                                                "--spp", "1", "--bounces", "0", "--out", refDir.string()});
+        ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
+        const json info = json::parse(std::ifstream(refDir / "reference.json"));
+        size_t referenceWall = 0;
+        for (const json& surface : info["surfaces"])
+            if (surface["material"] == 1) referenceWall += surface["pixels"].get<size_t>();
+        std::printf("vertex alpha %.1f under a 0.5 mask: %zu wall pixels in vct, %zu in the reference\n",
+                    alpha, wall, referenceWall);
+        if (alpha < 0.5f) {
+            EXPECT_EQ(wall, 0u);
+            EXPECT_EQ(referenceWall, 0u);
+        } else {
+            EXPECT_GT(wall, 800u);  // measured 1079 in both, as unmasked
+            EXPECT_GT(referenceWall, 800u);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace vct
