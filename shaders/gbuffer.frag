@@ -29,6 +29,7 @@ layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inClip;
 layout(location = 4) in vec4 inPrevClip;
 layout(location = 5) in vec3 inWorld;
+layout(location = 6) in vec4 inColor;
 
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outBaseColorMetallic;
@@ -58,7 +59,10 @@ void main() {
     const vec3 faceNormal = safeNormalize(dot(faceCross, towardsCamera) < 0.0 ? -faceCross : faceCross,
                                           safeNormalize(towardsCamera, vec3(0.0, 0.0, 1.0)));
     const GpuMaterial material = materials[draw.indices.y];
-    const vec4 baseColor = material.baseColorFactor * materialTexture(baseColorTexture, inUv);
+    vec4 baseColor = material.baseColorFactor * materialTexture(baseColorTexture, inUv);
+    // glTF COLOR_0 multiplies the base colour (alpha too). Only where the primitive has one: the
+    // interpolated white of the others need not be exactly 1, and their images stay bit-identical.
+    if (draw.indices.w != 0u) baseColor *= inColor;
     if (material.flags.x == VCT_ALPHA_MASK && baseColor.a < material.metallicRoughnessCutoffAo.z) discard;
 
     // Geometric frame; back faces of double-sided surfaces see the flipped normal.

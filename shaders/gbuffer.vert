@@ -16,6 +16,7 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inTangent;
+layout(location = 4) in vec4 inColor;  // COLOR_0 (white without one; used where draw.indices.w = 1)
 
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec4 outTangent;
@@ -23,6 +24,7 @@ layout(location = 2) out vec2 outUv;
 layout(location = 3) out vec4 outClip;
 layout(location = 4) out vec4 outPrevClip;
 layout(location = 5) out vec3 outWorld;
+layout(location = 6) out vec4 outColor;
 
 void main() {
     const GpuInstance instance = instances[draw.indices.x];
@@ -30,11 +32,12 @@ void main() {
     outNormal = mat3(instance.normalMatrix) * inNormal;
     outTangent = vec4(mat3(instance.world) * inTangent.xyz, inTangent.w);
     outUv = inUv;
+    outColor = inColor;
     outWorld = world.xyz;
     outClip = frame.viewProj * world;
     vec3 prevPosition = inPosition;
     if (draw.indices.z != 0u) {
-        const uint v = uint(gl_VertexIndex) * 12u;
+        const uint v = uint(gl_VertexIndex) * VCT_FLOATS_PER_VERTEX;
         prevPosition = vec3(previousVertexData[v], previousVertexData[v + 1], previousVertexData[v + 2]);
     }
     outPrevClip = frame.prevViewProj * (instance.prevWorld * vec4(prevPosition, 1.0));

@@ -12,8 +12,8 @@ layout(local_size_x = VCT_SKIN_GROUP_SIZE) in;
 
 // Resources: bound by engine/passes/skin_pass.cpp (its resource table gives these binding numbers and is checked
 // against them when the pipeline is made).
-// The Vertex struct (48 bytes: position, normal, uv, tangent) read and written as floats: std430 would pad
-// its vec3s.
+// The Vertex struct (VCT_FLOATS_PER_VERTEX floats: position, normal, uv, tangent, color) read and written as
+// floats: std430 would pad its vec3s. The colour passes through unchanged.
 layout(set = 0, binding = 0) readonly buffer Rest { float restData[]; };
 struct SkinVertex {
     uvec4 joints0;
@@ -31,14 +31,14 @@ layout(set = 0, binding = 6) writeonly buffer Previous { float previousData[]; }
 
 layout(push_constant) uniform Push { SkinPushConstants push; };
 
-const uint kFloatsPerVertex = 12;
+const uint kFloatsPerVertex = VCT_FLOATS_PER_VERTEX;
 
 void main() {
     const uint v = gl_GlobalInvocationID.x;
     const uint count = push.vertices.y;
     if (v >= count) return;
     const uint rest = (push.vertices.x + v) * kFloatsPerVertex;
-    float data[12];
+    float data[VCT_FLOATS_PER_VERTEX];
     for (uint i = 0; i < kFloatsPerVertex; ++i) data[i] = restData[rest + i];
 
     // Targets in order, then the influences in order: the order deform.cpp sums in.

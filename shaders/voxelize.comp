@@ -15,7 +15,8 @@ layout(local_size_x = VCT_VOXEL_GROUP_SIZE) in;
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
 layout(set = 0, binding = 2) readonly buffer Materials { GpuMaterial materials[]; };
-// The Vertex struct (48 bytes: position, normal, uv, tangent) read as floats: std430 would pad its vec3s.
+// The Vertex struct (VCT_FLOATS_PER_VERTEX floats: position, normal, uv, tangent, color) read as floats:
+// std430 would pad its vec3s.
 layout(set = 0, binding = 3) readonly buffer Vertices { float vertexData[]; };
 layout(set = 0, binding = 4) readonly buffer Indices { uint indices[]; };
 layout(set = 0, binding = 5) uniform sampler2D baseColorTexture;
@@ -24,7 +25,7 @@ layout(set = 0, binding = 7) buffer Accum { uint accum[]; };
 
 layout(push_constant) uniform Push { VoxelizePushConstants push; };
 
-const uint kFloatsPerVertex = 12;
+const uint kFloatsPerVertex = VCT_FLOATS_PER_VERTEX;
 
 vec3 vertexPosition(uint v) {
     return vec3(vertexData[v * kFloatsPerVertex], vertexData[v * kFloatsPerVertex + 1],
@@ -36,6 +37,10 @@ vec3 vertexNormal(uint v) {
 }
 vec2 vertexUv(uint v) {
     return vec2(vertexData[v * kFloatsPerVertex + 6], vertexData[v * kFloatsPerVertex + 7]);
+}
+vec4 vertexColor(uint v) {
+    const uint c = v * kFloatsPerVertex + VCT_VERTEX_COLOR_OFFSET;
+    return vec4(vertexData[c], vertexData[c + 1], vertexData[c + 2], vertexData[c + 3]);
 }
 
 // One texel of the given mip (nearest, wrapping): voxels average many samples anyway, and a plain fetch avoids
@@ -69,11 +74,14 @@ void main() {
     const int n = int(frame.voxels.resolution);
     vec3 p[3], worldP[3], nrm[3];
     vec2 uv[3];
+    vec4 color[3] = {vec4(1.0), vec4(1.0), vec4(1.0)};
+    const bool colored = push.params.y != 0u;  // COLOR_0 multiplies the base colour (as in gbuffer.frag)
     for (int k = 0; k < 3; ++k) {
         worldP[k] = (instance.world * vec4(vertexPosition(vi[k]), 1.0)).xyz;
         p[k] = voxelFromWorld(worldP[k], grid);  // voxel units: the overlap test is well conditioned there
         nrm[k] = mat3(instance.normalMatrix) * vertexNormal(vi[k]);
         uv[k] = vertexUv(vi[k]);
+        if (colored) color[k] = vertexColor(vi[k]);
     }
     const ivec3 lo = max(ivec3(floor(min(p[0], min(p[1], p[2])))), ivec3(0));
     const ivec3 hi = min(ivec3(floor(max(p[0], max(p[1], p[2])))), ivec3(n - 1));
@@ -92,7 +100,8 @@ void main() {
                 if (!triangleBoxOverlap(center, vec3(0.5), p[0], p[1], p[2])) continue;
                 const vec3 bary = closestPointBarycentric(center, p[0], p[1], p[2]);
                 const vec2 texcoord = bary.x * uv[0] + bary.y * uv[1] + bary.z * uv[2];
-                const vec4 base = material.baseColorFactor * fetchTexel(baseColorTexture, texcoord, baseLod);
+                vec4 base = material.baseColorFactor * fetchTexel(baseColorTexture, texcoord, baseLod);
+                if (colored) base *= bary.x * color[0] + bary.y * color[1] + bary.z * color[2];
                 if (mask && base.a < material.metallicRoughnessCutoffAo.z) continue;  // cut-out
                 const vec3 emission =
                     material.emissiveNormalScale.rgb * fetchTexel(emissiveTexture, texcoord, emissiveLod).rgb;

@@ -800,6 +800,82 @@ std::vector<GltfCase> pixelBudgetCases() {
     return cases;
 }
 
+// Vertex colours (issue 20): a COLOR_0 accessor that glTF does not allow (its type, component type or count)
+// is refused with one line naming the file and the attribute; colour sets past COLOR_0 are ignored with a
+// note, and the scene renders.
+std::vector<GltfCase> vertexColorCases() {
+    std::vector<GltfCase> cases;
+    // COLOR_0 as accessor `count` elements of `type` × `componentType` (float zeros or 0x80 bytes).
+    auto color = [](GltfScene& s, const char* name, const char* type, int componentType, bool normalized,
+                    size_t count) {
+        const int components = std::string(type) == "VEC4"   ? 4
+                               : std::string(type) == "VEC3" ? 3
+                               : std::string(type) == "VEC2" ? 2
+                                                             : 1;
+        const size_t size = componentType >= 5125 ? 4 : componentType >= 5122 ? 2 : 1;
+        const size_t offset = s.bin.size();
+        s.bin.resize(offset + ((count * size_t(components) * size + 3) & ~size_t(3)), 0x80);
+        s.doc["bufferViews"].push_back(
+            {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", s.bin.size() - offset}});
+        json accessor = {{"bufferView", s.doc["bufferViews"].size() - 1},
+                         {"componentType", componentType},
+                         {"count", count},
+                         {"type", type}};
+        if (normalized) accessor["normalized"] = true;
+        s.doc["accessors"].push_back(accessor);
+        s.doc["buffers"][0]["byteLength"] = s.bin.size();
+        s.doc["meshes"][0]["primitives"][0]["attributes"][name] = s.doc["accessors"].size() - 1;
+    };
+    struct Bad {
+        const char* name;
+        const char* type;
+        int componentType;
+        bool normalized;
+        size_t count;
+    };
+    const Bad bad[] = {
+        {"Scalar", "SCALAR", 5126, false, 3},
+        {"Vec2", "VEC2", 5126, false, 3},
+        {"TooFew", "VEC4", 5126, false, 2},
+        {"TooMany", "VEC3", 5126, false, 4},
+        {"BytesNotNormalized", "VEC4", 5121, false, 3},
+        {"SignedBytes", "VEC4", 5120, true, 3},
+        {"ShortsNotNormalized", "VEC3", 5123, false, 3},
+        {"UnsignedInt", "VEC4", 5125, false, 3},
+    };
+    for (const Bad& b : bad)
+        cases.push_back({std::string("Color0") + b.name,
+                         [b, color](GltfScene& s) {
+                             color(s, "COLOR_0", b.type, b.componentType, b.normalized, b.count);
+                         },
+                         fails({"COLOR_0"})});
+    cases.push_back({"Color0AccessorOutOfRange",
+                     [](GltfScene& s) { s.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 99; },
+                     fails({"COLOR_0"})});
+    cases.push_back(
+        {"Color0NotFinite",
+         [](GltfScene& s) {
+             const float inf = std::numeric_limits<float>::infinity();
+             const size_t offset = s.bin.size();
+             appendFloats(s.bin, {1, 1, 1, inf, 1, 1, 1, 1, 1});
+             s.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 36}});
+             s.doc["accessors"].push_back({{"bufferView", s.doc["bufferViews"].size() - 1},
+                                           {"componentType", 5126},
+                                           {"count", 3},
+                                           {"type", "VEC3"}});
+             s.doc["buffers"][0]["byteLength"] = s.bin.size();
+             s.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = s.doc["accessors"].size() - 1;
+         },
+         fails({"COLOR_0"})});
+    cases.push_back({"Color1Ignored",
+                     [color](GltfScene& s) {
+                         color(s, "COLOR_0", "VEC4", 5121, true, 3);
+                         color(s, "COLOR_1", "VEC4", 5121, true, 3);
+                     },
+                     {Outcome::MustRender, {}, 0, true}});
+    return cases;
+}
+
 class HostileGltf : public ::testing::TestWithParam<GltfCase> {};
 
 TEST_P(HostileGltf, EndsInOneLineOrAFiniteImage) {
@@ -830,6 +906,26 @@ INSTANTIATE_TEST_SUITE_P(Radiance, HostileGltf, ::testing::ValuesIn(radianceCase
 INSTANTIATE_TEST_SUITE_P(Lenses, HostileGltf, ::testing::ValuesIn(lensCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(Lenient, HostileGltf, ::testing::ValuesIn(lenientCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(PixelBudget, HostileGltf, ::testing::ValuesIn(pixelBudgetCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(VertexColors, HostileGltf, ::testing::ValuesIn(vertexColorCases()), caseName);
+
+// Issue 20: a lens of yfov 1e-30 (inside glTF's (0, pi)) is widened to the narrowest the projection keeps
+// precise, with a note, and renders: depth.exr and final.exr exist and every value is finite (it exited 0 with
+// a non-finite depth.exr once).
+TEST(HostileGltfLens, NarrowestYfovRendersAFiniteDepthAndImage) {
+    const fs::path dir = caseDir();
+    GltfScene scene = triangleScene();
+    addCamera(scene, {{"yfov", 1e-30}, {"znear", 0.01}});
+    const fs::path path = writeGltf(dir, scene);
+    const test::RunResult r =
+        expectGraceful(renderArgs(path, dir / "out"), dir / "out", {Outcome::MustRender, {}, 0});
+    EXPECT_NE(r.out.find("widened to"), std::string::npos) << r.describe();
+    for (const char* name : {"depth.exr", "final.exr"}) {
+        ASSERT_TRUE(fs::is_regular_file(dir / "out" / name)) << name;
+        const ImageRgba32f image = readExr(dir / "out" / name);
+        EXPECT_GT(image.pixels.size(), 0u) << name;
+        EXPECT_EQ(test::countNonFinite(image.pixels), 0u) << name;
+    }
+}
 
 // Class 11: a scene of any finite size without a camera is framed by the default camera: it renders, finite,
 // and the triangle covers pixels (albedo.exr is black where nothing was drawn).

@@ -15,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "hostile_util.h"
 #include "io/image_io.h"
+#include "scene/scene.h"
 #include "test_util.h"
 
 namespace vct {
@@ -220,6 +222,33 @@ TEST(RenderCli, HallIsLitByTheSunThroughItsOpeningsAndByBouncedLight) {
     EXPECT_LE(sunlit / n, 0.15);
     EXPECT_GE(indirectOnly / n, 0.6) << "pixels lit by indirect light alone";
     EXPECT_GE(sumFinal, 2.0 * sumDirect) << "mean luminance with indirect light against direct light alone";
+}
+
+// Issue 20: a scene without a camera rendered (or path-traced) along --camera-path does not claim a default
+// camera: the path is the camera, and the note says so. Without the path the default camera's note stays.
+TEST(RenderCli, CameraPathReplacesTheDefaultCameraNote) {
+    const fs::path dir = test::freshOutputDir("render_cli/camera-path-note");
+    const fs::path scene = hostile::writeGltf(dir, hostile::triangleScene());
+    const fs::path path = dir / "path.json";
+    test::writeTextFile(path,
+                        R"({"keys": [{"time": 0, "position": [0.3, 0.3, 2], "target": [0.3, 0.3, 0]}]})");
+    for (bool withPath : {false, true}) {
+        const std::vector<std::string> extra =
+            withPath ? std::vector<std::string>{"--camera-path", path.string()} : std::vector<std::string>{};
+        RunResult render = test::runVct(hostile::renderArgs(scene, dir / "render", extra));
+        ASSERT_TRUE(render.exited() && render.exitCode == 0) << render.describe();
+        std::vector<std::string> referenceArgs = {"reference", "--scene", scene.string(),
+                                                  "--size",    "16x9",    "--spp",
+                                                  "1",         "--out",   (dir / "reference").string()};
+        referenceArgs.insert(referenceArgs.end(), extra.begin(), extra.end());
+        RunResult reference = test::runVct(referenceArgs);
+        ASSERT_TRUE(reference.exited() && reference.exitCode == 0) << reference.describe();
+        for (const RunResult* r : {&render, &reference}) {
+            EXPECT_EQ(r->out.find(kDefaultCameraNote) != std::string::npos, !withPath) << r->out;
+            EXPECT_EQ(r->out.find("the camera follows " + path.string()) != std::string::npos, withPath)
+                << r->out;
+        }
+    }
 }
 
 TEST(RenderCli, ScenesListsCornell) {

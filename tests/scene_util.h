@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <glm/gtc/quaternion.hpp>
 #include <string>
 #include <utility>
 
@@ -105,6 +106,40 @@ inline vct::Scene twoRooms(float albedo) {
     addClosedBox(scene, {-2.0f, -1.0f, -1.0f}, {0.0f, 1.0f, 1.0f}, 0);
     for (vct::Primitive& primitive : scene.primitives)
         if (primitive.bounds.min.y > 0.99f && primitive.bounds.max.x < 0.01f) primitive.material = 1;
+    return scene;
+}
+
+// An open room (floor, left wall and back wall; no ceiling, no front) under a sun from the front, with a camera
+// on the open side looking at the back wall (material 1, base colour `base`). With `vertexColors` the back
+// wall's four vertices carry COLOR_0 = `color`; without, it has no vertex colours and the base colour
+// `color × base` instead. The two should look the same wherever the base colour is evaluated (the G-buffer,
+// the voxels, the path-traced reference): tests/vertex_color_test.cpp.
+inline vct::Scene vertexColorRoom(bool vertexColors, glm::vec4 color, glm::vec3 base) {
+    vct::Scene scene = emptyScene("vertex colours", diffuseMaterial(0.8f, 0.0f));
+    vct::Material wall = diffuseMaterial(0.0f, 0.0f);
+    wall.name = "wall";
+    wall.baseColorFactor = vertexColors ? glm::vec4(base, 1.0f) : glm::vec4(base, 1.0f) * color;
+    scene.materials.push_back(wall);
+    addQuad(scene, glm::vec3(0.0f), glm::vec3(0, 0, 2), glm::vec3(2, 0, 0), 0);                  // floor, +y
+    addQuad(scene, glm::vec3(-2.0f, 1.5f, 0.0f), glm::vec3(0, 1.5f, 0), glm::vec3(0, 0, 2), 0);  // left, +x
+    addQuad(scene, glm::vec3(0.0f, 1.5f, -2.0f), glm::vec3(2, 0, 0), glm::vec3(0, 1.5f, 0), 1);  // back, +z
+    if (vertexColors) {
+        vct::Primitive& back = scene.primitives.back();
+        back.hasColors = true;
+        for (uint32_t v = 0; v < back.vertexCount; ++v)
+            scene.vertices[size_t(back.vertexOffset) + v].color = color;
+    }
+    vct::Node& sun = addLight(scene, "sun", vct::LightType::Directional, 3.0f);
+    sun.rotation = glm::angleAxis(glm::radians(-40.0f), glm::vec3(1, 0, 0));  // −Z turned down, towards −z
+    scene.cameras.push_back(vct::Camera{"front", 1.0f, 0.05f, 50.0f, 0.0f});
+    vct::Node camera;
+    camera.name = "front";
+    camera.camera = 0;
+    camera.translation = glm::vec3(0.3f, 1.6f, 3.2f);
+    camera.rotation = glm::quatLookAtRH(glm::normalize(glm::vec3(0.0f, 1.2f, -2.0f) - camera.translation),
+                                        glm::vec3(0, 1, 0));
+    scene.nodes.push_back(camera);
+    scene.roots.push_back(int(scene.nodes.size() - 1));
     return scene;
 }
 

@@ -28,17 +28,21 @@ fs::path sharedModel(const std::string& name) {
 }
 
 Scene sceneNamed(const std::string& name) {
-    if (name == "strip" || name == "morph") {
+    if (name == "strip" || name == "morph" || name == "coloredStrip") {
         const fs::path dir = test::freshOutputDir("skin_gpu/" + name);
-        return loadGltf(
-            hostile::writeGltf(dir, name == "strip" ? twoBoneStrip() : morphTriangle(WeightSource::Linear))
-                .string());
+        StripOptions colored;
+        colored.colors = true;
+        return loadGltf(hostile::writeGltf(dir, name == "strip" ? twoBoneStrip()
+                                                : name == "coloredStrip"
+                                                    ? twoBoneStrip(colored)
+                                                    : morphTriangle(WeightSource::Linear))
+                            .string());
     }
     return loadScene(sharedModel(name).string());
 }
 
 bool available(const std::string& name) {
-    return name == "strip" || name == "morph" || fs::exists(sharedModel(name));
+    return name == "strip" || name == "morph" || name == "coloredStrip" || fs::exists(sharedModel(name));
 }
 
 // One process-wide device with validation on: every test checks that the count of messages did not grow.
@@ -97,7 +101,8 @@ float maxDifference(const Scene& scene, const GpuDeform& deform, const std::vect
                 worst = std::max({worst, glm::length(g.position - cpu[v].position),
                                   glm::length(g.normal - cpu[v].normal),
                                   glm::length(glm::vec3(g.tangent) - glm::vec3(cpu[v].tangent)),
-                                  std::abs(g.tangent.w - cpu[v].tangent.w), glm::length(g.uv - cpu[v].uv)});
+                                  std::abs(g.tangent.w - cpu[v].tangent.w), glm::length(g.uv - cpu[v].uv),
+                                  glm::length(g.color - cpu[v].color)});  // COLOR_0 passes through
             }
         }
     }
@@ -128,7 +133,9 @@ TEST_P(SkinGpu, DeformedBufferMatchesTheCpuTwin) {
     EXPECT_EQ(vk::validationMessageCount(), before);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, SkinGpu, testing::Values("strip", "morph", "RiggedSimple", "SimpleMorph"));
+// coloredStrip: the strip with COLOR_0, which the skin pass carries into the deformed vertices unchanged.
+INSTANTIATE_TEST_SUITE_P(Models, SkinGpu,
+                         testing::Values("strip", "coloredStrip", "morph", "RiggedSimple", "SimpleMorph"));
 
 // ---- two poses rendered, on masks from the CPU-deformed geometry ----
 

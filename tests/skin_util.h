@@ -67,6 +67,7 @@ struct StripOptions {
     bool zeroWeights = false;  // every weight 0: the bind pose, with a note
     uint32_t badJoint = 0;     // > 0: vertex 4 names this joint (out of range for 2 joints)
     bool nanInverseBind = false;
+    bool colors = false;  // COLOR_0 (normalized unsigned byte VEC4, a different colour per vertex)
 };
 
 // A strip skinned by two joints: joint 0 (node 1) at the origin, joint 1 (node 2, its child) at x = 1, whose
@@ -125,6 +126,13 @@ inline GltfScene twoBoneStrip(const StripOptions& o = {}) {
     if (o.secondSet) {
         attributes["JOINTS_1"] = addJoints(joints1);
         attributes["WEIGHTS_1"] = addWeights(weights1);
+    }
+    if (o.colors) {
+        std::vector<uint8_t> colors;
+        for (int v = 0; v < 2 * kStripColumns; ++v)
+            colors.insert(colors.end(), {uint8_t(40 + 20 * v), uint8_t(250 - 10 * v), uint8_t(7 * v), 255});
+        attributes["COLOR_0"] =
+            addAccessor(s, colors.data(), colors.size(), kUnsignedByte, colors.size() / 4, "VEC4", true);
     }
     s.doc["accessors"][0]["min"] = {0, 0, 0};
     s.doc["accessors"][0]["max"] = {2, 0.2, 0};

@@ -82,7 +82,7 @@ void VoxelizePass::voxelizeInstances(const FrameContext& frame, bool moving, con
             gpu::VoxelizePushConstants push{};
             push.draw = glm::uvec4(i, primitive.material, primitive.firstIndex, triangles);
             const int32_t vertexOffset = deformed ? deform.deformedOffset(i, k) : primitive.vertexOffset;
-            push.params = glm::uvec4(uint32_t(vertexOffset), 0, 0, 0);
+            push.params = glm::uvec4(uint32_t(vertexOffset), primitive.hasColors ? 1u : 0u, 0, 0);
             voxelize_.pushConstants(cmd, &push, sizeof(push));
             vkCmdDispatch(cmd, (triangles + VCT_VOXEL_GROUP_SIZE - 1) / VCT_VOXEL_GROUP_SIZE, 1, 1);
         }

@@ -69,14 +69,14 @@ glm::vec4 MaterialEvaluator::sampleTexture(int index, bool normalSlot, glm::vec2
                     glm::mix(texel(i, j + 1), texel(i + 1, j + 1), tx), ty);
 }
 
-float MaterialEvaluator::alpha(uint32_t material, glm::vec2 uv) const {
+float MaterialEvaluator::alpha(uint32_t material, glm::vec2 uv, float vertexAlpha) const {
     const Material& m = scene_.materials[material];
-    return m.baseColorFactor.a * sampleTexture(m.baseColorTexture, false, uv).a;
+    return m.baseColorFactor.a * sampleTexture(m.baseColorTexture, false, uv).a * vertexAlpha;
 }
 
-bool MaterialEvaluator::discards(uint32_t material, glm::vec2 uv) const {
+bool MaterialEvaluator::discards(uint32_t material, glm::vec2 uv, float vertexAlpha) const {
     const Material& m = scene_.materials[material];
-    return m.alphaMode == AlphaMode::Mask && alpha(material, uv) < m.alphaCutoff;
+    return m.alphaMode == AlphaMode::Mask && alpha(material, uv, vertexAlpha) < m.alphaCutoff;
 }
 
 SurfacePoint MaterialEvaluator::evaluate(uint32_t materialIndex, const SurfaceGeometry& g) const {
@@ -85,7 +85,7 @@ SurfacePoint MaterialEvaluator::evaluate(uint32_t materialIndex, const SurfaceGe
     s.position = g.position;
     s.faceNormal = g.faceNormal;
     const glm::vec4 baseColor =
-        material.baseColorFactor * sampleTexture(material.baseColorTexture, false, g.uv);
+        material.baseColorFactor * sampleTexture(material.baseColorTexture, false, g.uv) * g.color;
 
     // gbuffer.frag, step for step: the geometric frame, back faces seeing the flipped normal.
     glm::vec3 normal = safeNormalize(g.normal, g.frontFacing ? g.faceNormal : -g.faceNormal);

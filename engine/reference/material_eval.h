@@ -21,6 +21,9 @@ struct SurfaceGeometry {
     glm::vec3 normal{0.0f};      // interpolated vertex normal (not normalised; may be zero)
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz interpolated, w the bitangent sign
     glm::vec2 uv{0.0f};
+    // Interpolated COLOR_0, which multiplies the base colour (alpha too); exactly white where the primitive
+    // has none (as gbuffer.frag, which multiplies only where it has one).
+    glm::vec4 color{1.0f};
 };
 
 // What the G-buffer would hold at the hit, plus the geometry the tracer needs.
@@ -41,10 +44,10 @@ class MaterialEvaluator {
     // Texture `index` (−1: the default texel the GPU scene binds, white or a flat normal) at uv, in linear
     // values (sRGB textures decoded).
     glm::vec4 sampleTexture(int index, bool normalSlot, glm::vec2 uv) const;
-    // Base colour alpha (factor × texture), for alpha-masked materials.
-    float alpha(uint32_t material, glm::vec2 uv) const;
+    // Base colour alpha (factor × texture × the vertex colour's alpha), for alpha-masked materials.
+    float alpha(uint32_t material, glm::vec2 uv, float vertexAlpha = 1.0f) const;
     // True where an alpha-masked material discards the fragment (as gbuffer.frag does).
-    bool discards(uint32_t material, glm::vec2 uv) const;
+    bool discards(uint32_t material, glm::vec2 uv, float vertexAlpha = 1.0f) const;
     SurfacePoint evaluate(uint32_t material, const SurfaceGeometry& geometry) const;
 
   private:

@@ -80,6 +80,7 @@ RayScene::RayScene(const Scene& scene, float timeSeconds, const MaterialEvaluato
             g.material = primitive.material;
             g.cullBackFacesForCamera = !material.doubleSided;
             g.alphaMask = material.alphaMode == AlphaMode::Mask;
+            g.hasColors = primitive.hasColors;
             g.world = instance.world;
             g.normalMatrix = std::isfinite(normalMatrix[0][0]) ? normalMatrix : glm::mat3(1.0f);
             g.vertexOffset = primitive.vertexOffset;
@@ -203,6 +204,14 @@ glm::vec2 RayScene::uvAt(uint32_t geometry, uint32_t triangle, float u, float v)
     return (1.0f - u - v) * base[tri[0]].uv + u * base[tri[1]].uv + v * base[tri[2]].uv;
 }
 
+glm::vec4 RayScene::colorAt(uint32_t geometry, uint32_t triangle, float u, float v) const {
+    const RayGeometry& g = geometries_[geometry];
+    if (!g.hasColors) return glm::vec4(1.0f);
+    const Vertex* base = vertexData(g);
+    const uint32_t* tri = &g.indices[size_t(triangle) * 3];
+    return (1.0f - u - v) * base[tri[0]].color + u * base[tri[1]].color + v * base[tri[2]].color;
+}
+
 bool RayScene::rejects(uint32_t geometry, uint32_t triangle, float u, float v, glm::vec3 direction,
                        bool cameraRay) const {
     const RayGeometry& g = geometries_[geometry];
@@ -210,7 +219,8 @@ bool RayScene::rejects(uint32_t geometry, uint32_t triangle, float u, float v, g
         if (glm::dot(windingNormal(g, triangle), direction) >= 0.0f)
             return true;  // the back (clockwise) side
     }
-    return g.alphaMask && materials_.discards(g.material, uvAt(geometry, triangle, u, v));
+    return g.alphaMask && materials_.discards(g.material, uvAt(geometry, triangle, u, v),
+                                              colorAt(geometry, triangle, u, v).a);
 }
 
 SurfaceGeometry RayScene::geometryAt(const RayHit& hit, glm::vec3 rayDirection) const {
@@ -232,6 +242,7 @@ SurfaceGeometry RayScene::geometryAt(const RayHit& hit, glm::vec3 rayDirection) 
         w * base[tri[0]].tangent + hit.u * base[tri[1]].tangent + hit.v * base[tri[2]].tangent;
     s.tangent = glm::vec4(glm::mat3(g.world) * glm::vec3(tangent), tangent.w);
     s.uv = w * base[tri[0]].uv + hit.u * base[tri[1]].uv + hit.v * base[tri[2]].uv;
+    s.color = colorAt(hit.geometry, hit.triangle, hit.u, hit.v);
     return s;
 }
 

@@ -34,6 +34,7 @@ struct RayGeometry {
     uint32_t material = 0;
     bool cullBackFacesForCamera = false;
     bool alphaMask = false;
+    bool hasColors = false;  // Primitive::hasColors: COLOR_0 multiplies the base colour
     glm::mat4 world{1.0f};
     glm::mat3 normalMatrix{1.0f};
     std::vector<glm::vec3> positions;  // world space, the primitive's vertex range
@@ -59,6 +60,8 @@ class RayScene {
     SurfaceGeometry geometryAt(const RayHit& hit, glm::vec3 rayDirection) const;
     SurfacePoint surfaceAt(const RayHit& hit, glm::vec3 rayDirection) const;
     glm::vec2 uvAt(uint32_t geometry, uint32_t triangle, float u, float v) const;
+    // The interpolated COLOR_0; exactly white for a primitive without one.
+    glm::vec4 colorAt(uint32_t geometry, uint32_t triangle, float u, float v) const;
     // True where the hit is to be skipped (filter functions).
     bool rejects(uint32_t geometry, uint32_t triangle, float u, float v, glm::vec3 direction,
                  bool cameraRay) const;

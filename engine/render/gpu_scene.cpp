@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,6 +12,10 @@
 #include "vk/check.h"
 
 namespace vct {
+
+// The shaders that read vertices as floats (voxelize, skin, gbuffer.vert) step by these.
+static_assert(sizeof(Vertex) == VCT_FLOATS_PER_VERTEX * sizeof(float));
+static_assert(offsetof(Vertex, color) == VCT_VERTEX_COLOR_OFFSET * sizeof(float));
 
 namespace {
 

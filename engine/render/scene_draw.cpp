@@ -73,7 +73,8 @@ void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const Re
                 vkCmdSetCullMode(cmd, material.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
                 boundMaterial = int(primitive.material);
             }
-            gpu::DrawPushConstants push{glm::uvec4(i, primitive.material, deformed ? 1u : 0u, 0)};
+            gpu::DrawPushConstants push{
+                glm::uvec4(i, primitive.material, deformed ? 1u : 0u, primitive.hasColors ? 1u : 0u)};
             pipeline.pushConstants(cmd, &push, sizeof(push));
             const int32_t vertexOffset = deformed ? deform.deformedOffset(i, k) : primitive.vertexOffset;
             vkCmdDrawIndexed(cmd, primitive.indexCount, 1, primitive.firstIndex, vertexOffset, 0);

@@ -189,13 +189,30 @@ std::optional<double> extensionNumber(const tinygltf::ExtensionMap& extensions, 
     return v.IsNumber() ? std::optional<double>(v.GetNumberAsDouble()) : std::nullopt;
 }
 
+// An image file's bytes as read, kept for export (Texture::encodedImage), by image index.
+struct EncodedImage {
+    std::shared_ptr<const std::vector<uint8_t>> bytes;
+    std::string mimeType;
+};
+
+// "image/png" or "image/jpeg" from the file's signature; empty for the other formats stb decodes (glTF allows
+// only these two, so an exported file gets such an image re-encoded as PNG).
+std::string imageMimeType(const unsigned char* bytes, size_t size) {
+    static const unsigned char png[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    if (size >= sizeof(png) && std::memcmp(bytes, png, sizeof(png)) == 0) return "image/png";
+    if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return "image/jpeg";
+    return {};
+}
+
 class GltfImporter {
   public:
     // `inputBytes`: the JSON and every buffer together, what bounds accessors without a bufferView.
     // `refused`: files the loader would not read, and why (named in the error of a texture that needs one).
     GltfImporter(const tinygltf::Model& model, uint64_t inputBytes,
-                 const std::map<std::string, std::string>& refused)
+                 const std::map<std::string, std::string>& refused,
+                 const std::map<int, EncodedImage>& encoded)
         : model_(model),
+          encoded_(encoded),
           zeroFillLeft_(std::max<uint64_t>(4096, inputBytes)),
           elementsLeft_(std::min(kMaxSceneElements, std::max(kMinElementBudget, inputBytes))),
           keysLeft_(std::min(kMaxSceneElements, std::max(kMinElementBudget, inputBytes))),
@@ -345,6 +362,10 @@ class GltfImporter {
         tex.height = uint32_t(image.height);
         tex.mips.push_back(toRgba8(image, imageName));
         buildMipChain(tex);
+        if (auto it = encoded_.find(src.source); it != encoded_.end()) {
+            tex.encodedImage = it->second.bytes;
+            tex.encodedMimeType = it->second.mimeType;
+        }
         scene_.textures.push_back(std::move(tex));
         int index = int(scene_.textures.size()) - 1;
         textureCache_[key] = index;
@@ -506,6 +527,8 @@ class GltfImporter {
                 v.tangent = glm::vec4(a.at(i, 0), a.at(i, 1), a.at(i, 2), a.at(i, 3) < 0.0 ? -1.0 : 1.0);
             });
 
+            const bool hasColors = vertexColors(prim, where, verts);
+
             std::vector<uint32_t> idx;
             if (prim.indices >= 0) {
                 if (size_t(prim.indices) < model_.accessors.size()) {
@@ -543,6 +566,7 @@ class GltfImporter {
             out_prim.indexCount = uint32_t(idx.size());
             out_prim.vertexOffset = int32_t(scene_.vertices.size());
             out_prim.vertexCount = uint32_t(verts.size());
+            out_prim.hasColors = hasColors;
             if (prim.material >= 0 && size_t(prim.material) >= model_.materials.size())
                 fail(where + ": material " + std::to_string(prim.material) + " is out of range");
             out_prim.material = prim.material >= 0 ? uint32_t(prim.material) : defaultMaterial();
@@ -568,6 +592,46 @@ class GltfImporter {
                      std::to_string(scene_.primitives[p].morphTargetCount) + ")");
         for (double w : src.weights) out.weights.push_back(float(w));
         scene_.meshes.push_back(std::move(out));
+    }
+
+    // COLOR_0 into Vertex::color (glTF: VEC3 or VEC4 of FLOAT, or of normalized UNSIGNED_BYTE / UNSIGNED_SHORT;
+    // a VEC3 is opaque). False when the primitive has none. Further colour sets are named in a note.
+    bool vertexColors(const tinygltf::Primitive& prim, const std::string& where, std::vector<Vertex>& verts) {
+        for (const auto& [name, index] : prim.attributes)
+            if (name.rfind("COLOR_", 0) == 0 && name != "COLOR_0")
+                note("only COLOR_0 is supported: vertex colour sets COLOR_1 and above are ignored");
+        auto it = prim.attributes.find("COLOR_0");
+        if (it == prim.attributes.end()) return false;
+        const std::string what = where + " COLOR_0";
+        if (it->second < 0 || size_t(it->second) >= model_.accessors.size())
+            fail(what + ": accessor index out of range");
+        const tinygltf::Accessor& acc = model_.accessors[size_t(it->second)];
+        if (acc.type != TINYGLTF_TYPE_VEC3 && acc.type != TINYGLTF_TYPE_VEC4)
+            fail(what + " is not a VEC3 or VEC4 (type " + std::to_string(acc.type) + ")");
+        const bool normalizedInteger = (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                        acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) &&
+                                       acc.normalized;
+        if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !normalizedInteger)
+            fail(what + " has component type " + std::to_string(acc.componentType) +
+                 (acc.normalized ? "" : " (not normalized)") +
+                 ", not FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT");
+        if (acc.count != verts.size())  // before reading: a long accessor is not copied to be refused
+            fail(what + " has " + std::to_string(acc.count) + " elements, expected " +
+                 std::to_string(verts.size()) + " (one per POSITION)");
+        const AccessorData a = accessor(it->second, what);
+        bool clamped = false;
+        for (size_t i = 0; i < a.count; ++i) {
+            glm::vec4 c(1.0f);
+            for (int k = 0; k < a.components; ++k) {
+                const double v = a.at(i, k);
+                if (!std::isfinite(v)) fail(what + ": element " + std::to_string(i) + " is not finite");
+                clamped |= v < 0.0 || v > 1.0;
+                c[k] = float(std::clamp(v, 0.0, 1.0));
+            }
+            verts[i].color = c;
+        }
+        if (clamped) note(where + ": COLOR_0 values outside [0, 1] clamped (glTF colours are in [0, 1])");
+        return true;
     }
 
     void camera(const tinygltf::Camera& src) {
@@ -971,6 +1035,7 @@ class GltfImporter {
     }
 
     const tinygltf::Model& model_;
+    const std::map<int, EncodedImage>& encoded_;
     uint64_t zeroFillLeft_;
     uint64_t elementsLeft_;
     uint64_t keysLeft_;
@@ -992,6 +1057,7 @@ struct LoadContext {
     std::string lastRead;
     size_t lastReadBytes = 0;
     uint64_t texelsLeft = kMaxSceneTexels;  // what all images of the file may decode to together
+    std::map<int, EncodedImage> encoded;    // the PNG and JPEG files of the images decoded, as read
 };
 
 std::string imageKey(int index) {
@@ -1090,6 +1156,8 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
     image->bits = sixteen ? 16 : 8;
     image->pixel_type =
         sixteen ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    if (std::string mime = imageMimeType(bytes, size_t(size)); !mime.empty())
+        context.encoded[index] = {std::make_shared<const std::vector<uint8_t>>(bytes, bytes + size), mime};
     return true;
 }
 
@@ -1285,7 +1353,7 @@ Scene importGltf(const std::string& path) {
     uint64_t inputBytes = file.bytes.size();
     for (const tinygltf::Buffer& buffer : model.buffers) inputBytes += buffer.data.size();
     file.bytes = {};
-    Scene scene = GltfImporter(model, inputBytes, context.refused).run();
+    Scene scene = GltfImporter(model, inputBytes, context.refused, context.encoded).run();
     scene.name = std::filesystem::path(path).stem().string();
     checkInstancedTriangles(scene);
     fitCameraDepthRanges(scene);

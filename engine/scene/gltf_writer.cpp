@@ -1,11 +1,15 @@
 // Scene → glTF 2.0 binary. The model is built with tinygltf's structures and serialised by its writer; this
 // file only decides what goes where. Round trip through loadGltf():
 //  - Numbers: every float goes into the BIN chunk as float32, or into the JSON as a double that tinygltf
-//    prints with 17 significant digits, so the loader reads back the very same float. Vertex attributes,
-//    indices, node TRS (rotations: see rotationTheLoaderKeeps) and matrices, material factors, lights,
-//    cameras and animation keys come back bit for bit.
-//  - Textures: Scene textures are RGBA8 (the loader already turns 16-bit images into 8 bits; there are no
-//    float textures), so level 0 is stored losslessly as an 8-bit PNG (RGB when every alpha is 255, else
+//    prints with 17 significant digits, so the loader reads back the very same float. Vertex attributes
+//    (COLOR_0 as float VEC4, for primitives that have one), indices, node TRS (rotations: see
+//    rotationTheLoaderKeeps) and matrices, material factors, lights, cameras and animation keys come back
+//    bit for bit.
+//  - Textures: a texture loaded from a PNG or JPEG file keeps that file's bytes (Texture::encodedImage), and
+//    they are written back unchanged (one image for the textures one file image made), so the loader
+//    decodes the very same texels. Other textures (made in code, other formats, or all with
+//    GlbOptions::reencodeImages) are RGBA8 (the loader already turns 16-bit images into 8 bits; there are
+//    no float textures), so level 0 is stored losslessly as an 8-bit PNG (RGB when every alpha is 255, else
 //    RGBA). Mips are not stored: the loader rebuilds them with the same buildMipChain() the procedural
 //    textures use. Images go into the BIN chunk (bufferView + mimeType): tinygltf 2.7's own image writer
 //    would embed them as base64 data URIs in the JSON chunk, a third larger.
@@ -95,7 +99,7 @@ void appendToVector(void* context, void* data, int size) {
 
 class GltfExporter {
   public:
-    explicit GltfExporter(const Scene& scene) : scene_(scene) {}
+    GltfExporter(const Scene& scene, const GlbOptions& options) : scene_(scene), options_(options) {}
 
     tinygltf::Model run() {
         // Not written yet: refused rather than exported as the bind pose (the file would not load back as the
@@ -173,9 +177,25 @@ class GltfExporter {
                         std::move(max));
     }
 
-    // Scene texture i → glTF texture i (image i with its own sampler).
+    // Scene texture i → glTF texture i with its own sampler. Its image is the file's bytes as loaded where it
+    // has them (one image for the textures one file image made), else level 0 encoded as PNG.
     void texture(size_t index) {
         const Texture& tex = scene_.textures[index];
+        const bool asLoaded = tex.encodedImage && !tex.encodedImage->empty() &&
+                              !tex.encodedMimeType.empty() && !options_.reencodeImages;
+        if (asLoaded) {
+            auto [it, added] = encodedImages_.try_emplace(tex.encodedImage.get(), 0);
+            if (added) {
+                tinygltf::Image image;
+                image.name = tex.name;
+                image.mimeType = tex.encodedMimeType;
+                image.bufferView = view(tex.encodedImage->data(), tex.encodedImage->size(), 0);
+                model_.images.push_back(std::move(image));
+                it->second = int(model_.images.size()) - 1;
+            }
+            addTexture(tex, it->second);
+            return;
+        }
         std::string what = "texture '" + tex.name + "'";
         size_t pixels = size_t(tex.width) * tex.height;
         if (tex.mips.empty() || pixels == 0 || tex.mips[0].size() != pixels * 4)
@@ -201,7 +221,10 @@ class GltfExporter {
         image.mimeType = "image/png";
         image.bufferView = view(png.data(), png.size(), 0);
         model_.images.push_back(std::move(image));
+        addTexture(tex, int(model_.images.size()) - 1);
+    }
 
+    void addTexture(const Texture& tex, int image) {
         tinygltf::Sampler sampler;
         sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
         sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;  // what the renderer samples with
@@ -211,7 +234,7 @@ class GltfExporter {
 
         tinygltf::Texture t;
         t.name = tex.name;
-        t.source = int(model_.images.size()) - 1;
+        t.source = image;
         t.sampler = int(model_.samplers.size()) - 1;
         model_.textures.push_back(std::move(t));
     }
@@ -280,13 +303,14 @@ class GltfExporter {
             size_t(p.firstIndex) + p.indexCount > scene_.indices.size() ||
             p.material >= scene_.materials.size())
             fail("mesh '" + meshName + "': a primitive's range or material is out of range");
-        std::vector<float> position, normal, tangent, uv;
+        std::vector<float> position, normal, tangent, uv, color;
         for (uint32_t i = 0; i < p.vertexCount; ++i) {
             const Vertex& v = scene_.vertices[size_t(p.vertexOffset) + i];
             position.insert(position.end(), {v.position.x, v.position.y, v.position.z});
             normal.insert(normal.end(), {v.normal.x, v.normal.y, v.normal.z});
             tangent.insert(tangent.end(), {v.tangent.x, v.tangent.y, v.tangent.z, v.tangent.w});
             uv.insert(uv.end(), {v.uv.x, v.uv.y});
+            if (p.hasColors) color.insert(color.end(), {v.color.r, v.color.g, v.color.b, v.color.a});
         }
         tinygltf::Primitive out;
         out.mode = TINYGLTF_MODE_TRIANGLES;
@@ -296,6 +320,9 @@ class GltfExporter {
         out.attributes["NORMAL"] = floats(normal, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER);
         out.attributes["TANGENT"] = floats(tangent, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
         out.attributes["TEXCOORD_0"] = floats(uv, TINYGLTF_TYPE_VEC2, TINYGLTF_TARGET_ARRAY_BUFFER);
+        // As float VEC4, whatever the source file held: the loader's decoded values come back bit for bit.
+        if (p.hasColors)
+            out.attributes["COLOR_0"] = floats(color, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
         const uint32_t* first = scene_.indices.data() + p.firstIndex;
         for (uint32_t i = 0; i < p.indexCount; ++i)
             if (first[i] >= p.vertexCount)
@@ -390,16 +417,18 @@ class GltfExporter {
     }
 
     const Scene& scene_;
+    const GlbOptions options_;
     tinygltf::Model model_;
-    std::map<uint32_t, tinygltf::Primitive> primitives_;  // by Scene primitive index
+    std::map<uint32_t, tinygltf::Primitive> primitives_;        // by Scene primitive index
+    std::map<const std::vector<uint8_t>*, int> encodedImages_;  // Texture::encodedImage → glTF image
 };
 
 }  // namespace
 
-void writeGlb(const Scene& scene, const std::filesystem::path& path) {
+void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOptions& options) {
     std::string bytes;
     try {
-        tinygltf::Model model = GltfExporter(scene).run();
+        tinygltf::Model model = GltfExporter(scene, options).run();
         // The stream variant of WriteGltfSceneToFile (same serialiser, binary, buffers and images embedded):
         // the file variant does not check its writes, this one lets a full disk be an error.
         std::ostringstream stream(std::ios::binary);

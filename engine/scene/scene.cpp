@@ -162,6 +162,7 @@ uint64_t sceneContentHash(const Scene& scene) {
         h.value(p.indexCount);
         h.value(p.vertexOffset);
         h.value(p.material);
+        h.value(p.hasColors);
     }
     for (const Material& m : scene.materials) {
         h.value(m.baseColorFactor);
@@ -448,7 +449,7 @@ void Scene::addDefaultsIfMissing() {
         cameras.push_back(cam);
         roots.push_back(static_cast<int>(nodes.size()));
         nodes.push_back(node);
-        notes.push_back("scene has no camera: added a default camera looking at the scene bounds");
+        notes.push_back(kDefaultCameraNote);
     }
     if (!hasLight) {
         Light light;
@@ -526,6 +527,7 @@ void validatePrimitive(const Scene& scene, const Primitive& prim, const std::str
                           : !finite(vert.normal)  ? "normal"
                           : !finite(vert.uv)      ? "texture coordinate"
                           : !finite(vert.tangent) ? "tangent"
+                          : !finite(vert.color)   ? "colour"
                                                   : nullptr;
         if (bad) fail(where + "vertex " + std::to_string(v) + " has a non-finite " + bad);
     }

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,11 @@ struct Texture {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<std::vector<uint8_t>> mips;  // mips[l] has max(1, w>>l) * max(1, h>>l) * 4 bytes
+    // The image file as the glTF held it (PNG or JPEG bytes, shared by the textures one image makes) and its
+    // MIME type: what `vct export-scene` writes back unchanged. Null for textures made in code; whoever
+    // changes mips[0] of a loaded texture resets it.
+    std::shared_ptr<const std::vector<uint8_t>> encodedImage;
+    std::string encodedMimeType;
 };
 
 // Builds mips[1..] from mips[0] (2x2 box filter; in linear space for Color textures).
@@ -88,6 +94,8 @@ struct Primitive {
     uint32_t maxJoint = 0;  // the largest joint index its skin vertices name (checked against each skin)
     uint32_t morphTargetCount = 0;
     uint32_t morphDeltaOffset = 0;
+    // Vertex::color holds the file's COLOR_0, which multiplies the base colour; false: it is white and unused.
+    bool hasColors = false;
 };
 
 // The joint influences of one skinned vertex: up to 8 (glTF JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1),
@@ -203,6 +211,11 @@ struct Instance {
     std::vector<float> morphWeights;  // one per morph target of its mesh (empty without targets)
     Aabb bounds;                      // world space, deformed (conservative for deformed instances)
 };
+
+// The note addDefaultsIfMissing() leaves when the scene has no camera of its own. A command given a camera
+// path does not print it: the path is the camera then (app/cli/session.h, printSceneNotes).
+inline constexpr const char* kDefaultCameraNote =
+    "scene has no camera: added a default camera looking at the scene bounds";
 
 struct Scene {
     std::string name;

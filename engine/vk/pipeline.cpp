@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <utility>
 
 #include "core/vertex.h"
@@ -164,13 +165,14 @@ Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
         {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
         {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
+        {4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)},
     };
     VkPipelineVertexInputStateCreateInfo vertexInput{
         VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     if (desc.vertexInput) {
         vertexInput.vertexBindingDescriptionCount = 1;
         vertexInput.pVertexBindingDescriptions = &vertexBinding;
-        vertexInput.vertexAttributeDescriptionCount = desc.positionOnly ? 1 : 4;
+        vertexInput.vertexAttributeDescriptionCount = desc.positionOnly ? 1 : uint32_t(std::size(attributes));
         vertexInput.pVertexAttributeDescriptions = attributes;
     }
     VkPipelineInputAssemblyStateCreateInfo inputAssembly{

@@ -121,9 +121,16 @@ struct GpuInstance {
     mat4 normalMatrix;  // inverse transpose of world (upper 3x3 used)
 };
 
+// The vertex (engine/core/vertex.h: position, normal, uv, tangent, color) as floats, for the shaders that read
+// vertex buffers as storage buffers (std430 would pad its vec3s): voxelize, skin, the G-buffer's previous
+// positions. The colour is floats 12..15.
+#define VCT_FLOATS_PER_VERTEX 16
+#define VCT_VERTEX_COLOR_OFFSET 12
+
 // Push constants of the scene-drawing passes.
 struct DrawPushConstants {
-    uvec4 indices;  // x: instance, y: material, z: 1 when drawn from the skin pass's deformed vertices
+    uvec4 indices;  // x: instance, y: material, z: 1 when drawn from the skin pass's deformed vertices,
+                    // w: 1 when the primitive has vertex colours (COLOR_0) to multiply into the base colour
 };
 
 // skin (skinned and morphed primitives → the deformed vertex buffer): one dispatch per instance × primitive,
@@ -174,8 +181,9 @@ static_assert(sizeof(VoxelViewPushConstants) == 16);
 // Push constants of voxelize (one dispatch per instance × primitive) and resolve.
 struct VoxelizePushConstants {
     uvec4 draw;  // x: instance, y: material, z: first index, w: triangle count
-    // x: vertex offset (int32 bits); resolve: y = 1 when the dynamic accumulator is bound, z = 1 to zero it
-    // once read (the next frame's moving instances start from zero where they were)
+    // x: vertex offset (int32 bits); voxelize: y = 1 when the primitive has vertex colours (COLOR_0);
+    // resolve: y = 1 when the dynamic accumulator is bound, z = 1 to zero it once read (the next frame's
+    // moving instances start from zero where they were)
     uvec4 params;
     uvec4 region;  // resolve: xyz, the first voxel of the region its dispatch covers
 };

@@ -16,12 +16,16 @@ namespace vct {
 int runExportSceneCommand(int argc, char** argv, int first) {
     static const CommandSpec spec(
         "export-scene",
-        "Writes the scene as glTF 2.0 binary (FILE.glb): meshes, materials, textures (PNG), nodes, cameras,\n"
-        "KHR_lights_punctual lights and animations; loading it back gives the same scene. The built-in rooms "
-        "in\n"
-        "scenes/ are made with it: vct export-scene --scene cornell --out scenes/cornell.glb",
+        "Writes the scene as glTF 2.0 binary (FILE.glb): meshes, materials, textures (the PNG and JPEG "
+        "files\n"
+        "as loaded, others as PNG), nodes, cameras, KHR_lights_punctual lights and animations; loading it "
+        "back\n"
+        "gives the same scene. The built-in rooms in scenes/ are made with it:\n"
+        "vct export-scene --scene cornell --out scenes/cornell.glb",
         {{"scene", "NAME|FILE", "built-in scene name (see vct scenes) or a .gltf/.glb file", "cornell"},
-         {"out", "FILE.glb", "the file to write (required; its directory is created if missing)", ""}});
+         {"out", "FILE.glb", "the file to write (required; its directory is created if missing)", ""},
+         {"reencode-images", "", "encode every texture as PNG, also those loaded from PNG or JPEG files",
+          ""}});
     auto parsed = spec.parse(argc, argv, first);
     if (!parsed) return 0;
     const std::filesystem::path out = parsed->get("out");
@@ -39,7 +43,9 @@ int runExportSceneCommand(int argc, char** argv, int first) {
         if (error)
             throw Error("cannot create directory '" + out.parent_path().string() + "': " + error.message());
     }
-    writeGlb(scene, out);
+    GlbOptions options;
+    options.reencodeImages = parsed->has("reencode-images");
+    writeGlb(scene, out, options);
 
     std::error_code error;
     const auto bytes = static_cast<unsigned long long>(std::filesystem::file_size(out, error));

@@ -131,7 +131,7 @@ int runReferenceCommand(int argc, char** argv, int first) {
     prepareOutputDirectory(outDir, "--out");
 
     const Scene scene = loadScene(args.get("scene"));
-    for (const std::string& note : scene.notes) std::printf("note: %s\n", note.c_str());
+    printSceneNotes(scene, cameraPath ? args.get("camera-path") : "");
     if (cameraPath) checkCameraPathForScene(*cameraPath, scene, args.get("camera-path"));
     // The very frame `vct render --frames K+1` ends on: time and camera from the same function.
     const FrameInput input = fixedStepFrame(scene, frame, 0, cameraPath ? &*cameraPath : nullptr);

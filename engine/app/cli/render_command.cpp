@@ -59,6 +59,7 @@ int runRenderCommand(int argc, char** argv, int first) {
     if (!parsed) return 0;
     const ParsedArgs& args = *parsed;
     SessionOptions options = sessionOptions(args);
+    if (args.has("camera-path")) options.cameraPath = args.get("camera-path");
     const uint32_t frames = args.getUint("frames", 1, 100000);
     const uint32_t warmup =
         args.has("warmup") ? args.getUint("warmup", 0, frames - 1) : std::min(10u, frames / 4);

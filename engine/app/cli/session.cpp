@@ -57,12 +57,20 @@ std::vector<Option> settingOptions(SettingGroup group) {
 Session::Session(const SessionOptions& options) {
     // The scene first: a bad file is reported before any Vulkan work.
     scene_ = loadScene(options.scene);
-    for (const std::string& note : scene_.notes) std::printf("note: %s\n", note.c_str());
+    printSceneNotes(scene_, options.cameraPath);
     context_ = std::make_unique<vk::Context>(options.context);
     std::printf("device: %s\n", context_->deviceName().c_str());
     renderer_ = std::make_unique<Renderer>(*context_, scene_, options.settings);
     printAnisotropy(options.settings.anisotropy, renderer_->settings().anisotropy);
     std::printf("environment: %s\n", renderer_->environment().description.c_str());
+}
+
+void printSceneNotes(const Scene& scene, const std::string& cameraPath) {
+    for (const std::string& note : scene.notes)
+        if (cameraPath.empty() || note != kDefaultCameraNote)
+            std::printf("note: %s\n", note.c_str());
+        else
+            std::printf("note: scene has no camera: the camera follows %s\n", cameraPath.c_str());
 }
 
 void printAnisotropy(uint32_t requested, uint32_t chosen) {

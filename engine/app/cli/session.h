@@ -16,6 +16,7 @@ namespace vct {
 
 struct SessionOptions {
     std::string scene = "cornell";
+    std::string cameraPath;  // --camera-path FILE, when the frames' camera comes from one
     RenderSettings settings;
     vk::ContextOptions context;
 };
@@ -51,6 +52,10 @@ class Session {
 // The startup line naming the anisotropic filtering level in use, like the device line: `requested` is the
 // setting given to the Renderer (kAnisotropyFromDevice without --anisotropy), `chosen` the Renderer's.
 void printAnisotropy(uint32_t requested, uint32_t chosen);
+
+// Prints the scene's notes ("note: ..."), one a line; with a camera path (the file given to --camera-path)
+// the default-camera note of a scene without a camera says that the path is the camera instead.
+void printSceneNotes(const Scene& scene, const std::string& cameraPath = "");
 
 // Throws when --validate was given and the validation layer reported anything.
 void checkValidation(const SessionOptions& options);
