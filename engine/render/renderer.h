@@ -106,6 +106,7 @@ class Renderer {
     std::array<vk::Sampler, 3> samplerOwners_;  // linear, nearest, shadow compare: what samplers_ names
     Samplers samplers_;
     vk::Buffer frameUniforms_;
+    gpu::FrameUniforms uniforms_{};  // this frame's, as written to frameUniforms_
     vk::GpuTimer timer_;
     std::shared_ptr<const EnvironmentMap> environmentMap_;
     std::unique_ptr<GpuEnvironment> gpuEnvironment_;  // before passes_: they bind it
