@@ -153,6 +153,7 @@ TEST(Blend, OneLayerOverAnOpaqueBackgroundIsTheOverSum) {
 // Alpha 0 shows the background exactly (bit for bit the render without the layer); alpha 1 equals the layer
 // drawn opaque (measured: identical; the bound allows RGBA16F rounding).
 TEST(Blend, AlphaZeroIsTheBackgroundAndAlphaOneTheOpaqueLayer) {
+    const uint32_t before = vk::validationMessageCount();
     const Render background = render(layeredScene("background", {{0.0f, kBack, 1.0f, AlphaMode::Opaque}}));
     EXPECT_FALSE(background.blendPass);  // no blended surface: no blend pass
     const Render zero =
@@ -163,6 +164,7 @@ TEST(Blend, AlphaZeroIsTheBackgroundAndAlphaOneTheOpaqueLayer) {
     const Render one =
         render(layeredScene("alpha-one", {{0.0f, kBack, 1.0f, AlphaMode::Opaque}, {1.0f, kFront, 1.0f}}));
     EXPECT_LE(worstRelative(one, opaque.hdr, "alpha 1 vs opaque"), 5e-4f);
+    EXPECT_EQ(vk::validationMessageCount(), before);
 }
 
 // Two blended layers over an opaque one, submitted in either order: the pass sorts them back to front, so
@@ -225,6 +227,36 @@ TEST(Blend, GiOnIsFiniteAndCloseToTheOverSum) {
         "gi", {{0.0f, kBack, 1.0f, AlphaMode::Opaque}, {1.0f, kFront, 0.5f}, {0.5f, kMiddle, 0.6f}});
     const Render image = render(scene, true, 3);
     EXPECT_LE(worstRelative(image, uniform(over(0.5f, kFront, over(0.6f, kMiddle, kBack))), "gi on"), 1e-3f);
+    EXPECT_EQ(vk::validationMessageCount(), before);
+}
+
+// Voxelized with opacity from alpha: the voxels of a blended layer alone hold its alpha in the albedo volume's
+// alpha (8 bits after the accumulator's 1/1023 steps), those of the opaque layer 1. Measured: 0.3 ± 0.0020 (half
+// an 8-bit step) and 1 exactly, 961 voxels each.
+TEST(Blend, VoxelOpacityIsTheLayersAlpha) {
+    const uint32_t before = vk::validationMessageCount();
+    const float alpha = 0.3f;
+    const Scene scene =
+        layeredScene("voxels", {{-8.0f, kBack, 1.0f, AlphaMode::Opaque}, {0.0f, kFront, alpha}});
+    Renderer renderer(context(), scene, settings(true));
+    FrameInput input;
+    input.camera = camera();
+    input.cut = true;
+    renderer.render(input);
+    VoxelGrid& grid = *renderer.voxelGrid();
+    size_t blended = 0, opaque = 0;
+    float worst = 0.0f;
+    for (const glm::vec4& voxel : grid.readVolume(grid.albedo())) {
+        if (voxel.a <= 0.0f) continue;
+        const bool isOpaque = voxel.a > 0.65f;
+        ++(isOpaque ? opaque : blended);
+        worst = std::max(worst, std::abs(voxel.a - (isOpaque ? 1.0f : alpha)));
+    }
+    std::printf("  %zu blended voxels, %zu opaque, worst opacity error %.4f\n", blended, opaque,
+                double(worst));
+    EXPECT_GT(blended, 100u);
+    EXPECT_GT(opaque, 100u);
+    EXPECT_LE(worst, 1.5f / 255.0f);
     EXPECT_EQ(vk::validationMessageCount(), before);
 }
 
