@@ -51,6 +51,11 @@ void main() {
     // The G-buffer stores the base colour clamped to [0, 1]; the same here.
     const vec3 color = clamp(baseColor.rgb, 0.0, 1.0);
     const float coverage = saturate(baseColor.a);
+    // Nothing to draw where the surface is fully transparent (cut-out texels of foliage): no light, no cones.
+    if (coverage <= 0.0) {
+        outColor = vec4(0.0);
+        return;
+    }
 
     const vec3 p = inWorld;
     const vec3 n = surface.shadingNormal;
