@@ -4,7 +4,8 @@
 // With GI on (VCT_FLAG_GI): direct + albedo·diffuse·occlusion + specularDfg(F0, DFG)·specular, where
 // diffuse and specular are the demodulated cone-traced incoming radiance (lib/cone.glsl) and DFG the split-sum
 // table with multiple-scattering energy compensation (brdf.glsl). With GI off, direct already holds the
-// environment's light, unoccluded (direct.comp).
+// environment's light, unoccluded (direct.comp). Blended surfaces (the blend pass's premultiplied layer) go
+// over the result.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
@@ -28,6 +29,8 @@ layout(set = 0, binding = 7) uniform sampler2D emissiveOcclusionTexture;
 layout(set = 0, binding = 8, rgba32ui) uniform readonly uimage2D indirectImage;
 // Split-sum DFG table, uv = (n·v, perceptual roughness).
 layout(set = 0, binding = 10) uniform sampler2D dfgTable;
+// Blended surfaces (the blend pass, VCT_FLAG_BLEND): premultiplied radiance, a = their combined coverage.
+layout(set = 0, binding = 11) uniform sampler2D transparentTexture;
 
 // Indirect light leaving the surface at `pixel` towards the camera.
 vec3 indirect(ivec2 pixel) {
@@ -56,6 +59,13 @@ void main() {
     if (any(greaterThanEqual(pixel, ivec2(frame.imageSize)))) return;
     vec3 hdr = imageLoad(directImage, pixel).rgb;
     if ((frame.flags & VCT_FLAG_GI) != 0u) hdr += indirect(pixel);
+    // The blended surfaces over the opaque frame (Porter-Duff "over", premultiplied). The layer holds them
+    // already composited with each other back to front; "over" is associative, so this equals drawing each
+    // over the finished opaque frame in turn.
+    if ((frame.flags & VCT_FLAG_BLEND) != 0u) {
+        const vec4 layer = texelFetch(transparentTexture, pixel, 0);
+        hdr = layer.rgb + (1.0 - layer.a) * hdr;
+    }
     imageStore(hdrImage, pixel, vec4(hdr, 1.0));
     imageStore(ldrImage, pixel, vec4(linearToSrgb(toneMapAces(hdr, frame.exposure)), 1.0));
 }

@@ -26,26 +26,7 @@ layout(set = 0, binding = 8) uniform sampler2D environmentMap;  // lib/environme
 
 #include "lib/environment_sample.glsl"
 
-// 3x3 PCF on the main light's shadow map, as four bilinear compare taps (lib/shadow_pcf.glsl); the position is
-// pushed along the normal by a texel or so, which removes acne on surfaces at grazing light angles without
-// detaching shadows.
-float shadowVisibility(vec3 worldPosition, vec3 normal) {
-    const vec3 offsetPosition = worldPosition + normal * frame.lighting.shadowNormalOffset * 1.5;
-    const vec4 clip = frame.lightViewProj * vec4(offsetPosition, 1.0);
-    if (clip.w <= 0.0) return 1.0;
-    const vec3 ndc = clip.xyz / clip.w;
-    const vec2 uv = ndc.xy * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z >= 1.0) return 1.0;
-    const float texelSize = frame.lighting.shadowTexelSize;
-    const PcfTaps taps = pcfTaps(uv / texelSize - 0.5);
-    const vec2 first = (taps.first + 0.5) * texelSize, last = (taps.last + 0.5) * texelSize;
-    const float visible =
-        taps.firstWeight.x * taps.firstWeight.y * texture(shadowMap, vec3(first, ndc.z)) +
-        taps.lastWeight.x * taps.firstWeight.y * texture(shadowMap, vec3(last.x, first.y, ndc.z)) +
-        taps.firstWeight.x * taps.lastWeight.y * texture(shadowMap, vec3(first.x, last.y, ndc.z)) +
-        taps.lastWeight.x * taps.lastWeight.y * texture(shadowMap, vec3(last, ndc.z));
-    return visible / 9.0;
-}
+#include "lib/shadow_lookup.glsl"
 
 void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -82,11 +63,9 @@ void main() {
     // cones read of an open sky) × the diffuse albedo, plus what the specular cone would read × F0. A uniform
     // environment L gives L·(albedo + F0), the constant ambient term this replaced.
     if ((frame.flags & VCT_FLAG_GI) == 0u) {
-        const vec3 albedo = diffuseAlbedo(baseColorMetallic.rgb, baseColorMetallic.a);
-        const vec3 f0 = f0FromMetallic(baseColorMetallic.rgb, baseColorMetallic.a);
-        const float alpha = alphaFromPerceptual(normalRoughness.w);
-        const vec3 specular = environmentCone(specularConeDirection(n, v), specularConeTanHalf(alpha));
-        radiance += (environmentDiffuse(n) * albedo + specular * f0) * emissiveOcclusion.a;
+        radiance +=
+            environmentReflected(n, v, baseColorMetallic.rgb, baseColorMetallic.a, normalRoughness.w) *
+            emissiveOcclusion.a;
     }
     imageStore(outputImage, pixel, vec4(radiance, 1.0));
 }

@@ -28,7 +28,8 @@ void main() {
     const uint base = voxelLinearIndex(voxel, n) * VCT_VOXEL_ACCUM_STRIDE;
     const bool dynamic = push.params.y != 0;
     // The count first: most voxels are empty and need nothing else read.
-    const uint count = staticAccum[base + 9] + (dynamic ? dynamicAccum[base + 9] : 0u);
+    const uint count = staticAccum[base + VCT_VOXEL_ACCUM_COUNT] +
+                       (dynamic ? dynamicAccum[base + VCT_VOXEL_ACCUM_COUNT] : 0u);
     if (count == 0u) {
         imageStore(albedoImage, voxel, vec4(0.0));
         imageStore(normalImage, voxel, vec4(0.0));
@@ -36,8 +37,8 @@ void main() {
         return;
     }
     // Sums of both accumulators (uint addition wraps like the atomics, so signed normals add correctly).
-    uint sums[VCT_VOXEL_ACCUM_STRIDE - 1];
-    for (int i = 0; i < VCT_VOXEL_ACCUM_STRIDE - 1; ++i)
+    uint sums[VCT_VOXEL_ACCUM_STRIDE];
+    for (int i = 0; i < VCT_VOXEL_ACCUM_STRIDE; ++i)
         sums[i] = staticAccum[base + i] + (dynamic ? dynamicAccum[base + i] : 0u);
     // Zeroed once read: the next frame's moving instances accumulate from zero (voxelize_pass.cpp).
     if (push.params.z != 0u)
@@ -48,8 +49,12 @@ void main() {
                              voxelDecodeSigned(sums[5], count));
     const vec3 emission = vec3(voxelDecodeEmission(sums[6], count), voxelDecodeEmission(sums[7], count),
                                voxelDecodeEmission(sums[8], count));
-    // Any surface in the voxel makes it opaque (binary coverage, as in Crassin et al.).
-    imageStore(albedoImage, voxel, vec4(albedo, 1.0));
+    // Any opaque surface in the voxel makes it opaque (binary coverage, as in Crassin et al.); blended surfaces
+    // (docs/design.md §5.1) cover it by their mean alpha over the voxel's samples, opaque ones counting 1: one
+    // blended surface alone gives its alpha, one beside an opaque surface less than the opaque 1 it should be.
+    const uint transparency = sums[VCT_VOXEL_ACCUM_TRANSPARENCY];
+    const float opacity = transparency == 0u ? 1.0 : 1.0 - voxelDecodeUnit(transparency, count);
+    imageStore(albedoImage, voxel, vec4(albedo, opacity));
     imageStore(normalImage, voxel, vec4(normal, 0.0));
     imageStore(emissionImage, voxel, vec4(emission, 0.0));
 }

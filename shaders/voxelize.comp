@@ -92,6 +92,8 @@ void main() {
     const float emissiveLod = lodForVoxel(emissiveTexture, uv[0], uv[1], uv[2], worldArea2);
     const vec3 faceNormal = cross(p[1] - p[0], p[2] - p[0]);
     const bool mask = material.flags.x == VCT_ALPHA_MASK;
+    // A blended surface covers its voxels by its alpha (the resolve's opacity); opaque ones add nothing here.
+    const bool blend = material.flags.x == VCT_ALPHA_BLEND;
 
     for (int z = lo.z; z <= hi.z; ++z)
         for (int y = lo.y; y <= hi.y; ++y)
@@ -116,6 +118,8 @@ void main() {
                     atomicAdd(accum[base_ + 3 + c], voxelEncodeSigned(normal[c]));
                     atomicAdd(accum[base_ + 6 + c], voxelEncodeEmission(emission[c]));
                 }
-                atomicAdd(accum[base_ + 9], 1u);
+                atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_COUNT], 1u);
+                if (blend)
+                    atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_TRANSPARENCY], voxelEncodeUnit(1.0 - base.a));
             }
 }

@@ -404,7 +404,10 @@ INSTANTIATE_TEST_SUITE_P(
         ForgedCache{"NegativeCount", [](VoxelFile& f) { f.staticAccum[2].accum[9] = uint32_t(-5); },
                     "static_count"},
         ForgedCache{"NormalSumBeyondCount", [](VoxelFile& f) { f.staticAccum[3].accum[4] = uint32_t(-2000); },
-                    "normal sum"}),
+                    "normal sum"},
+        ForgedCache{"TransparencySumBeyondCount",
+                    [](VoxelFile& f) { f.staticAccum[0].accum[VCT_VOXEL_ACCUM_TRANSPARENCY] = 0xFFFFFFFFu; },
+                    "transparency sum"}),
     [](const auto& param) { return param.param.name; });
 
 // Class 9: a cache of another scene whose scene hash was removed (re-sealed, so only the metadata is at

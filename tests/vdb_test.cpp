@@ -38,7 +38,8 @@ const std::vector<std::string> kGridNames = {"albedo",
                                              "static_count",
                                              "static_albedo_sum",
                                              "static_normal_sum",
-                                             "static_emission_sum"};
+                                             "static_emission_sum",
+                                             "static_transparency_sum"};
 
 // Voxels at the grid's corners and edges plus a pseudo-random scatter, with values that a lossy path would
 // change: negative normals, tiny and huge floats, accumulator words with the top bit set. Sorted by linear
@@ -80,6 +81,7 @@ VoxelFile syntheticFile(uint32_t n) {
             }
             s.accum[3] = 0xFFFFFC01u;  // -1023: a normal sum pointing down
             s.accum[9] = count;
+            s.accum[10] = next() % 3 == 0 ? next() % (1023 * count + 1) : 0;  // blended samples in some
             file.staticAccum.push_back(s);
         }
     }
@@ -127,7 +129,7 @@ TEST(VdbIo, SparseFileIsSmallerThanDense) {
     const VoxelFile file = syntheticFile(64);
     writeVoxelFile(dir / "synthetic.vdb", file);
     EXPECT_LT(fs::file_size(dir / "synthetic.vdb"), denseVoxelBytes(64) / 2);
-    EXPECT_EQ(denseVoxelBytes(32), 32ull * 32 * 32 * 92);  // 4 vec3s + float + int32 + 3 vec3i
+    EXPECT_EQ(denseVoxelBytes(32), 32ull * 32 * 32 * 96);  // 4 vec3s + float + 2 int32 + 3 vec3i
 }
 
 TEST(VdbIo, EmptyGridRoundTrips) {
@@ -229,7 +231,7 @@ TEST(Voxelize, WritesSparseFileThatVdbPrintLists) {
         lit |= v.radiance.r > 0.0f;
     }
     EXPECT_TRUE(lit) << "no voxel received light";
-    for (const StaticAccumVoxel& v : read.staticAccum) EXPECT_GT(v.accum[VCT_VOXEL_ACCUM_STRIDE - 1], 0u);
+    for (const StaticAccumVoxel& v : read.staticAccum) EXPECT_GT(v.accum[VCT_VOXEL_ACCUM_COUNT], 0u);
 
     const std::string vdbPrint = findOnPath("vdb_print");
     if (vdbPrint.empty()) GTEST_SKIP() << "vdb_print (libopenvdb-tools) not on PATH";

@@ -30,8 +30,9 @@ namespace vct {
 
 namespace {
 
-static_assert(VCT_VOXEL_ACCUM_STRIDE == 10,
-              "static_* grids assume albedo rgb, normal xyz, emission rgb, count");
+static_assert(VCT_VOXEL_ACCUM_STRIDE == 11 && VCT_VOXEL_ACCUM_COUNT == 9 &&
+                  VCT_VOXEL_ACCUM_TRANSPARENCY == 10,
+              "static_* grids assume albedo rgb, normal xyz, emission rgb, count, transparency");
 
 // Grid names, in file order.
 constexpr const char* kAlbedo = "albedo";
@@ -43,6 +44,7 @@ constexpr const char* kStaticCount = "static_count";
 constexpr const char* kStaticAlbedo = "static_albedo_sum";
 constexpr const char* kStaticNormal = "static_normal_sum";
 constexpr const char* kStaticEmission = "static_emission_sum";
+constexpr const char* kStaticTransparency = "static_transparency_sum";
 
 constexpr const char* kIndexToWorld =
     "index (i,j,k) is the voxel centred at vct_grid_origin + (ijk + 0.5) * vct_voxel_size (OpenVDB's "
@@ -388,9 +390,10 @@ std::vector<glm::ivec3> activeVoxels(const GridT& grid, uint32_t n, const std::f
 }  // namespace
 
 uint64_t denseVoxelBytes(uint32_t resolution) {
-    // albedo, normal, emission, radiance (vec3s) + opacity (float) + static_count (int32) + 3 sums (vec3i).
+    // albedo, normal, emission, radiance (vec3s) + opacity (float) + static_count and the transparency sum
+    // (int32) + 3 sums (vec3i).
     constexpr uint64_t perVoxel =
-        4 * sizeof(openvdb::Vec3s) + sizeof(float) + sizeof(int32_t) + 3 * sizeof(openvdb::Vec3i);
+        4 * sizeof(openvdb::Vec3s) + sizeof(float) + 2 * sizeof(int32_t) + 3 * sizeof(openvdb::Vec3i);
     return uint64_t(resolution) * resolution * resolution * perVoxel;
 }
 
@@ -402,9 +405,11 @@ struct VoxelFileGrids {
     openvdb::FloatGrid::Ptr opacity;
     openvdb::Int32Grid::Ptr count;
     openvdb::Vec3IGrid::Ptr albedoSum, normalSum, emissionSum;
+    openvdb::Int32Grid::Ptr transparencySum;
 
     openvdb::GridPtrVec all() const {
-        return {albedo, normal, emission, opacity, radiance, count, albedoSum, normalSum, emissionSum};
+        return {albedo, normal,    emission,  opacity,     radiance,
+                count,  albedoSum, normalSum, emissionSum, transparencySum};
     }
 };
 
@@ -423,8 +428,9 @@ VoxelFileGrids makeVoxelFileGrids(const VoxelFileInfo& info) {
         kNormal, "averaged surface normal (world space, not renormalised: shorter where surfaces disagree)",
         info, transform);
     g.emission = makeGrid<openvdb::Vec3SGrid>(kEmission, "emitted radiance (linear RGB)", info, transform);
-    g.opacity = makeGrid<openvdb::FloatGrid>(kOpacity, "coverage: 1 where any surface touches the voxel",
-                                             info, transform);
+    g.opacity = makeGrid<openvdb::FloatGrid>(
+        kOpacity, "coverage: 1 where an opaque surface touches the voxel, blended ones by their alpha", info,
+        transform);
     g.radiance = makeGrid<openvdb::Vec3SGrid>(
         kRadiance,
         "injected outgoing radiance of mip 0 at vct_time (direct light + emission), premultiplied by opacity",
@@ -440,6 +446,10 @@ VoxelFileGrids makeVoxelFileGrids(const VoxelFileInfo& info) {
         info, transform);
     g.emissionSum = makeGrid<openvdb::Vec3IGrid>(
         kStaticEmission, "static geometry: sum of emission x 256 over static_count samples (uint32 bits)",
+        info, transform);
+    g.transparencySum = makeGrid<openvdb::Int32Grid>(
+        kStaticTransparency,
+        "static geometry: sum of (1 - alpha) x 1023 of alpha-blended samples over static_count (0: opaque)",
         info, transform);
     g.opacity->setGridClass(openvdb::GRID_FOG_VOLUME);
     g.normal->setVectorType(openvdb::VEC_COVARIANT);
@@ -485,6 +495,7 @@ void fillStaticGrids(const std::filesystem::path& path, const VoxelFile& data, V
     auto a = g.albedoSum->getAccessor();
     auto nr = g.normalSum->getAccessor();
     auto e = g.emissionSum->getAccessor();
+    auto t = g.transparencySum->getAccessor();
     for (const StaticAccumVoxel& v : data.staticAccum) {
         if (!inGrid(v.ijk, n)) throw voxelOutsideGrid(path, v.ijk, n);
         const openvdb::Coord ijk = coord(v.ijk);
@@ -492,6 +503,7 @@ void fillStaticGrids(const std::filesystem::path& path, const VoxelFile& data, V
         nr.setValueOn(ijk, vec3i(&v.accum[3]));
         e.setValueOn(ijk, vec3i(&v.accum[6]));
         c.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[9]));
+        t.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[10]));
     }
 }
 
@@ -597,6 +609,7 @@ std::string accumProblem(const StaticAccumVoxel& v) {
     if (count == 0 || count > kMaxSamplesPerVoxel)
         return "static_count " + std::to_string(int32_t(v.accum[9])) + ", expected 1.." +
                std::to_string(kMaxSamplesPerVoxel);
+    if (uint64_t(v.accum[10]) > kUnitScale * count) return "transparency sum above 1023 x static_count";
     for (int c = 0; c < 3; ++c) {
         if (uint64_t(v.accum[size_t(c)]) > kUnitScale * count) return "albedo sum above 1023 x static_count";
         if (uint64_t(std::abs(int64_t(std::bit_cast<int32_t>(v.accum[size_t(3 + c)])))) > kUnitScale * count)
@@ -618,6 +631,14 @@ VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
         auto albedoSum = readGrid<openvdb::Vec3IGrid>(file, kStaticAlbedo, n, path);
         auto normalSum = readGrid<openvdb::Vec3IGrid>(file, kStaticNormal, n, path);
         auto emissionSum = readGrid<openvdb::Vec3IGrid>(file, kStaticEmission, n, path);
+        // Files written before blended surfaces were voxelized by their alpha have no transparency: opaque.
+        bool hasTransparency = false;
+        for (const openvdb::GridBase::Ptr& grid : *file.grids)
+            hasTransparency = hasTransparency || (grid && grid->getName() == kStaticTransparency);
+        auto transparencySum = hasTransparency
+                                   ? readGrid<openvdb::Int32Grid>(file, kStaticTransparency, n, path)
+                                   : openvdb::Int32Grid::create(0);
+        auto t = transparencySum->getConstAccessor();
         auto c = count->getConstAccessor();
         auto a = albedoSum->getConstAccessor();
         auto nr = normalSum->getConstAccessor();
@@ -630,6 +651,7 @@ VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
             fromVec3i(nr.getValue(x), &v.accum[3]);
             fromVec3i(e.getValue(x), &v.accum[6]);
             v.accum[9] = std::bit_cast<uint32_t>(c.getValue(x));
+            v.accum[10] = std::bit_cast<uint32_t>(t.getValue(x));
             if (std::string bad = accumProblem(v); !bad.empty()) {
                 std::ostringstream message;
                 message << "voxel file " << quoted(path) << ": voxel (" << ijk.x << ", " << ijk.y << ", "

@@ -16,7 +16,9 @@ CompositePass::CompositePass(const vk::Context& context)
                   {7, Target::emissiveOcclusion, Access::Sampled},
                   // A 1×1 stand-in with GI off: one pipeline for both modes, the shader skips it.
                   {8, Target::indirect, Access::Read},
-                  {10, Resource::image("dfg", dfg_.image(), dfg_.sampler()), Access::Sampled}}) {
+                  {10, Resource::image("dfg", dfg_.image(), dfg_.sampler()), Access::Sampled},
+                  // The blend pass's layer (a 1×1 stand-in in a scene without blended surfaces, skipped).
+                  {11, Target::transparent, Access::Sampled}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "composite.comp", resources_.bindings(), 0);
 }
 

@@ -1,6 +1,7 @@
 // composite: the frame's linear HDR result — direct light plus, with GI on, the indirect light re-modulated:
 // albedo·diffuse·occlusion + specularDfg(F0, DFG(n·v, roughness))·specular (multiple-scattering energy
-// compensation, docs/design.md §3.3) — and its tone-mapped sRGB version for the PNG and the window.
+// compensation, docs/design.md §3.3), with the blend pass's layer of blended surfaces over it — and its
+// tone-mapped sRGB version for the PNG and the window.
 #pragma once
 
 #include "render/dfg_lut.h"

@@ -66,7 +66,8 @@ void GBufferPass::execute(const FrameContext& frame) {
     VkRect2D scissor{{0, 0}, {t.width, t.height}};
     vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
     vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
-    drawScene(frame, pipeline_, resources_, kPreviousVertices);
+    // Blended surfaces are drawn forward by the blend pass, after the opaque frame (docs/design.md §2.6).
+    drawScene(frame, pipeline_, resources_, kPreviousVertices, DrawSet::Opaque);
     vkCmdEndRendering(frame.cmd);
 }
 

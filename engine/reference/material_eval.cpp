@@ -9,7 +9,7 @@ namespace vct::reference {
 
 namespace {
 
-// Unit vector or, when v is degenerate (zero or not finite), the fallback: gbuffer.frag's safeNormalize.
+// Unit vector or, when v is degenerate (zero or not finite), the fallback: lib/surface.glsl's safeNormalize.
 glm::vec3 safeNormalize(glm::vec3 v, glm::vec3 fallback) {
     const float len2 = glm::dot(v, v);
     return (len2 > 1e-20f && std::isfinite(len2)) ? v / std::sqrt(len2) : fallback;
@@ -87,7 +87,7 @@ SurfacePoint MaterialEvaluator::evaluate(uint32_t materialIndex, const SurfaceGe
     const glm::vec4 baseColor =
         material.baseColorFactor * sampleTexture(material.baseColorTexture, false, g.uv) * g.color;
 
-    // gbuffer.frag, step for step: the geometric frame, back faces seeing the flipped normal.
+    // lib/surface.glsl, step for step: the geometric frame, back faces seeing the flipped normal.
     glm::vec3 normal = safeNormalize(g.normal, g.frontFacing ? g.faceNormal : -g.faceNormal);
     const glm::vec3 inTangent = glm::vec3(g.tangent);
     glm::vec3 tangent = inTangent - normal * glm::dot(normal, inTangent);

@@ -1,4 +1,4 @@
-// Materials as the G-buffer pass evaluates them (shaders/gbuffer.frag), on the CPU for the path-traced
+// Materials as the G-buffer pass evaluates them (shaders/lib/surface.glsl), on the CPU for the path-traced
 // reference: the same glTF metallic-roughness factors and textures, the same tangent-space normal mapping,
 // the same clamps. Textures are read at level 0 with bilinear filtering (sRGB decoded per texel before
 // filtering, as the GPU's sRGB formats do); the reference integrates over each pixel instead of relying on

@@ -1,6 +1,7 @@
 #include "reference/ray_scene.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "core/error.h"
@@ -24,9 +25,11 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] == 0) continue;
         const glm::vec3 direction(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
                                   RTCRayN_dir_z(args->ray, args->N, i));
+        const glm::vec3 origin(RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                               RTCRayN_org_z(args->ray, args->N, i));
         if (context->scene->rejects(geometry, RTCHitN_primID(args->hit, args->N, i),
                                     RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i),
-                                    direction, context->cameraRay))
+                                    direction, context->cameraRay, origin))
             args->valid[i] = 0;
     }
 }
@@ -43,6 +46,16 @@ void reportEmbreeError(void*, RTCError code, const char* message) {
 glm::vec3 windingNormal(const RayGeometry& g, uint32_t triangle) {
     const uint32_t* tri = &g.indices[size_t(triangle) * 3];
     return glm::cross(g.positions[tri[1]] - g.positions[tri[0]], g.positions[tri[2]] - g.positions[tri[0]]);
+}
+
+// A 32-bit integer hash with full avalanche (the "lowbias32" finaliser of C. Wellons' hash prospector).
+uint32_t hashMix(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7FEB352Du;
+    x ^= x >> 15;
+    x *= 0x846CA68Bu;
+    x ^= x >> 16;
+    return x;
 }
 
 std::string nodeName(const Scene& scene, int node) {
@@ -81,6 +94,7 @@ RayScene::RayScene(const Scene& scene, float timeSeconds, const MaterialEvaluato
             g.cullBackFacesForCamera = !material.doubleSided;
             g.alphaMask = material.alphaMode == AlphaMode::Mask;
             g.hasColors = primitive.hasColors;
+            g.alphaBlend = material.alphaMode == AlphaMode::Blend;
             g.world = instance.world;
             g.normalMatrix = std::isfinite(normalMatrix[0][0]) ? normalMatrix : glm::mat3(1.0f);
             g.vertexOffset = primitive.vertexOffset;
@@ -127,9 +141,9 @@ RayScene::RayScene(const Scene& scene, float timeSeconds, const MaterialEvaluato
         }
         std::copy(g.indices.begin(), g.indices.end(), indices);
         rtcSetGeometryUserData(geometry, reinterpret_cast<void*>(uintptr_t(index)));
-        if (g.cullBackFacesForCamera || g.alphaMask)
+        if (g.cullBackFacesForCamera || g.alphaMask || g.alphaBlend)
             rtcSetGeometryIntersectFilterFunction(geometry, filterHit);
-        if (g.alphaMask) rtcSetGeometryOccludedFilterFunction(geometry, filterHit);
+        if (g.alphaMask || g.alphaBlend) rtcSetGeometryOccludedFilterFunction(geometry, filterHit);
         rtcCommitGeometry(geometry);
         rtcAttachGeometryByID(rtcScene_, geometry, unsigned(index));
         rtcReleaseGeometry(geometry);
@@ -213,11 +227,24 @@ glm::vec4 RayScene::colorAt(uint32_t geometry, uint32_t triangle, float u, float
 }
 
 bool RayScene::rejects(uint32_t geometry, uint32_t triangle, float u, float v, glm::vec3 direction,
-                       bool cameraRay) const {
+                       bool cameraRay, glm::vec3 origin) const {
     const RayGeometry& g = geometries_[geometry];
     if (cameraRay && g.cullBackFacesForCamera) {
         if (glm::dot(windingNormal(g, triangle), direction) >= 0.0f)
             return true;  // the back (clockwise) side
+    }
+    if (g.alphaBlend) {
+        const float alpha =
+            materials_.alpha(g.material, uvAt(geometry, triangle, u, v), colorAt(geometry, triangle, u, v).a);
+        if (alpha >= 1.0f) return false;
+        const float values[] = {origin.x, origin.y, origin.z, direction.x, direction.y, direction.z, u, v};
+        uint32_t h = hashMix(geometry * 0x9E3779B9u + triangle);
+        for (float value : values) {
+            uint32_t bits;
+            std::memcpy(&bits, &value, sizeof(bits));
+            h = hashMix(h ^ bits);
+        }
+        return float(h >> 8) * (1.0f / 16777216.0f) >= alpha;  // uniform in [0, 1) from 24 bits
     }
     return g.alphaMask && materials_.discards(g.material, uvAt(geometry, triangle, u, v),
                                               colorAt(geometry, triangle, u, v).a);

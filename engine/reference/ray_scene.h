@@ -1,7 +1,9 @@
 // The scene at one time as an Embree 3 BVH, for the path-traced reference: one triangle geometry per mesh
 // instance and primitive (a "surface": what the per-surface error sums over), in world space. Camera rays
 // skip the back faces of single-sided materials (the G-buffer culls them); every ray skips the texels an
-// alpha-masked material discards.
+// alpha-masked material discards, and passes through an alpha-blended surface with probability 1 − alpha
+// (stochastic transparency: the expected radiance is alpha·surface + (1 − alpha)·behind, the "over" of the
+// blend pass, docs/design.md §2.6).
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -34,7 +36,8 @@ struct RayGeometry {
     uint32_t material = 0;
     bool cullBackFacesForCamera = false;
     bool alphaMask = false;
-    bool hasColors = false;  // Primitive::hasColors: COLOR_0 multiplies the base colour
+    bool hasColors = false;   // Primitive::hasColors: COLOR_0 multiplies the base colour
+    bool alphaBlend = false;  // hit with probability alpha (RayScene::rejects)
     glm::mat4 world{1.0f};
     glm::mat3 normalMatrix{1.0f};
     std::vector<glm::vec3> positions;  // world space, the primitive's vertex range
@@ -62,9 +65,11 @@ class RayScene {
     glm::vec2 uvAt(uint32_t geometry, uint32_t triangle, float u, float v) const;
     // The interpolated COLOR_0; exactly white for a primitive without one.
     glm::vec4 colorAt(uint32_t geometry, uint32_t triangle, float u, float v) const;
-    // True where the hit is to be skipped (filter functions).
-    bool rejects(uint32_t geometry, uint32_t triangle, float u, float v, glm::vec3 direction,
-                 bool cameraRay) const;
+    // True where the hit is to be skipped (filter functions). A blended surface's hit is kept when a uniform
+    // number hashed from the ray (origin, direction) and the hit (surface, triangle, u, v) is below its alpha:
+    // reproducible (no shared random state between threads), independent between samples, whose rays differ.
+    bool rejects(uint32_t geometry, uint32_t triangle, float u, float v, glm::vec3 direction, bool cameraRay,
+                 glm::vec3 origin = glm::vec3(0.0f)) const;
 
     const std::vector<RayGeometry>& geometries() const { return geometries_; }
     uint64_t triangleCount() const { return triangleCount_; }

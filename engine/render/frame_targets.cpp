@@ -40,11 +40,12 @@ const vk::Image& FrameTargets::image(Target target) const {
 }
 
 void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, uint32_t shadowMapSize,
-                          uint32_t scale, bool withGi) {
+                          uint32_t scale, bool withGi, bool withBlend) {
     width = w;
     height = h;
     traceScale = scale < 1 ? 1 : scale;
     gi = withGi;
+    blend = withBlend;
     // Low res rounds up, so every full-res pixel has a low-res sample at or beyond it to filter with.
     const bool upsampled = traceScale > 1;
     const uint32_t lowW = upsampled ? (w + traceScale - 1) / traceScale : 1;
@@ -56,7 +57,8 @@ void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, ui
             target = vk::Image();
             continue;
         }
-        const bool standIn = row.exists == TargetExists::StandInWithoutGi && !gi;
+        const bool standIn = (row.exists == TargetExists::StandInWithoutGi && !gi) ||
+                             (row.exists == TargetExists::StandInWithoutBlend && !blend);
         vk::ImageDesc desc;
         desc.width = standIn                         ? 1
                      : row.size == TargetSize::Frame ? w

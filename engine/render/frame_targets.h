@@ -22,8 +22,9 @@ enum class TargetSize : uint8_t { Frame, Trace, Shadow };
 // be sampled and copied to the host (aux images, tests).
 enum class TargetUsage : uint8_t { Depth, Color, Storage };
 // Exists: Always; WithGi = only with GI (fixed for a renderer's life); StandInWithoutGi = 1×1 without GI
-// (a pass that runs in both modes binds it, its shader skips it).
-enum class TargetExists : uint8_t { Always, WithGi, StandInWithoutGi };
+// (a pass that runs in both modes binds it, its shader skips it); StandInWithoutBlend = 1×1 in a scene without
+// blended surfaces (composite binds it and skips it).
+enum class TargetExists : uint8_t { Always, WithGi, StandInWithoutGi, StandInWithoutBlend };
 // When a history pair swaps at the start of a frame (FrameTargets::swapHistory): every frame, or only when
 // the G-buffer is redrawn (a frame that reuses it keeps both copies, render/renderer.cpp).
 enum class HistorySwap : uint8_t { None, EveryFrame, WithGBuffer };
@@ -47,26 +48,29 @@ enum class HistorySwap : uint8_t { None, EveryFrame, WithGBuffer };
 // guideNormal        unit normal, w: smoothed specular lobe sharpness
 // guideAxis          specular lobe axis
 // weightSum          upsample: sum of weights, r diffuse, g specular; b: 1 where re-traced
+// transparent        the blend pass's layer of blended surfaces, premultiplied: rgb radiance·alpha summed "over"
+//                    back to front, a its coverage (composite: hdr = rgb + (1 − a)·opaque)
 // hdr, ldr           the final linear HDR (final.exr) and tone-mapped sRGB (final.png, the window)
 // the H rows         last frame's upsample output and G-buffer: the temporal history
-#define VCT_FRAME_TARGETS(T, H)                                                            \
-    T(shadowMap,         VK_FORMAT_D32_SFLOAT,          Shadow, Depth,   Always)           \
-    T(depth,             VK_FORMAT_D32_SFLOAT,          Frame,  Depth,   Always)           \
-    T(normalRoughness,   VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Color,   Always)           \
-    T(baseColorMetallic, VK_FORMAT_R8G8B8A8_UNORM,      Frame,  Color,   Always)           \
-    T(emissiveOcclusion, VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Color,   Always)           \
-    T(motion,            VK_FORMAT_R16G16_SFLOAT,       Frame,  Color,   Always)           \
-    T(direct,            VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Storage, Always)           \
-    T(indirectLow,       VK_FORMAT_R32G32B32A32_UINT,   Trace,  Storage, WithGi)           \
-    T(indirect,          VK_FORMAT_R32G32B32A32_UINT,   Frame,  Storage, StandInWithoutGi) \
-    T(guidePosition,     VK_FORMAT_R32G32B32A32_SFLOAT, Trace,  Storage, WithGi)           \
-    T(guideNormal,       VK_FORMAT_R16G16B16A16_SFLOAT, Trace,  Storage, WithGi)           \
-    T(guideAxis,         VK_FORMAT_R16G16B16A16_SFLOAT, Trace,  Storage, WithGi)           \
-    T(weightSum,         VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Storage, WithGi)           \
-    T(hdr,               VK_FORMAT_R32G32B32A32_SFLOAT, Frame,  Storage, Always)           \
-    T(ldr,               VK_FORMAT_R8G8B8A8_UNORM,      Frame,  Storage, Always)           \
-    H(indirectHistory,     indirect,        WithGi, EveryFrame)                            \
-    H(prevDepth,           depth,           WithGi, WithGBuffer)                           \
+#define VCT_FRAME_TARGETS(T, H)                                                               \
+    T(shadowMap,         VK_FORMAT_D32_SFLOAT,          Shadow, Depth,   Always)              \
+    T(depth,             VK_FORMAT_D32_SFLOAT,          Frame,  Depth,   Always)              \
+    T(normalRoughness,   VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Color,   Always)              \
+    T(baseColorMetallic, VK_FORMAT_R8G8B8A8_UNORM,      Frame,  Color,   Always)              \
+    T(emissiveOcclusion, VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Color,   Always)              \
+    T(motion,            VK_FORMAT_R16G16_SFLOAT,       Frame,  Color,   Always)              \
+    T(direct,            VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Storage, Always)              \
+    T(indirectLow,       VK_FORMAT_R32G32B32A32_UINT,   Trace,  Storage, WithGi)              \
+    T(indirect,          VK_FORMAT_R32G32B32A32_UINT,   Frame,  Storage, StandInWithoutGi)    \
+    T(guidePosition,     VK_FORMAT_R32G32B32A32_SFLOAT, Trace,  Storage, WithGi)              \
+    T(guideNormal,       VK_FORMAT_R16G16B16A16_SFLOAT, Trace,  Storage, WithGi)              \
+    T(guideAxis,         VK_FORMAT_R16G16B16A16_SFLOAT, Trace,  Storage, WithGi)              \
+    T(weightSum,         VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Storage, WithGi)              \
+    T(transparent,       VK_FORMAT_R16G16B16A16_SFLOAT, Frame,  Color,   StandInWithoutBlend) \
+    T(hdr,               VK_FORMAT_R32G32B32A32_SFLOAT, Frame,  Storage, Always)              \
+    T(ldr,               VK_FORMAT_R8G8B8A8_UNORM,      Frame,  Storage, Always)              \
+    H(indirectHistory,     indirect,        WithGi, EveryFrame)                               \
+    H(prevDepth,           depth,           WithGi, WithGBuffer)                              \
     H(prevNormalRoughness, normalRoughness, WithGi, WithGBuffer)
 // clang-format on
 
@@ -126,12 +130,14 @@ struct FrameTargets {
     // Whether the indirect-light targets exist (the table's WithGi rows and the buffers above; readers check
     // this flag).
     bool gi = true;
+    // Whether the blend pass runs (the scene has blended surfaces): the transparent layer at full size.
+    bool blend = false;
 
     vk::Image& image(Target target);
     const vk::Image& image(Target target) const;
 
     void create(const vk::Context& context, uint32_t width, uint32_t height, uint32_t shadowMapSize,
-                uint32_t traceScale = 1, bool gi = true);
+                uint32_t traceScale = 1, bool gi = true, bool blend = false);
     // Start of a frame: this frame's outputs and G-buffer become last frame's (no copies, the images swap),
     // for every history pair that exists (none without GI). gbuffer false: the G-buffer is kept (a frame that
     // reuses it, render/renderer.cpp), both copies hold it.

@@ -94,14 +94,21 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
         g.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
         g.metallicRoughnessCutoffAo =
             glm::vec4(m.metallicFactor, m.roughnessFactor, m.alphaCutoff, m.occlusionStrength);
-        // Blend is drawn as opaque (no transparency pass); mask keeps its cut-out.
-        g.flags = glm::uvec4(m.alphaMode == AlphaMode::Mask ? VCT_ALPHA_MASK : VCT_ALPHA_OPAQUE, 0, 0, 0);
+        // Mask keeps its cut-out; blend is drawn by the blend pass (docs/design.md §2.6).
+        g.flags = glm::uvec4(m.alphaMode == AlphaMode::Mask    ? VCT_ALPHA_MASK
+                             : m.alphaMode == AlphaMode::Blend ? VCT_ALPHA_BLEND
+                                                               : VCT_ALPHA_OPAQUE,
+                             0, 0, 0);
         materials.push_back(g);
     }
     materials_ = vk::Buffer::withData(context, materials.data(), materials.size() * sizeof(gpu::GpuMaterial),
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     instances_ = scene.instances(0.0f);
+    for (const Instance& instance : instances_)
+        for (uint32_t p : scene.meshes[size_t(instance.mesh)].primitives)
+            hasBlended_ =
+                hasBlended_ || scene.materials[scene.primitives[p].material].alphaMode == AlphaMode::Blend;
     deform_ = std::make_unique<GpuDeform>(context, scene, instances_, framesInFlight);
     bounds_ = scene.bounds();
     instanceBuffer_ = vk::Buffer(context, std::max<size_t>(1, instances_.size()) * sizeof(gpu::GpuInstance),

@@ -53,6 +53,8 @@ class GpuScene {
     bool onlyInstancesMovedInLastUpdate() const { return onlyInstancesMoved_; }
     const Aabb& movedBounds() const { return movedBounds_; }
     const std::vector<Instance>& instances() const { return instances_; }
+    // Whether an instance draws a primitive with an alphaMode BLEND material (the blend pass runs).
+    bool hasBlended() const { return hasBlended_; }
     // Skinned and morphed instances: their deformed vertices (the skin pass writes them; render/gpu_deform.h).
     const GpuDeform& deform() const { return *deform_; }
     GpuDeform& deform() { return *deform_; }
@@ -98,6 +100,7 @@ class GpuScene {
     Aabb bounds_;
     Aabb movedBounds_;
     bool onlyInstancesMoved_ = false;
+    bool hasBlended_ = false;
     void fitShadow();
 };
 

@@ -29,6 +29,7 @@ struct FrameContext {
     VkBuffer frameUniforms;
     const RenderSettings& settings;
     const Samplers& samplers;
+    const gpu::FrameUniforms& uniforms;  // what the frame uniform buffer holds (the camera: blend's ordering)
 };
 
 enum class PassReuse {

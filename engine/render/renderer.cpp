@@ -4,6 +4,7 @@
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
+#include "passes/blend_pass.h"
 #include "passes/composite_pass.h"
 #include "passes/direct_pass.h"
 #include "passes/gbuffer_pass.h"
@@ -48,7 +49,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
                          " exceeds the device's maximum image dimension " +
                          std::to_string(limits.maxImageDimension2D));
     targets_.create(context, settings.width, settings.height, VCT_SHADOW_MAP_SIZE, settings.traceScale,
-                    settings.gi);
+                    settings.gi, gpuScene_.hasBlended());
     createSamplers();
     // The environment (docs/design.md §5.9), made once from the settings and the scene's sun at t = 0.
     environmentMap_ = std::make_shared<const EnvironmentMap>(sceneEnvironment(scene, settings_));
@@ -89,6 +90,14 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
             passes_.push_back(std::make_unique<UpsamplePass>(context));
             if (settings.adaptive) passes_.push_back(std::make_unique<ResamplePass>(context, voxels));
         }
+    }
+    // Blended surfaces, drawn forward over the opaque frame's depth into their own layer, which composite puts
+    // over the frame (docs/design.md §2.6); a scene without any has no blend pass.
+    if (gpuScene_.hasBlended()) {
+        const VoxelSource voxels =
+            voxelGrid_ ? VoxelSource{&voxelGrid_->radiance(), voxelGrid_->sampler(), environment}
+                       : VoxelSource{};
+        passes_.push_back(std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment));
     }
     passes_.push_back(std::make_unique<CompositePass>(context));
 
@@ -144,7 +153,8 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     settings_.width = width;
     settings_.height = height;
     sceneBuilt_ = false;  // the shadow map is recreated with the targets
-    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE, settings_.traceScale, settings_.gi);
+    targets_.create(context_, width, height, VCT_SHADOW_MAP_SIZE, settings_.traceScale, settings_.gi,
+                    gpuScene_.hasBlended());
     hasPrevious_ = false;
 }
 
@@ -203,9 +213,11 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
 
     u.flags = (settings_.gi ? VCT_FLAG_GI : 0u) | (settings_.toksvig ? VCT_FLAG_TOKSVIG : 0u) |
               (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) |
-              (settings_.textureLod0 ? VCT_FLAG_TEXTURE_LOD0 : 0u) | (history ? VCT_FLAG_HISTORY : 0u);
+              (settings_.textureLod0 ? VCT_FLAG_TEXTURE_LOD0 : 0u) | (history ? VCT_FLAG_HISTORY : 0u) |
+              (targets_.blend ? VCT_FLAG_BLEND : 0u);
 
     std::memcpy(uniforms.mapped(), &u, sizeof(u));
+    uniforms_ = u;
     previousViewProj_ = u.viewProj;
     previousInvViewProj_ = u.invViewProj;
     previousCameraPosition_ = u.cameraPosition;
@@ -260,7 +272,8 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     // The slot's re-trace count is the one the resample pass copies into while this frame is recorded.
     std::swap(targets_.resampleCount, slot.resampleCount);
     try {
-        FrameContext frame{context_, cmd, gpuScene_, targets_, slot.uniforms.handle(), settings_, samplers_};
+        FrameContext frame{context_,  cmd,       gpuScene_, targets_, slot.uniforms.handle(),
+                           settings_, samplers_, uniforms_};
         for (const auto& pass : passes_) {
             const PassReuse reuse = pass->reuse();
             if ((reuse == PassReuse::WhileSceneUnchanged && !sceneChanged) ||
@@ -428,8 +441,8 @@ vk::Image& Renderer::renderVoxelView(uint32_t mip) {
     voxelView_->prepare(mip, targets_.width, targets_.height);
     // The frame uniforms still hold the last frame's camera and grid placement.
     context_.submitAndWait([&](VkCommandBuffer cmd) {
-        FrameContext frame{context_,  cmd,      gpuScene_, targets_, lastSubmitted().uniforms.handle(),
-                           settings_, samplers_};
+        FrameContext frame{context_,  cmd,       gpuScene_, targets_, lastSubmitted().uniforms.handle(),
+                           settings_, samplers_, uniforms_};
         voxelView_->execute(frame);
     });
     return voxelView_->output();

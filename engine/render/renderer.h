@@ -130,9 +130,10 @@ class Renderer {
     FrameTargets targets_;
     std::array<vk::Sampler, 3> samplerOwners_;  // linear, nearest, shadow compare: what samplers_ names
     Samplers samplers_;
-    std::vector<FrameSlot> slots_;  // one per frame in flight; frame k uses slot k mod size
-    uint32_t submitted_ = 0;        // frames submitted
-    uint32_t resampleCount_ = 0;    // re-traced pixels of the last finished frame
+    std::vector<FrameSlot> slots_;   // one per frame in flight; frame k uses slot k mod size
+    uint32_t submitted_ = 0;         // frames submitted
+    uint32_t resampleCount_ = 0;     // re-traced pixels of the last finished frame
+    gpu::FrameUniforms uniforms_{};  // this frame's, as written to its slot's uniform buffer
     vk::GpuTimer timer_;
     std::shared_ptr<const EnvironmentMap> environmentMap_;
     std::unique_ptr<GpuEnvironment> gpuEnvironment_;  // before passes_: they bind it

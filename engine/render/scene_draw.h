@@ -12,10 +12,28 @@ namespace vct {
 // shaders/gbuffer.vert, gbuffer.frag and shadow.vert.
 std::vector<ResourceRow> sceneDrawRows();
 
-// `resources`: the pass's table, which starts with sceneDrawRows(). Skinned and morphed instances are drawn
-// from the deformed vertex buffer (render/gpu_deform.h), with DrawPushConstants.indices.z = 1; where
-// `previousVerticesBinding` is a binding, last frame's deformed vertices are written there (gbuffer's motion).
+// Which of the scene's primitives a pass draws: all (shadow), all but those with an alphaMode BLEND material
+// (gbuffer: they are drawn by the blend pass), or only those.
+enum class DrawSet : uint8_t { All, Opaque, Blended };
+
+// One draw: an instance and the index of a primitive in its mesh.
+struct DrawItem {
+    uint32_t instance;
+    uint32_t meshPrimitive;
+};
+
+// The set's draws in the scene's order (instances, then their mesh's primitives).
+std::vector<DrawItem> sceneDrawItems(const GpuScene& scene, DrawSet set);
+
+// `resources`: the pass's table, which starts with sceneDrawRows(). Draws `items` in their order. Skinned and
+// morphed instances are drawn from the deformed vertex buffer (render/gpu_deform.h), with
+// DrawPushConstants.indices.z = 1; where `previousVerticesBinding` is a binding, last frame's deformed vertices
+// are written there (gbuffer's motion).
+void drawItems(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources,
+               const std::vector<DrawItem>& items, uint32_t previousVerticesBinding = kNoBinding);
+
+// drawItems of the set's draws in the scene's order.
 void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources,
-               uint32_t previousVerticesBinding = kNoBinding);
+               uint32_t previousVerticesBinding = kNoBinding, DrawSet set = DrawSet::All);
 
 }  // namespace vct

@@ -250,7 +250,7 @@ std::vector<StaticAccumVoxel> VoxelGrid::readStaticAccumulator() {
         const auto* src = static_cast<const uint32_t*>(staging.mapped());
         for (uint64_t i = 0; i < slices * n * n; ++i) {
             const uint32_t* accum = src + i * VCT_VOXEL_ACCUM_STRIDE;
-            if (accum[VCT_VOXEL_ACCUM_STRIDE - 1] == 0) continue;  // no sample: empty
+            if (accum[VCT_VOXEL_ACCUM_COUNT] == 0) continue;  // no sample: empty
             const uint64_t index = z0 * n * n + i;
             StaticAccumVoxel voxel;
             voxel.ijk = glm::ivec3(int(index % n), int((index / n) % n), int(index / (n * n)));

@@ -193,10 +193,17 @@ Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = desc.depthFormat != VK_FORMAT_UNDEFINED;
-    depth.depthWriteEnable = depth.depthTestEnable;
+    depth.depthWriteEnable = depth.depthTestEnable && desc.depthWrite;
     depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
     std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(desc.colorFormats.size());
-    for (auto& attachment : blendAttachments) attachment.colorWriteMask = 0xF;
+    for (auto& attachment : blendAttachments) {
+        attachment.colorWriteMask = 0xF;
+        if (!desc.blendOver) continue;
+        attachment.blendEnable = VK_TRUE;
+        attachment.srcColorBlendFactor = attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        attachment.dstColorBlendFactor = attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        attachment.colorBlendOp = attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     blend.attachmentCount = uint32_t(blendAttachments.size());
     blend.pAttachments = blendAttachments.data();

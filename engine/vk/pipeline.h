@@ -61,6 +61,9 @@ class Pipeline {
         bool vertexInput = true;    // core/vertex.h's Vertex layout in binding 0
         bool positionOnly = false;  // only its position attribute (depth-only passes)
         bool depthBias = false;     // dynamic depth bias (shadow maps)
+        bool depthWrite = true;     // false: the depth attachment is tested, not written (blended surfaces)
+        // Premultiplied Porter-Duff "over" on every colour attachment: dst = src + (1 − src.a)·dst, alpha alike.
+        bool blendOver = false;
     };
     // Dynamic rendering; viewport, scissor and cull mode are dynamic state.
     static Pipeline graphics(const Context& context, const GraphicsDesc& desc);

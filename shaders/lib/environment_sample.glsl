@@ -28,4 +28,15 @@ vec3 environmentDiffuse(vec3 n) {
     return sum;
 }
 
+// The environment's light reflected by a surface with GI off (no occlusion but the material's): the
+// cosine-weighted mean radiance (what the six diffuse cones read of an open sky) × the diffuse albedo, plus what
+// the specular cone would read × F0. A uniform environment L gives L·(albedo + F0). Expects lib/brdf.
+vec3 environmentReflected(vec3 n, vec3 v, vec3 baseColor, float metallic, float perceptualRoughness) {
+    const vec3 albedo = diffuseAlbedo(baseColor, metallic);
+    const vec3 f0 = f0FromMetallic(baseColor, metallic);
+    const float alpha = alphaFromPerceptual(perceptualRoughness);
+    const vec3 specular = environmentCone(specularConeDirection(n, v), specularConeTanHalf(alpha));
+    return environmentDiffuse(n) * albedo + specular * f0;
+}
+
 #endif  // VCT_ENVIRONMENT_SAMPLE_GLSL

@@ -33,6 +33,7 @@ using glm::vec4;
 #define VCT_FLAG_SPECULAR_AA 4u   // geometric specular anti-aliasing from normal derivatives (§4.2)
 #define VCT_FLAG_TEXTURE_LOD0 8u  // sample material textures at level 0 only (supersampled references)
 #define VCT_FLAG_HISTORY 16u      // last frame's indirect light is a valid history (temporal on, no cut)
+#define VCT_FLAG_BLEND 32u  // the blend pass drew the transparent layer (composite puts it over the frame)
 
 // The trace scale s reaches the shaders one way: this specialization constant, in trace (s = 1 writes the
 // full-res targets, no guides) and upsample (the cell loops are unrolled for s) alike. The low-res images'
@@ -107,6 +108,7 @@ struct GpuLight {
 
 #define VCT_ALPHA_OPAQUE 0
 #define VCT_ALPHA_MASK 1
+#define VCT_ALPHA_BLEND 2  // drawn by the blend pass, not the G-buffer (docs/design.md §2.6)
 
 struct GpuMaterial {
     vec4 baseColorFactor;
@@ -166,9 +168,13 @@ struct ResampleListHeader {
 };
 
 // voxelize (triangles → fixed-point accumulators) and its resolve (accumulators → albedo/normal/emission)
-#define VCT_VOXEL_GROUP_SIZE 64    // voxelize: triangles per workgroup
-#define VCT_VOXEL_TILE 4           // resolve / inject / mips: 4×4×4 voxels per workgroup
-#define VCT_VOXEL_ACCUM_STRIDE 10  // uints per voxel: albedo rgb, normal xyz, emission rgb, count
+#define VCT_VOXEL_GROUP_SIZE 64  // voxelize: triangles per workgroup
+#define VCT_VOXEL_TILE 4         // resolve / inject / mips: 4×4×4 voxels per workgroup
+// uints per voxel: albedo rgb, normal xyz, emission rgb, count, then the transparency sum: Σ (1 − alpha) of
+// the samples of alphaMode BLEND surfaces (0 for opaque ones), from which the resolve takes the opacity.
+#define VCT_VOXEL_ACCUM_STRIDE 11
+#define VCT_VOXEL_ACCUM_COUNT 9
+#define VCT_VOXEL_ACCUM_TRANSPARENCY 10
 
 // voxel view (`vct render --view voxels`: the grid ray-marched at one mip, on demand after the frame)
 struct VoxelViewPushConstants {

@@ -99,7 +99,8 @@ VCT_INLINE vec3 closestPointBarycentric(vec3 p, vec3 a, vec3 b, vec3 c) {
 const float VOXEL_FACING_MIN_COSINE = -1e-3f;
 
 // ---- fixed-point accumulation (atomicAdd on uint buffers) ----
-// Per voxel VCT_VOXEL_ACCUM_STRIDE uints: albedo rgb, normal xyz (two's complement), emission rgb, count.
+// Per voxel VCT_VOXEL_ACCUM_STRIDE uints: albedo rgb, normal xyz (two's complement), emission rgb, count,
+// transparency (1 − alpha of blended surfaces, × 1023 like albedo).
 // Scales: albedo in [0,1] × 1023 and normals × 1023 overflow only beyond ~4M / ~2M samples in one voxel;
 // emission × 256 is clamped to 4096 per sample (enough for any emissive material in practice).
 

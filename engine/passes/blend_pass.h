@@ -1,0 +1,40 @@
+// blend: glTF alphaMode BLEND surfaces, drawn forward after the opaque frame (docs/design.md §2.6). Sorted back
+// to front per instance × primitive, depth-tested against the opaque depth without writing it, shaded at their
+// own fragments as the opaque pixels are (direct light with the main light's shadow map, emission, cone-traced
+// indirect light or with GI off the environment's) and composited "over" with premultiplied alpha into the
+// transparent layer, which composite puts over the opaque frame.
+#pragma once
+
+#include "passes/trace_pass.h"
+#include "render/dfg_lut.h"
+#include "render/pass.h"
+#include "render/scene_draw.h"
+#include "vk/pipeline.h"
+
+namespace vct {
+
+class BlendPass : public Pass {
+  public:
+    // `voxels`: the grid's radiance (null with GI off: the fragments read the environment's light instead).
+    BlendPass(const vk::Context& context, const VoxelSource* voxels, const EnvironmentSource& environment);
+    const char* name() const override { return "blend"; }
+    // Depends on the scene, the camera and the voxel grid, which changes only with the scene.
+    PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
+    void execute(const FrameContext& frame) override;
+
+  private:
+    DfgLut dfg_;              // before resources_, which names its image
+    vk::Image voxelStandIn_;  // GI off: a 1×1×2 volume the pipeline declares and never reads
+    ResourceTable resources_;
+    vk::Pipeline pipeline_;
+};
+
+// The blended draws of the scene, back to front: by the view depth of each instance × primitive's world
+// bounds centre, farthest first (ties keep the scene's order). What this cannot order correctly: primitives
+// that intersect or interpenetrate, a large primitive whose centre lies behind a smaller one it is in front
+// of (a long ground-hugging pane and a small one standing on it), and the triangles within one primitive
+// (drawn in index order: a closed double-sided blended mesh shows its far side over its near side where the
+// near side's triangles come first). Deformed instances are ordered by their rest bounds.
+std::vector<DrawItem> blendedDrawsBackToFront(const GpuScene& scene, const glm::mat4& view);
+
+}  // namespace vct
