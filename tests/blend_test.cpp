@@ -18,6 +18,7 @@
 #include "scene/gltf_writer.h"
 #include "scene_util.h"
 #include "test_util.h"
+#include "validated_context.h"
 #include "vk/context.h"
 
 namespace vct {
@@ -28,12 +29,7 @@ namespace fs = std::filesystem;
 constexpr uint32_t kWidth = 64, kHeight = 36;
 
 vk::Context& context() {
-    static vk::Context* instance = [] {
-        vk::ContextOptions options;
-        options.validation = true;
-        return new vk::Context(options);
-    }();
-    return *instance;
+    return test::validatedContext();
 }
 
 // One quad of the scene: facing +z (the camera) at depth z, spanning ±20 in x and y.

@@ -13,18 +13,14 @@
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "skin_util.h"
+#include "validated_context.h"
 #include "vk/context.h"
 
 namespace vct {
 namespace {
 
 vk::Context& context() {
-    static vk::Context* instance = [] {
-        vk::ContextOptions options;
-        options.validation = true;
-        return new vk::Context(options);
-    }();
-    return *instance;
+    return test::validatedContext();
 }
 
 struct FramesRun {

@@ -13,6 +13,7 @@
 #include "scene/deform.h"
 #include "scene/gltf_loader.h"
 #include "skin_util.h"
+#include "validated_context.h"
 #include "vk/context.h"
 
 namespace vct {
@@ -45,14 +46,8 @@ bool available(const std::string& name) {
     return name == "strip" || name == "morph" || name == "coloredStrip" || fs::exists(sharedModel(name));
 }
 
-// One process-wide device with validation on: every test checks that the count of messages did not grow.
 vk::Context& context() {
-    static vk::Context* instance = [] {
-        vk::ContextOptions options;
-        options.validation = true;
-        return new vk::Context(options);
-    }();
-    return *instance;
+    return test::validatedContext();
 }
 
 RenderSettings smallSettings() {
