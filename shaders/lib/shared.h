@@ -28,11 +28,12 @@ using glm::vec4;
 // ---- per-frame constants (uniform buffer, binding VCT_BINDING_FRAME in every pass; std140) ----
 
 // Bits of FrameUniforms::flags: the frame's switches.
-#define VCT_FLAG_GI 1u            // cone-traced indirect light (off: direct adds the environment's light)
-#define VCT_FLAG_TOKSVIG 2u       // Toksvig roughness from normal-map mips (docs/design.md §4.1)
-#define VCT_FLAG_SPECULAR_AA 4u   // geometric specular anti-aliasing from normal derivatives (§4.2)
-#define VCT_FLAG_TEXTURE_LOD0 8u  // sample material textures at level 0 only (supersampled references)
-#define VCT_FLAG_HISTORY 16u      // last frame's indirect light is a valid history (temporal on, no cut)
+#define VCT_FLAG_GI 1u              // cone-traced indirect light (off: direct adds the environment's light)
+#define VCT_FLAG_TOKSVIG 2u         // Toksvig roughness from normal-map mips (docs/design.md §4.1)
+#define VCT_FLAG_SPECULAR_AA 4u     // geometric specular anti-aliasing from normal derivatives (§4.2)
+#define VCT_FLAG_TEXTURE_LOD0 8u    // sample material textures at level 0 only (supersampled references)
+#define VCT_FLAG_HISTORY 16u        // last frame's indirect light is a valid history (temporal on, no cut)
+#define VCT_FLAG_CONE_ROTATION 32u  // turn the diffuse cones per pixel and frame (lib/cone_trace.glsl)
 
 // The trace scale s reaches the shaders one way: this specialization constant, in trace (s = 1 writes the
 // full-res targets, no guides) and upsample (the cell loops are unrolled for s) alike. The low-res images'
@@ -68,7 +69,8 @@ struct UpsampleUniforms {
     float gamma;             // γ, the history's decay per frame
     float tau;               // τ: re-trace below this sum of weights; 0 without adaptive re-tracing
     float maxHistoryWeight;  // A_max, the cap on the accumulated weight
-    float pad0, pad1, pad2;
+    uint frameIndex;         // frames rendered before this one: turns the diffuse cones (lib/cone_trace.glsl)
+    float pad1, pad2;
 };
 
 struct FrameUniforms {
@@ -201,7 +203,8 @@ static_assert(sizeof(VoxelUniforms) == 32 && offsetof(VoxelUniforms, voxelSize) 
               offsetof(VoxelUniforms, resolution) == 16 && offsetof(VoxelUniforms, mipCount) == 20);
 static_assert(sizeof(UpsampleUniforms) == 48 && offsetof(UpsampleUniforms, beta) == 8 &&
               offsetof(UpsampleUniforms, normalVariance) == 16 && offsetof(UpsampleUniforms, tau) == 28 &&
-              offsetof(UpsampleUniforms, maxHistoryWeight) == 32);
+              offsetof(UpsampleUniforms, maxHistoryWeight) == 32 &&
+              offsetof(UpsampleUniforms, frameIndex) == 36);
 static_assert(offsetof(FrameUniforms, cameraPosition) == 7 * 64 &&
               offsetof(FrameUniforms, flags) == 7 * 64 + 12 &&
               offsetof(FrameUniforms, prevCameraPosition) == 7 * 64 + 16 &&
