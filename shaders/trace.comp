@@ -51,11 +51,15 @@ layout(set = 0, binding = 13) uniform usampler2D indirectHistory;
 // A and by the upsample's plane and lobe weights against last frame's G-buffer there (a disocclusion or a
 // changed lobe loses it), decayed by γ. O = (s + γ·h·H)/(1 + γ·h), A' = min(1 + γ·h, A_max in own samples).
 // With a static camera the samples of successive frames, their cone sets turned differently
-// (coneSetRotation), average: the figure the upsample's history reaches at trace scale > 1.
+// (coneSetRotation), average: the figure the upsample's history reaches at trace scale > 1. Only with the
+// turned cones: a fixed set traces the same value every frame.
 uvec4 accumulateHistory(ivec2 pixel, vec2 uv, Guide here, IndirectSample s) {
     vec4 diffuse = vec4(s.diffuse, 1.0);
     vec4 specular = vec4(s.specular, 1.0);
-    if ((frame.flags & VCT_FLAG_HISTORY) == 0u) return packIndirect(diffuse, specular);
+    // With the fixed cone set (--cone-rotation off) trace scale 1 stays the fresh every-pixel trace of each frame,
+    // what the upsampling is measured against (docs/design.md §8.3).
+    const uint needed = VCT_FLAG_HISTORY | VCT_FLAG_CONE_ROTATION;
+    if ((frame.flags & needed) != needed) return packIndirect(diffuse, specular);
     const ivec2 size = ivec2(frame.imageSize);
     const vec2 prevUv = uv - texelFetch(motionTexture, pixel, 0).xy;
     const ivec2 texel = ivec2(floor(prevUv * frame.imageSize));
