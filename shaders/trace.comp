@@ -38,8 +38,58 @@ layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D guideAxisImage; 
 
 // The environment: what a cone that leaves the grid sees (lib/environment_sample.glsl).
 layout(set = 0, binding = 9) uniform sampler2D environmentMap;
+// Trace scale 1 only: last frame's output and G-buffer, the history this frame's sample is added to.
+layout(set = 0, binding = 10) uniform sampler2D motionTexture;
+layout(set = 0, binding = 11) uniform sampler2D prevDepthTexture;
+layout(set = 0, binding = 12) uniform sampler2D prevNormalRoughnessTexture;
+layout(set = 0, binding = 13) uniform usampler2D indirectHistory;
 
 #include "lib/cone_trace.glsl"
+
+// Trace scale 1: this frame's sample s at full-res `pixel` (guide g) over last frame's output where the surface
+// was: the texel nearest to the position reprojected with the motion vector, weighted by its accumulated weight
+// A and by the upsample's plane and lobe weights against last frame's G-buffer there (a disocclusion or a
+// changed lobe loses it), decayed by γ. O = (s + γ·h·H)/(1 + γ·h), A' = min(1 + γ·h, A_max in own samples).
+// With a static camera the samples of successive frames, their cone sets turned differently
+// (coneSetRotation), average: the figure the upsample's history reaches at trace scale > 1. Only with the
+// turned cones: a fixed set traces the same value every frame.
+uvec4 accumulateHistory(ivec2 pixel, vec2 uv, Guide here, IndirectSample s) {
+    vec4 diffuse = vec4(s.diffuse, 1.0);
+    vec4 specular = vec4(s.specular, 1.0);
+    // With the fixed cone set (--cone-rotation off) trace scale 1 stays the fresh every-pixel trace of each frame,
+    // what the upsampling is measured against (docs/design.md §8.3).
+    const uint needed = VCT_FLAG_HISTORY | VCT_FLAG_CONE_ROTATION;
+    if ((frame.flags & needed) != needed) return packIndirect(diffuse, specular);
+    const ivec2 size = ivec2(frame.imageSize);
+    const vec2 prevUv = uv - texelFetch(motionTexture, pixel, 0).xy;
+    const ivec2 texel = ivec2(floor(prevUv * frame.imageSize));
+    const bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size));
+    const ivec2 at = clamp(texel, ivec2(0), size - 1);
+    const float prevDepth = texelFetch(prevDepthTexture, at, 0).r;
+    const vec2 atUv = (vec2(at) + 0.5) * frame.texelSize;
+    const Guide then = guideFromGBuffer(texelFetch(prevNormalRoughnessTexture, at, 0),
+                                        worldFromDepth(frame.prevInvViewProj, atUv, prevDepth),
+                                        frame.prevCameraPosition, frame.upsample.kappa);
+    if (!inside || isBackground(prevDepth) || isDegeneratePosition(then.p))
+        return packIndirect(diffuse, specular);
+    const float beta = frame.upsample.beta;
+    const float diffuseSharpness =
+        smoothedSharpness(1.0 / frame.upsample.diffuseSharpness, frame.upsample.kappa);
+    const float plane = planeLogWeightScaled(scaledTangentPlane(here.n, here.p, here.cameraDistance), then.p);
+    const vec2 guide =
+        exp(vec2(plane) +
+            vec2(equalLobeLogWeight(here.n, then.n, diffuseSharpness, beta),
+                 lobeLogWeightPrepared(here.specularAxis, preparedSharpness(here.specularSharpness),
+                                       then.specularAxis, preparedSharpness(then.specularSharpness), beta)));
+    const uvec4 historyTexel = texelFetch(indirectHistory, at, 0);
+    const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
+    const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
+    const vec2 h = frame.upsample.gamma * guide * vec2(diffuseTexel.a, specularTexel.a);
+    const float maxWeight = frame.upsample.maxHistoryWeight / EXACT_SAMPLE_WEIGHT;
+    diffuse = vec4((s.diffuse + h.x * diffuseTexel.rgb) / (1.0 + h.x), min(1.0 + h.x, maxWeight));
+    specular = vec4((s.specular + h.y * specularTexel.rgb) / (1.0 + h.y), min(1.0 + h.y, maxWeight));
+    return packIndirect(diffuse, specular);
+}
 
 void main() {
     const ivec2 lowPixel = ivec2(gl_GlobalInvocationID.xy);
@@ -61,10 +111,16 @@ void main() {
     // No grid yet: no indirect light.
     IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
     if (frame.voxels.voxelSize > 0.0)
-        s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition - g.p, g.n), normalRoughness.w);
-    // Weight 1: one fresh sample (what the history accumulates at trace scale 1).
+        s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition - g.p, g.n), normalRoughness.w,
+                         coneSetRotation(pixel, frame.upsample.frameIndex));
+    if (FULL_RESOLUTION) {
+        // Weight 1: one fresh sample, added to the history as the upsample adds a pixel-own sample
+        // (docs/design.md §6.5, the same reprojection, validation, decay γ and cap in own samples).
+        imageStore(indirectImage, lowPixel, accumulateHistory(pixel, uv, g, s));
+        return;
+    }
+    // Weight 1: one fresh sample (what the upsample weighs by where it was traced).
     imageStore(indirectImage, lowPixel, packIndirect(vec4(s.diffuse, 1.0), vec4(s.specular, 1.0)));
-    if (FULL_RESOLUTION) return;
     imageStore(guidePositionImage, lowPixel, vec4(g.p, 1.0));
     imageStore(guideNormalImage, lowPixel, vec4(g.n, g.specularSharpness));
     imageStore(guideAxisImage, lowPixel, vec4(g.specularAxis, 0.0));

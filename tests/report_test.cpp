@@ -46,8 +46,12 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // gives a sharper indirect signal, which the history converges to a little less closely: 39.6 dB and
     // 39.0 dB (final sRGB still above 40 dB); with rough lobes from the diffuse cones and 0.75·d steps
     // 38.96 dB and 39.37 dB (final 40.35 dB).
-    const fs::path reference = render("converge_s1", {"--trace-scale", "1"});
-    const fs::path upsampled = render("converge_s4", {});
+    // With the diffuse cones turned per pixel and frame (the default, docs/design.md §5.5) the two differ by
+    // the turns' noise, which trace scale 1's history (γ = 0.8: about 9 frames) and scale 4's (an own sample
+    // every 16 frames) average differently: 31.07 dB diffuse, 42.49 dB specular, 32.13 dB final. That is not
+    // the upsampling's error, so both run with the fixed cone set.
+    const fs::path reference = render("converge_s1", {"--trace-scale", "1", "--cone-rotation", "off"});
+    const fs::path upsampled = render("converge_s4", {"--cone-rotation", "off"});
     const double diffuse = psnr(reference / "diffuse_indirect.exr", upsampled / "diffuse_indirect.exr");
     const double specular = psnr(reference / "specular_indirect.exr", upsampled / "specular_indirect.exr");
     const double display = vct::compareToneMapped(vct::readExr(reference / "final.exr"),

@@ -16,7 +16,12 @@ TracePass::TracePass(const vk::Context& context, uint32_t traceScale, const Voxe
                   {7, Target::guideNormal, Access::Write},
                   {8, Target::guideAxis, Access::Write},
                   {9, Resource::image("environment", *voxels.environment.image, voxels.environment.sampler),
-                   Access::Sampled}}) {
+                   Access::Sampled},
+                  // Trace scale 1: the history its sample is added to (trace.comp, accumulateHistory).
+                  {10, Target::motion, Access::Sampled},
+                  {11, Target::prevDepth, Access::Sampled},
+                  {12, Target::prevNormalRoughness, Access::Sampled},
+                  {13, Target::indirectHistory, Access::Sampled}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "trace.comp", resources_.bindings(), 0,
                                       {traceScale});  // VCT_SPEC_TRACE_SCALE
 }

@@ -143,7 +143,7 @@ class Renderer {
     glm::mat4 previousViewProj_{1.0f};
     glm::mat4 previousInvViewProj_{1.0f};
     glm::vec3 previousCameraPosition_{0.0f};
-    uint32_t frameIndex_ = 0;  // frames rendered: picks the trace offset o_k
+    uint32_t frameIndex_ = 0;  // frames rendered: picks the trace offset o_k and turns the diffuse cones
     // A frame has built what depends only on the scene (shadow map, voxel grid); reset by resize().
     bool sceneBuilt_ = false;
     // Consecutive frames whose scene and camera equal the previous frame's (0: this frame changed something).

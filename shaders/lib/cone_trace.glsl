@@ -77,11 +77,38 @@ struct IndirectSample {
     vec3 specular;
 };
 
-// The incoming radiance of each of the 6 diffuse cones from surface point p with unit normal n.
-void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, out vec3 radiance[DIFFUSE_CONE_COUNT]) {
+// Diffuse cone i (lib/cone.glsl's diffuseConeDirection) with the five side cones turned by `rotation` radians
+// about n (the central cone is n itself). Rotations of 0 and multiples of 2π/5 give the same set.
+vec3 rotatedDiffuseConeDirection(vec3 n, int i, float rotation) {
+    if (i == 0) return n;
+    const float phi = float(i - 1) * (2.0 * PI / 5.0) + rotation;
+    const float sin60 = 0.866025404;
+    const float cos60 = 0.5;
+    return cos60 * n + sin60 * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));
+}
+
+// The turn of a pixel's diffuse cone set about its normal in frame k (docs/design.md §5.5): 2π/5 · frac(g + k·φ⁻¹),
+// g the interleaved gradient noise of the pixel (Jimenez 2014), φ⁻¹ the golden ratio's inverse (the R1
+// sequence: successive frames fill [0, 1) evenly). Fixed cone directions seen from a whole floor cross the
+// same walls and mip texels together, which leaves low-frequency blotches of the six-cone pattern; turned per
+// pixel and frame, that error becomes noise that neighbouring pixels and the history average out.
+// 0 with --cone-rotation off.
+float coneSetRotation(ivec2 pixel, uint frameIndex) {
+    if ((frame.flags & VCT_FLAG_CONE_ROTATION) == 0u) return 0.0;
+    const float ign = fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715))));
+    const float r1 = float((frameIndex * 2654435769u) >> 8u) * (1.0 / 16777216.0);
+    return (2.0 * PI / 5.0) * fract(ign + r1);
+}
+
+// The incoming radiance of each of the 6 diffuse cones from surface point p with unit normal n, the side cones
+// turned by `rotation` about n.
+void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, float rotation,
+                       out vec3 radiance[DIFFUSE_CONE_COUNT]) {
     const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        radiance[i] = traceCone(voxels, p, n, origin, diffuseConeDirection(n, i), DIFFUSE_CONE_TAN_HALF).rgb;
+        radiance[i] = traceCone(voxels, p, n, origin, rotatedDiffuseConeDirection(n, i, rotation),
+                                DIFFUSE_CONE_TAN_HALF)
+                          .rgb;
 }
 
 // Their cosine-weighted mean.
@@ -94,7 +121,7 @@ vec3 diffuseFromCones(const vec3 radiance[DIFFUSE_CONE_COUNT]) {
 // The 6 diffuse cones from surface point p with unit normal n: cosine-weighted mean incoming radiance.
 vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
     vec3 radiance[DIFFUSE_CONE_COUNT];
-    traceDiffuseCones(voxels, p, n, radiance);
+    traceDiffuseCones(voxels, p, n, 0.0, radiance);
     return diffuseFromCones(radiance);
 }
 
@@ -104,9 +131,10 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 // by the lobe at their directions. A single cone capped at 45° saw only the lobe's centre: on cornell's rough
 // walls (α = 0.81) it reflected the dark front wall and ceiling where the path-traced truth also sees the
 // lit floor.
-IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness) {
+IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness,
+                            float rotation) {
     vec3 cones[DIFFUSE_CONE_COUNT];
-    traceDiffuseCones(voxels, p, n, cones);
+    traceDiffuseCones(voxels, p, n, rotation, cones);
     const float alpha = alphaFromPerceptual(perceptualRoughness);
     const vec3 xi = specularConeDirection(n, v);
     const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
@@ -117,7 +145,8 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
         vec3 lobe = vec3(0.0);
         float lobeWeight = 0.0;
         for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
-            const float w = sgDiffuseConeWeight(xi, invLambda, n, diffuseConeDirection(n, i));
+            const float w =
+                sgDiffuseConeWeight(xi, invLambda, n, rotatedDiffuseConeDirection(n, i, rotation));
             lobe += w * cones[i];
             lobeWeight += w;
         }
@@ -136,7 +165,8 @@ IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D no
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
     if (isDegeneratePosition(p)) return IndirectSample(vec3(0.0), vec3(0.0));
     const vec3 n = gbufferNormal(normalRoughness);
-    return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition - p, n), normalRoughness.w);
+    return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition - p, n), normalRoughness.w,
+                        coneSetRotation(pixel, frame.upsample.frameIndex));
 }
 
 #endif  // VCT_CONE_TRACE_GLSL

@@ -34,6 +34,7 @@ using glm::vec4;
 #define VCT_FLAG_TEXTURE_LOD0 8u  // sample material textures at level 0 only (supersampled references)
 #define VCT_FLAG_HISTORY 16u      // last frame's indirect light is a valid history (temporal on, no cut)
 #define VCT_FLAG_BLEND 32u  // the blend pass drew the transparent layer (composite puts it over the frame)
+#define VCT_FLAG_CONE_ROTATION 64u  // turn the diffuse cones per pixel and frame (lib/cone_trace.glsl)
 
 // The trace scale s reaches the shaders one way: this specialization constant, in trace (s = 1 writes the
 // full-res targets, no guides) and upsample (the cell loops are unrolled for s) alike. The low-res images'
@@ -69,7 +70,8 @@ struct UpsampleUniforms {
     float gamma;             // γ, the history's decay per frame
     float tau;               // τ: re-trace below this sum of weights; 0 without adaptive re-tracing
     float maxHistoryWeight;  // A_max, the cap on the accumulated weight
-    float pad0, pad1, pad2;
+    uint frameIndex;         // frames rendered before this one: turns the diffuse cones (lib/cone_trace.glsl)
+    float pad1, pad2;
 };
 
 struct FrameUniforms {
@@ -215,7 +217,8 @@ static_assert(sizeof(VoxelUniforms) == 32 && offsetof(VoxelUniforms, voxelSize) 
               offsetof(VoxelUniforms, resolution) == 16 && offsetof(VoxelUniforms, mipCount) == 20);
 static_assert(sizeof(UpsampleUniforms) == 48 && offsetof(UpsampleUniforms, beta) == 8 &&
               offsetof(UpsampleUniforms, normalVariance) == 16 && offsetof(UpsampleUniforms, tau) == 28 &&
-              offsetof(UpsampleUniforms, maxHistoryWeight) == 32);
+              offsetof(UpsampleUniforms, maxHistoryWeight) == 32 &&
+              offsetof(UpsampleUniforms, frameIndex) == 36);
 static_assert(offsetof(FrameUniforms, cameraPosition) == 7 * 64 &&
               offsetof(FrameUniforms, flags) == 7 * 64 + 12 &&
               offsetof(FrameUniforms, prevCameraPosition) == 7 * 64 + 16 &&
