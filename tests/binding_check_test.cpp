@@ -38,7 +38,8 @@ std::string errorOf(F&& f) {
 
 TEST(SpirvReflect, TraceShader) {
     const std::vector<vk::ShaderBinding> bindings = vk::reflectBindings(vk::readSpirv("trace.comp"));
-    EXPECT_EQ(bindings.size(), 9u);  // 9: the environment map (issue 20)
+    EXPECT_EQ(bindings.size(),
+              13u);  // 9: the environment map (issue 20); 10-13: the history at trace scale 1
     EXPECT_EQ(find(bindings, 0).type, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     const vk::ShaderBinding& voxels = find(bindings, 3);
     EXPECT_EQ(voxels.type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
@@ -82,7 +83,12 @@ std::vector<vk::Binding> traceBindings() {
             {6, storage, cs, "guidePosition", VK_FORMAT_R32G32B32A32_SFLOAT, d2},
             {7, storage, cs, "guideNormal", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
             {8, storage, cs, "guideAxis", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
-            {9, sampled, cs, "environment", VK_FORMAT_R32G32B32A32_SFLOAT, d2}};  // the map (issue 20)
+            {9, sampled, cs, "environment", VK_FORMAT_R32G32B32A32_SFLOAT, d2},  // the map (issue 20)
+            // Trace scale 1's own history while the diffuse cones turn (docs/design.md §6.5).
+            {10, sampled, cs, "motion", VK_FORMAT_R16G16_SFLOAT, d2},
+            {11, sampled, cs, "prevDepth", VK_FORMAT_D32_SFLOAT, d2},
+            {12, sampled, cs, "prevNormalRoughness", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
+            {13, sampled, cs, "indirectHistory", VK_FORMAT_R32G32B32A32_UINT, d2}};
 }
 
 std::string checkTrace(const std::vector<vk::Binding>& declared) {
@@ -123,8 +129,8 @@ TEST(BindingCheck, MissingStaleAndMisplacedBindings) {
         << checkTrace(missing);
 
     std::vector<vk::Binding> stale = traceBindings();
-    stale.push_back({10, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT, "debug"});
-    EXPECT_NE(checkTrace(stale).find("binding 10 (debug)"), std::string::npos) << checkTrace(stale);
+    stale.push_back({14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT, "debug"});
+    EXPECT_NE(checkTrace(stale).find("binding 14 (debug)"), std::string::npos) << checkTrace(stale);
 
     std::vector<vk::Binding> wrongStage = traceBindings();
     wrongStage[1].stages = VK_SHADER_STAGE_FRAGMENT_BIT;
