@@ -37,6 +37,7 @@ layout(location = 1) in vec4 inTangent;
 layout(location = 2) in vec2 inUv;
 layout(location = 5) in vec3 inWorld;
 layout(location = 6) in vec4 inColor;  // COLOR_0 (gbuffer.vert; used where draw.indices.w = 1)
+layout(constant_id = VCT_SPEC_VERTEX_COLORS) const bool VERTEX_COLORS = true;  // any COLOR_0 in the scene
 
 layout(location = 0) out vec4 outColor;  // premultiplied radiance, alpha
 
@@ -47,7 +48,7 @@ layout(location = 0) out vec4 outColor;  // premultiplied radiance, alpha
 void main() {
     const vec3 faceNormal = surfaceFaceNormal(inWorld);
     const GpuMaterial material = materials[draw.indices.y];
-    const vec4 baseColor = surfaceBaseColor(material, inUv, inColor, draw.indices.w != 0u);
+    const vec4 baseColor = surfaceBaseColor(material, inUv, inColor, VERTEX_COLORS && draw.indices.w != 0u);
     const Surface surface = evaluateSurface(material, faceNormal, inNormal, inTangent, inUv, gl_FrontFacing);
     // The G-buffer stores the base colour clamped to [0, 1]; the same here.
     const vec3 color = clamp(baseColor.rgb, 0.0, 1.0);

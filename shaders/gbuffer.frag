@@ -23,6 +23,7 @@ layout(location = 3) in vec4 inClip;
 layout(location = 4) in vec4 inPrevClip;
 layout(location = 5) in vec3 inWorld;
 layout(location = 6) in vec4 inColor;
+layout(constant_id = VCT_SPEC_VERTEX_COLORS) const bool VERTEX_COLORS = true;  // any COLOR_0 in the scene
 
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outBaseColorMetallic;
@@ -35,7 +36,7 @@ void main() {
     const vec3 faceNormal =
         surfaceFaceNormal(inWorld);  // before the discard below, while the whole quad runs
     const GpuMaterial material = materials[draw.indices.y];
-    const vec4 baseColor = surfaceBaseColor(material, inUv, inColor, draw.indices.w != 0u);
+    const vec4 baseColor = surfaceBaseColor(material, inUv, inColor, VERTEX_COLORS && draw.indices.w != 0u);
     if (material.flags.x == VCT_ALPHA_MASK && baseColor.a < material.metallicRoughnessCutoffAo.z) discard;
     const Surface surface = evaluateSurface(material, faceNormal, inNormal, inTangent, inUv, gl_FrontFacing);
 

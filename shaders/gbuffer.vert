@@ -25,6 +25,7 @@ layout(location = 3) out vec4 outClip;
 layout(location = 4) out vec4 outPrevClip;
 layout(location = 5) out vec3 outWorld;
 layout(location = 6) out vec4 outColor;
+layout(constant_id = VCT_SPEC_VERTEX_COLORS) const bool VERTEX_COLORS = true;  // any COLOR_0 in the scene
 
 void main() {
     const GpuInstance instance = instances[draw.indices.x];
@@ -32,7 +33,7 @@ void main() {
     outNormal = mat3(instance.normalMatrix) * inNormal;
     outTangent = vec4(mat3(instance.world) * inTangent.xyz, inTangent.w);
     outUv = inUv;
-    outColor = inColor;
+    outColor = VERTEX_COLORS ? inColor : vec4(1.0);
     outWorld = world.xyz;
     outClip = frame.viewProj * world;
     vec3 prevPosition = inPosition;

@@ -63,7 +63,7 @@ std::vector<DrawItem> blendedDrawsBackToFront(const GpuScene& gpuScene, const gl
 }
 
 BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
-                     const EnvironmentSource& environment)
+                     const EnvironmentSource& environment, bool vertexColors)
     : dfg_(context),
       voxelStandIn_(voxelStandIn(context, voxels)),
       resources_(blendResources(dfg_, voxelStandIn_, voxels, environment)) {
@@ -77,6 +77,7 @@ BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
     desc.pushConstantSize = sizeof(gpu::DrawPushConstants);
     desc.depthWrite = false;
     desc.blendOver = true;
+    desc.specialization = {vertexColors ? 1u : 0u};  // VCT_SPEC_VERTEX_COLORS
     pipeline_ = vk::Pipeline::graphics(context, desc);
 }
 

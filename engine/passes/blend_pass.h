@@ -16,7 +16,9 @@ namespace vct {
 class BlendPass : public Pass {
   public:
     // `voxels`: the grid's radiance (null with GI off: the fragments read the environment's light instead).
-    BlendPass(const vk::Context& context, const VoxelSource* voxels, const EnvironmentSource& environment);
+    // `vertexColors`: whether any primitive of the scene has COLOR_0 (VCT_SPEC_VERTEX_COLORS).
+    BlendPass(const vk::Context& context, const VoxelSource* voxels, const EnvironmentSource& environment,
+              bool vertexColors);
     const char* name() const override { return "blend"; }
     // Depends on the scene, the camera and the voxel grid, which changes only with the scene.
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }

@@ -24,7 +24,7 @@ ResourceTable gbufferResources() {
 
 }  // namespace
 
-GBufferPass::GBufferPass(const vk::Context& context) : resources_(gbufferResources()) {
+GBufferPass::GBufferPass(const vk::Context& context, bool vertexColors) : resources_(gbufferResources()) {
     vk::Pipeline::GraphicsDesc desc;
     desc.owner = name();
     desc.vertexShader = "gbuffer.vert";
@@ -33,6 +33,7 @@ GBufferPass::GBufferPass(const vk::Context& context) : resources_(gbufferResourc
     desc.depthFormat = resources_.depthFormat();
     desc.bindings = resources_.bindings();
     desc.pushConstantSize = sizeof(gpu::DrawPushConstants);
+    desc.specialization = {vertexColors ? 1u : 0u};  // VCT_SPEC_VERTEX_COLORS
     pipeline_ = vk::Pipeline::graphics(context, desc);
 }
 

@@ -9,7 +9,8 @@ namespace vct {
 
 class GBufferPass : public Pass {
   public:
-    explicit GBufferPass(const vk::Context& context);
+    // `vertexColors`: whether any primitive of the scene has COLOR_0 (VCT_SPEC_VERTEX_COLORS).
+    GBufferPass(const vk::Context& context, bool vertexColors);
     const char* name() const override { return "gbuffer"; }
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     void execute(const FrameContext& frame) override;

@@ -78,7 +78,11 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         passes_.push_back(std::move(mips));
         if (bounce) passes_.push_back(std::move(bounce));
     }
-    passes_.push_back(std::make_unique<GBufferPass>(context));
+    // The colour varying only where some primitive has COLOR_0 (VCT_SPEC_VERTEX_COLORS).
+    const std::vector<Primitive>& primitives = scene.primitives;
+    const bool vertexColors =
+        std::any_of(primitives.begin(), primitives.end(), [](const Primitive& p) { return p.hasColors; });
+    passes_.push_back(std::make_unique<GBufferPass>(context, vertexColors));
     passes_.push_back(std::make_unique<DirectPass>(context, environment));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
@@ -97,7 +101,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         const VoxelSource voxels =
             voxelGrid_ ? VoxelSource{&voxelGrid_->radiance(), voxelGrid_->sampler(), environment}
                        : VoxelSource{};
-        passes_.push_back(std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment));
+        passes_.push_back(
+            std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment, vertexColors));
     }
     passes_.push_back(std::make_unique<CompositePass>(context));
 

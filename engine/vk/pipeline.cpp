@@ -148,12 +148,19 @@ Pipeline Pipeline::graphics(const Context& context, const GraphicsDesc& desc) {
 
     std::vector<VkShaderModule> modules;
     std::vector<VkPipelineShaderStageCreateInfo> stages;
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t id = 0; id < desc.specialization.size(); ++id)
+        entries.push_back({id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)});
+    const VkSpecializationInfo specializationInfo{uint32_t(entries.size()), entries.data(),
+                                                  desc.specialization.size() * sizeof(uint32_t),
+                                                  desc.specialization.data()};
     auto addStage = [&](VkShaderStageFlagBits stage, const std::vector<uint32_t>& code) {
         modules.push_back(createModule(context, code));
         VkPipelineShaderStageCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
         info.stage = stage;
         info.module = modules.back();
         info.pName = "main";
+        if (!desc.specialization.empty()) info.pSpecializationInfo = &specializationInfo;
         stages.push_back(info);
     };
     addStage(VK_SHADER_STAGE_VERTEX_BIT, codes[0]);

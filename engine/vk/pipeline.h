@@ -64,6 +64,8 @@ class Pipeline {
         bool depthWrite = true;     // false: the depth attachment is tested, not written (blended surfaces)
         // Premultiplied Porter-Duff "over" on every colour attachment: dst = src + (1 − src.a)·dst, alpha alike.
         bool blendOver = false;
+        // Specialization constants 0, 1, … (uint32 each), given to every stage.
+        std::vector<uint32_t> specialization;
     };
     // Dynamic rendering; viewport, scissor and cull mode are dynamic state.
     static Pipeline graphics(const Context& context, const GraphicsDesc& desc);

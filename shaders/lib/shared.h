@@ -40,6 +40,10 @@ using glm::vec4;
 // full-res targets, no guides) and upsample (the cell loops are unrolled for s) alike. The low-res images'
 // extent, ceil(size / s), is what their bounds checks read (imageSize, textureSize).
 #define VCT_SPEC_TRACE_SCALE 0
+// The G-buffer and blend pipelines (gbuffer.vert, gbuffer.frag, blend.frag): whether any primitive of the scene
+// has COLOR_0. Without, the colour varying is not passed at all (one interpolant less per fragment on a GPU;
+// on lavapipe it measured within noise).
+#define VCT_SPEC_VERTEX_COLORS 0
 
 // The lights and the shadow map (direct, inject), the environment's rotation (lib/environment_sample.glsl).
 struct LightingUniforms {
