@@ -96,17 +96,7 @@ void BlendPass::execute(const FrameContext& frame) {
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the opaque frame's depth, tested, kept as it is
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = {{0, 0}, {t.width, t.height}};
-    rendering.layerCount = 1;
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachments = &color;
-    rendering.pDepthAttachment = &depth;
-    vkCmdBeginRendering(frame.cmd, &rendering);
-    VkViewport viewport{0, 0, float(t.width), float(t.height), 0.0f, 1.0f};
-    VkRect2D scissor{{0, 0}, {t.width, t.height}};
-    vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
-    vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
+    beginSceneRendering(frame.cmd, {t.width, t.height}, {color}, depth);
     drawItems(frame, pipeline_, resources_, blendedDrawsBackToFront(frame.scene, frame.uniforms.view),
               kPreviousVertices);
     vkCmdEndRendering(frame.cmd);

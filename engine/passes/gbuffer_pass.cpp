@@ -56,17 +56,7 @@ void GBufferPass::execute(const FrameContext& frame) {
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     depth.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = {{0, 0}, {t.width, t.height}};
-    rendering.layerCount = 1;
-    rendering.colorAttachmentCount = uint32_t(colors.size());
-    rendering.pColorAttachments = colors.data();
-    rendering.pDepthAttachment = &depth;
-    vkCmdBeginRendering(frame.cmd, &rendering);
-    VkViewport viewport{0, 0, float(t.width), float(t.height), 0.0f, 1.0f};
-    VkRect2D scissor{{0, 0}, {t.width, t.height}};
-    vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
-    vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
+    beginSceneRendering(frame.cmd, {t.width, t.height}, colors, depth);
     // Blended surfaces are drawn forward by the blend pass, after the opaque frame (docs/design.md §2.6).
     drawScene(frame, pipeline_, resources_, kPreviousVertices, DrawSet::Opaque);
     vkCmdEndRendering(frame.cmd);

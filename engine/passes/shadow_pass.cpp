@@ -35,17 +35,9 @@ void ShadowPass::execute(const FrameContext& frame) {
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     depth.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = {{0, 0}, {shadowMap.width(), shadowMap.height()}};
-    rendering.layerCount = 1;
-    rendering.pDepthAttachment = &depth;
-    vkCmdBeginRendering(frame.cmd, &rendering);
+    beginSceneRendering(frame.cmd, {shadowMap.width(), shadowMap.height()}, {}, depth);
     // With no shadow-casting light the map stays cleared (lit everywhere) and nothing is drawn.
     if (frame.scene.shadowLightIndex() >= 0) {
-        VkViewport viewport{0, 0, float(shadowMap.width()), float(shadowMap.height()), 0.0f, 1.0f};
-        VkRect2D scissor{{0, 0}, {shadowMap.width(), shadowMap.height()}};
-        vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
-        vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
         vkCmdSetDepthBias(frame.cmd, frame.settings.shadowDepthBias, 0.0f, frame.settings.shadowSlopeBias);
         drawScene(frame, pipeline_, resources_);
     }

@@ -101,4 +101,20 @@ void drawItems(const FrameContext& frame, const vk::Pipeline& pipeline, const Re
     }
 }
 
+void beginSceneRendering(VkCommandBuffer cmd, VkExtent2D extent,
+                         const std::vector<VkRenderingAttachmentInfo>& colors,
+                         const VkRenderingAttachmentInfo& depth) {
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, extent};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = uint32_t(colors.size());
+    rendering.pColorAttachments = colors.data();
+    rendering.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &rendering);
+    const VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, extent};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
 }  // namespace vct

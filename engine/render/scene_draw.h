@@ -32,6 +32,12 @@ std::vector<DrawItem> sceneDrawItems(const GpuScene& scene, DrawSet set);
 void drawItems(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources,
                const std::vector<DrawItem>& items, uint32_t previousVerticesBinding = kNoBinding);
 
+// Begins dynamic rendering over the whole `extent` into `colors` (in order) and `depth`, and sets the viewport and
+// scissor (dynamic state of every scene-drawing pipeline) to that extent.
+void beginSceneRendering(VkCommandBuffer cmd, VkExtent2D extent,
+                         const std::vector<VkRenderingAttachmentInfo>& colors,
+                         const VkRenderingAttachmentInfo& depth);
+
 // drawItems of the set's draws in the scene's order.
 void drawScene(const FrameContext& frame, const vk::Pipeline& pipeline, const ResourceTable& resources,
                uint32_t previousVerticesBinding = kNoBinding, DrawSet set = DrawSet::All);
