@@ -26,7 +26,8 @@ layout(set = 0, binding = 6) uniform sampler2D emissiveTexture;
 layout(set = 0, binding = 7) uniform sampler2D occlusionTexture;
 layout(set = 0, binding = 9) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = 10) uniform sampler2DShadow shadowMap;
-layout(set = 0, binding = 11) uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, with mips
+layout(set = 0, binding = 11)
+    uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, mips 1.. (lib/cone_trace.glsl)
 layout(set = 0, binding = 12) uniform sampler2D environmentMap;  // lib/environment_sample.glsl
 layout(set = 0, binding = 13) uniform sampler2D dfgTable;        // split-sum DFG, uv = (n·v, roughness)
 layout(push_constant) uniform Push { DrawPushConstants draw; };

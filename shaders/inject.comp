@@ -2,11 +2,13 @@
 #extension GL_GOOGLE_include_directive : require
 // inject: direct light into the voxels. For each occupied voxel: Σ lights E·albedo/π·cos (the main light
 // shadow-mapped at the voxel centre, the others unshadowed) + emission, written premultiplied by opacity into
-// mip 0 of the radiance texture's six direction slabs (rgb = radiance × facing × opacity, a = opacity;
-// lib/voxel.glsl). One thread per voxel.
+// mip 0 of the radiance, the radiance atlas's six direction slabs (rgb = radiance × facing × opacity, a = opacity;
+// lib/voxel.glsl, lib/voxel_bricks.glsl), in the voxel's brick and in the aprons of the bricks below it. One
+// workgroup per brick (every allocated brick, or those of the frame's region), one thread per voxel.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
+#include "lib/voxel_bricks.glsl"
 #include "lib/lights.glsl"
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
@@ -19,10 +21,13 @@ layout(set = 0, binding = 2, rgba8) uniform readonly image3D albedoImage;
 layout(set = 0, binding = 3, rgba16f) uniform readonly image3D normalImage;
 layout(set = 0, binding = 4, rgba16f) uniform readonly image3D emissionImage;
 layout(set = 0, binding = 5) uniform sampler2DShadow shadowMap;
-// Mip 0 of the radiance texture (6 slabs), cleared before the dispatch; only occupied voxels are written.
+// The radiance atlas (mip 0, 6 slabs), cleared before a whole-grid dispatch; then only occupied voxels are written.
 layout(set = 0, binding = 6, rgba16f) uniform image3D radianceImage;
 // The light the voxels gathered from the grid (voxel_bounce.comp): cosine-weighted mean incoming radiance.
 layout(set = 0, binding = 7, rgba16f) uniform readonly image3D bounceImage;
+
+#include "lib/voxel_storage.glsl"
+#include "lib/voxel_workgroup.glsl"
 
 layout(push_constant) uniform Push { InjectPushConstants push; };
 
@@ -37,31 +42,55 @@ float shadowVisibility(vec3 p) {
     return texture(shadowMap, vec3(uv, ndc.z));
 }
 
-// Voxel `voxel` of slab `slab` in the 6N-wide radiance texture (lib/voxel.glsl, directional radiance).
-ivec3 slabTexel(ivec3 voxel, int slab, int n) { return ivec3(voxel.x + slab * n, voxel.yz); }
+// The voxel's six slab values, in its brick's block and in the apron of each brick below it whose block reaches
+// it (a voxel on the brick's −x face is the +x apron of the brick before it in x, and so on: up to 8 blocks).
+void storeRadiance(uint k, ivec3 brick, ivec3 local, const vec4 slabs[VOXEL_SLAB_COUNT]) {
+    const uint side = frame.voxels.brickAtlasSide;
+    for (int below = 0; below < 8; ++below) {
+        const ivec3 step = ivec3(below & 1, (below >> 1) & 1, below >> 2);
+        // Only along the axes where the voxel is on the brick's lower face.
+        if (any(greaterThan(step, ivec3(equal(local, ivec3(0)))))) continue;
+        uint target = k;
+        if (below != 0) {
+            const ivec3 other = brick - step;
+            if (any(lessThan(other, ivec3(0)))) continue;
+            target = brickIndex(other);
+            if (target == VCT_BRICK_NONE) continue;
+        }
+        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
+            imageStore(radianceImage, radianceAtlasTexel(target, side, local + step * VOXEL_BRICK, slab),
+                       slabs[slab]);
+    }
+}
 
 void main() {
-    const ivec3 voxel = ivec3(push.region.xyz + gl_GlobalInvocationID);
-    const int n = int(frame.voxels.resolution);
-    if (any(greaterThanEqual(voxel, ivec3(n)))) return;
-    const vec4 albedoOpacity = imageLoad(albedoImage, voxel);
-    // Empty: left as the clear before the dispatch made it (inject_pass.cpp), or, in a region of a level that
-    // was not cleared, stored as zero here.
+    uint k;
+    ivec3 brick;
+    const bool region = push.region.w != 0u;
+    if (!workgroupBrick(region, push.region.xyz, k, brick)) return;
+    const ivec3 local = ivec3(gl_LocalInvocationID);
+    const ivec3 voxel = brick * VOXEL_BRICK + local;
+    const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, local);
+    const vec4 albedoOpacity = imageLoad(albedoImage, texel);
+    vec4 slabs[VOXEL_SLAB_COUNT];
+    // Empty: left as the clear before the dispatch made it (inject_pass.cpp), or, in a region (the atlas was not
+    // cleared), stored as zero here.
     if (albedoOpacity.a <= 0.0) {
-        if (push.params.y != 0u)
-            for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
-                imageStore(radianceImage, slabTexel(voxel, slab, n), vec4(0.0));
+        if (region) {
+            for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) slabs[slab] = vec4(0.0);
+            storeRadiance(k, brick, local, slabs);
+        }
         return;
     }
-    const vec3 nbar = imageLoad(normalImage, voxel).xyz;
-    const vec3 emission = imageLoad(emissionImage, voxel).rgb;
+    const vec3 nbar = imageLoad(normalImage, texel).xyz;
+    const vec3 emission = imageLoad(emissionImage, texel).rgb;
     const float voxelSize = frame.voxels.voxelSize;
     const vec3 center = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
 
     vec3 radiance = emission;
     // Light that has bounced before (multiple bounces): a Lambertian voxel sends albedo × the cosine-weighted
     // mean radiance it receives, albedo/π · E.
-    if (push.params.x != 0u) radiance += albedoOpacity.rgb * imageLoad(bounceImage, voxel).rgb;
+    if (push.params.x != 0u) radiance += albedoOpacity.rgb * imageLoad(bounceImage, texel).rgb;
     const int lightCount = int(frame.lighting.lightCount);
     const int shadowLight = frame.lighting.shadowLight;
     for (int i = 0; i < lightCount; ++i) {
@@ -83,7 +112,7 @@ void main() {
     // Each slab sees the light that leaves towards the cones reading it, i.e. against its direction.
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
         const float facing = voxelFacing(nbar, -voxelSlabDirection(slab));
-        imageStore(radianceImage, slabTexel(voxel, slab, n),
-                   vec4(radiance * (facing * albedoOpacity.a), albedoOpacity.a));
+        slabs[slab] = vec4(radiance * (facing * albedoOpacity.a), albedoOpacity.a);
     }
+    storeRadiance(k, brick, local, slabs);
 }

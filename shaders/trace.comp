@@ -26,7 +26,8 @@ const bool FULL_RESOLUTION = SCALE == 1;
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 layout(set = 0, binding = 2) uniform sampler2D normalRoughnessTexture;
-layout(set = 0, binding = 3) uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, with mips
+layout(set = 0, binding = 3)
+    uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, mips 1.. (lib/cone_trace.glsl)
 layout(set = 0, binding = 4, rgba32ui) uniform writeonly uimage2D
     indirectImage;  // packed (lib/indirect_pack.glsl); low res (full res at scale 1)
 // What the upsample weights compare, per low-res sample (lib/upsample_guide.glsl).

@@ -5,12 +5,14 @@
 // voxel's centre about its averaged normal: the cosine-weighted mean incoming radiance, the Lambertian bounce's
 // albedo/π · E. Voxels whose surfaces disagree on a side (|n̄| short: both faces of a thin wall) gather about
 // n̄'s side only when it is clear, and over both sides (the mean of ±n̂) when it is not. Cones that leave the grid
-// see the environment (lib/cone_trace.glsl), so sky light bounces too. One thread per voxel.
+// see the environment (lib/cone_trace.glsl), so sky light bounces too. One workgroup per allocated brick, one
+// thread per voxel (lib/voxel_storage.glsl).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
 #include "lib/cone.glsl"
 #include "lib/gbuffer_read.glsl"
+#include "lib/voxel_bricks.glsl"
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
 
@@ -19,30 +21,35 @@ layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1, rgba8) uniform readonly image3D albedoImage;
 layout(set = 0, binding = 2, rgba16f) uniform readonly image3D normalImage;
-layout(set = 0, binding = 3) uniform sampler3D voxels;  // radiance slabs with mips (lib/voxel.glsl)
+layout(set = 0,
+       binding = 3) uniform sampler3D voxels;  // radiance slabs, mips 1 and coarser (lib/cone_trace.glsl)
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D bounceImage;
 // The environment: sky light reaches the voxels through cones that leave the grid (lib/environment_sample.glsl).
 layout(set = 0, binding = 5) uniform sampler2D environmentMap;
 
 #include "lib/cone_trace.glsl"
+#include "lib/voxel_workgroup.glsl"
 
 // Below this |n̄| a voxel's surfaces face both ways about equally: gather both hemispheres.
 const float BOUNCE_ONE_SIDED = 0.5;
 
 void main() {
-    const ivec3 voxel = ivec3(gl_GlobalInvocationID);
-    const int n = int(frame.voxels.resolution);
-    if (any(greaterThanEqual(voxel, ivec3(n)))) return;
-    if (imageLoad(albedoImage, voxel).a <= 0.0) {
-        imageStore(bounceImage, voxel, vec4(0.0));
+    uint k;
+    ivec3 brick;
+    if (!workgroupBrick(false, uvec3(0), k, brick)) return;
+    const ivec3 local = ivec3(gl_LocalInvocationID);
+    const ivec3 voxel = brick * VOXEL_BRICK + local;
+    const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, local);
+    if (imageLoad(albedoImage, texel).a <= 0.0) {
+        imageStore(bounceImage, texel, vec4(0.0));
         return;
     }
-    const vec3 nbar = imageLoad(normalImage, voxel).xyz;
+    const vec3 nbar = imageLoad(normalImage, texel).xyz;
     const float r = length(nbar);
     const vec3 p = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
     // No direction at all (rare: opposite faces in one voxel cancelling exactly): +y's two sides.
     const vec3 axis = r > 1e-3 ? nbar / r : vec3(0.0, 1.0, 0.0);
     vec3 gathered = traceDiffuse(voxels, p, axis);
     if (r < BOUNCE_ONE_SIDED) gathered = 0.5 * (gathered + traceDiffuse(voxels, p, -axis));
-    imageStore(bounceImage, voxel, vec4(gathered, 0.0));
+    imageStore(bounceImage, texel, vec4(gathered, 0.0));
 }

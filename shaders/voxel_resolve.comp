@@ -1,11 +1,13 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // voxelize, second step: averages the static accumulator (voxelized once) plus the per-frame accumulator of
-// moving instances into albedo + opacity, normal and emission textures. One thread per voxel of the frame's
-// region (the whole grid, or where moving instances were and are: render/voxel_update.h).
+// moving instances into the albedo + opacity, normal and emission atlases (lib/voxel_bricks.glsl). One workgroup
+// per brick, one thread per voxel: every allocated brick, or those of the frame's region (where moving instances
+// were and are: render/voxel_update.h).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
+#include "lib/voxel_bricks.glsl"
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
 
@@ -18,22 +20,26 @@ layout(set = 0, binding = 3, rgba8) uniform writeonly image3D albedoImage;  // a
 // Averaged normal (not renormalised), w unused.
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D normalImage;
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image3D emissionImage;  // emitted radiance
+#include "lib/voxel_storage.glsl"
+#include "lib/voxel_workgroup.glsl"
 
 layout(push_constant) uniform Push { VoxelizePushConstants push; };
 
 void main() {
-    const ivec3 voxel = ivec3(push.region.xyz + gl_GlobalInvocationID);
-    const int n = int(frame.voxels.resolution);
-    if (any(greaterThanEqual(voxel, ivec3(n)))) return;
-    const uint base = voxelLinearIndex(voxel, n) * VCT_VOXEL_ACCUM_STRIDE;
+    uint k;
+    ivec3 brick;
+    if (!workgroupBrick(push.region.w != 0u, push.region.xyz, k, brick)) return;
+    const ivec3 local = ivec3(gl_LocalInvocationID);
+    const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, local);
+    const uint base = voxelAccumIndex(k, local);
     const bool dynamic = push.params.y != 0;
     // The count first: most voxels are empty and need nothing else read.
     const uint count = staticAccum[base + VCT_VOXEL_ACCUM_COUNT] +
                        (dynamic ? dynamicAccum[base + VCT_VOXEL_ACCUM_COUNT] : 0u);
     if (count == 0u) {
-        imageStore(albedoImage, voxel, vec4(0.0));
-        imageStore(normalImage, voxel, vec4(0.0));
-        imageStore(emissionImage, voxel, vec4(0.0));
+        imageStore(albedoImage, texel, vec4(0.0));
+        imageStore(normalImage, texel, vec4(0.0));
+        imageStore(emissionImage, texel, vec4(0.0));
         return;
     }
     // Sums of both accumulators (uint addition wraps like the atomics, so signed normals add correctly).
@@ -54,7 +60,7 @@ void main() {
     // blended surface alone gives its alpha, one beside an opaque surface less than the opaque 1 it should be.
     const uint transparency = sums[VCT_VOXEL_ACCUM_TRANSPARENCY];
     const float opacity = transparency == 0u ? 1.0 : 1.0 - voxelDecodeUnit(transparency, count);
-    imageStore(albedoImage, voxel, vec4(albedo, opacity));
-    imageStore(normalImage, voxel, vec4(normal, 0.0));
-    imageStore(emissionImage, voxel, vec4(emission, 0.0));
+    imageStore(albedoImage, texel, vec4(albedo, opacity));
+    imageStore(normalImage, texel, vec4(normal, 0.0));
+    imageStore(emissionImage, texel, vec4(emission, 0.0));
 }

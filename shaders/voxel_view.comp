@@ -15,16 +15,31 @@
 #include "lib/constants.glsl"
 #include "lib/gbuffer_read.glsl"
 #include "lib/voxel.glsl"
+#include "lib/voxel_bricks.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
 // Resources: bound by engine/passes/voxel_view_pass.cpp (its resource table gives these binding numbers and is checked
 // against them when the pipeline is made).
 layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, with mips
+layout(set = 0, binding = 1) uniform sampler3D voxels;  // radiance (premultiplied rgb) + opacity, mips 1..
+// Mip 0: the radiance atlas (lib/voxel_bricks.glsl).
+layout(set = 0, binding = VCT_BINDING_VOXEL_ATLAS) uniform sampler3D voxelAtlas;
 layout(set = 0, binding = 2,
        rgba16f) uniform writeonly image2D outputImage;  // radiance seen through the grid, full res
 layout(push_constant) uniform Push { VoxelViewPushConstants push; };
+#include "lib/voxel_storage.glsl"
+
+// Texel `cell` of slab `slab` at level `mip`: mip 0 from its brick's atlas block (empty without one), the
+// others from the coarse texture (its level mip − 1).
+vec4 fetchTexel(ivec3 cell, int slab, int cells, int mip) {
+    if (mip > 0) return texelFetch(voxels, ivec3(cell.x + slab * cells, cell.yz), mip - 1);
+    const ivec3 brick = voxelBrickOf(cell);
+    const uint k = brickIndex(brick);
+    if (k == VCT_BRICK_NONE) return vec4(0.0);
+    return texelFetch(
+        voxelAtlas, radianceAtlasTexel(k, frame.voxels.brickAtlasSide, cell - brick * VOXEL_BRICK, slab), 0);
+}
 
 const float VOXEL_VIEW_MAX_OPACITY = 0.99;
 const float VOXEL_VIEW_GREY = 0.15;
@@ -100,8 +115,7 @@ vec4 marchTexels(const vec3 o, const vec3 dir, const vec3 invDir, const bvec3 mo
             // The three direction slabs facing the ray (lib/voxel.glsl), weighted as the cones weigh them.
             vec4 s = vec4(0.0);
             const vec3 w = voxelSlabWeights(dir);
-            for (int k = 0; k < 3; ++k)
-                s += w[k] * texelFetch(voxels, ivec3(cell.x + voxelSlabFor(dir, k) * cells, cell.yz), mip);
+            for (int k = 0; k < 3; ++k) s += w[k] * fetchTexel(cell, voxelSlabFor(dir, k), cells, mip);
             const float a = saturate(s.a);
             // Opacity a is for one texel length; over `len`: 1 − (1 − a)^len, colour scaled alike.
             const float aLen = 1.0 - pow(1.0 - min(a, 0.999999), len);

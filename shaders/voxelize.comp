@@ -7,6 +7,7 @@
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
+#include "lib/voxel_bricks.glsl"
 
 layout(local_size_x = VCT_VOXEL_GROUP_SIZE) in;
 
@@ -22,6 +23,7 @@ layout(set = 0, binding = 4) readonly buffer Indices { uint indices[]; };
 layout(set = 0, binding = 5) uniform sampler2D baseColorTexture;
 layout(set = 0, binding = 6) uniform sampler2D emissiveTexture;
 layout(set = 0, binding = 7) buffer Accum { uint accum[]; };
+#include "lib/voxel_storage.glsl"
 
 layout(push_constant) uniform Push { VoxelizePushConstants push; };
 
@@ -112,7 +114,11 @@ void main() {
                 if (dot(normal, normal) < 1e-12) normal = faceNormal;
                 normal *= inversesqrt(max(dot(normal, normal), 1e-30));
 
-                const uint base_ = voxelLinearIndex(ivec3(x, y, z), n) * VCT_VOXEL_ACCUM_STRIDE;
+                // Every voxel a triangle can reach has storage (render/voxel_bricks.h allocates the bricks
+                // its bounds overlap, with the same overlap test): the check only guards the buffer.
+                const uint k = brickIndex(voxelBrickOf(ivec3(x, y, z)));
+                if (k == VCT_BRICK_NONE) continue;
+                const uint base_ = voxelAccumIndex(k, ivec3(x, y, z) % VOXEL_BRICK);
                 for (int c = 0; c < 3; ++c) {
                     atomicAdd(accum[base_ + c], voxelEncodeUnit(base.rgb[c]));
                     atomicAdd(accum[base_ + 3 + c], voxelEncodeSigned(normal[c]));

@@ -10,18 +10,18 @@ namespace {
 // shaders/blend.frag's.
 constexpr uint32_t kPreviousVertices = 8;
 
-ResourceTable blendResources(DfgLut& dfg, vk::Image& voxelStandIn, const VoxelSource* voxels,
-                             const EnvironmentSource& environment) {
+ResourceTable blendResources(DfgLut& dfg, vk::Image& voxelStandIn, vk::Buffer& brickStandIn,
+                             const VoxelSource* voxels, const EnvironmentSource& environment) {
     constexpr VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
     std::vector<ResourceRow> rows = sceneDrawRows();
     rows.push_back({kPreviousVertices, Resource::perDraw("previousVertices", true), Access::Read,
                     VK_SHADER_STAGE_VERTEX_BIT});
     rows.push_back({9, Resource::scene(SceneBuffer::Lights), Access::Read, fragment});
     rows.push_back({10, Target::shadowMap, Access::SampledCompare, fragment});
-    rows.push_back({11,
-                    voxels ? Resource::image("voxels", *voxels->radiance, voxels->sampler)
-                           : Resource::image("voxels", voxelStandIn),
-                    Access::Sampled, fragment});
+    VoxelSource standIn;
+    standIn.radianceMips = standIn.radianceAtlas = &voxelStandIn;
+    standIn.brickTable = &brickStandIn;
+    (voxels ? *voxels : standIn).addRows(rows, 11, fragment);
     rows.push_back({12, Resource::image("environment", *environment.image, environment.sampler),
                     Access::Sampled, fragment});
     rows.push_back({13, Resource::image("dfg", dfg.image(), dfg.sampler()), Access::Sampled, fragment});
@@ -66,7 +66,10 @@ BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
                      const EnvironmentSource& environment, bool vertexColors)
     : dfg_(context),
       voxelStandIn_(voxelStandIn(context, voxels)),
-      resources_(blendResources(dfg_, voxelStandIn_, voxels, environment)) {
+      brickStandIn_(
+          voxels ? vk::Buffer()
+                 : vk::Buffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal)),
+      resources_(blendResources(dfg_, voxelStandIn_, brickStandIn_, voxels, environment)) {
     vk::Pipeline::GraphicsDesc desc;
     desc.owner = name();
     desc.vertexShader = "gbuffer.vert";  // the same vertices and attributes as the opaque surfaces

@@ -25,8 +25,10 @@ class BlendPass : public Pass {
     void execute(const FrameContext& frame) override;
 
   private:
-    DfgLut dfg_;              // before resources_, which names its image
-    vk::Image voxelStandIn_;  // GI off: a 1×1×2 volume the pipeline declares and never reads
+    DfgLut dfg_;  // before resources_, which names its image
+    // GI off: a 1×1×2 volume and a 16-byte brick table the pipeline declares and never reads.
+    vk::Image voxelStandIn_;
+    vk::Buffer brickStandIn_;
     ResourceTable resources_;
     vk::Pipeline pipeline_;
 };

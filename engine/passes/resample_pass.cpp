@@ -7,21 +7,22 @@ namespace {
 // Binding numbers: shaders/resample.comp's (1–3 the trace's, for the shared cone-tracing code).
 ResourceTable resampleResources(const VoxelSource& voxels) {
     const Resource list = Resource::targetBuffer("resampleList", &FrameTargets::resampleList);
-    return {"resample",
-            {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-             {1, Target::depth, Access::Sampled},
-             {2, Target::normalRoughness, Access::Sampled},
-             {3, Resource::image("voxels", *voxels.radiance, voxels.sampler), Access::Sampled},
-             // Read-write: only the listed pixels are written, the rest of the upsampled result must survive.
-             {4, Target::indirect, Access::ReadWrite},
-             // The list upsample made: this pass's indirect dispatch, its shader's input and a copy's source.
-             {6, list, Access::Read},
-             {9, Resource::image("environment", *voxels.environment.image, voxels.environment.sampler),
-              Access::Sampled},
-             {kNoBinding, list, Access::IndirectRead},
-             {kNoBinding, list, Access::TransferRead},
-             {kNoBinding, Resource::targetBuffer("resampleCount", &FrameTargets::resampleCount),
-              Access::TransferWrite}}};
+    std::vector<ResourceRow> rows{
+        {VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+        {1, Target::depth, Access::Sampled},
+        {2, Target::normalRoughness, Access::Sampled},
+        // Read-write: only the listed pixels are written, the rest of the upsampled result must survive.
+        {4, Target::indirect, Access::ReadWrite},
+        // The list upsample made: this pass's indirect dispatch, its shader's input and a copy's source.
+        {6, list, Access::Read},
+        {9, Resource::image("environment", *voxels.environment.image, voxels.environment.sampler),
+         Access::Sampled},
+        {kNoBinding, list, Access::IndirectRead},
+        {kNoBinding, list, Access::TransferRead},
+        {kNoBinding, Resource::targetBuffer("resampleCount", &FrameTargets::resampleCount),
+         Access::TransferWrite}};
+    voxels.addRows(rows, 3);
+    return {"resample", std::move(rows)};
 }
 
 }  // namespace

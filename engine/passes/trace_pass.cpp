@@ -2,26 +2,35 @@
 
 namespace vct {
 
+namespace {
+
+// Binding numbers: shaders/trace.comp's.
+ResourceTable traceResources(Target output, const VoxelSource& voxels) {
+    std::vector<ResourceRow> rows{
+        {VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+        {1, Target::depth, Access::Sampled},
+        {2, Target::normalRoughness, Access::Sampled},
+        {4, output, Access::Write},
+        // 1×1 stand-ins at trace scale 1 (the pipeline declares them, never writes them).
+        {6, Target::guidePosition, Access::Write},
+        {7, Target::guideNormal, Access::Write},
+        {8, Target::guideAxis, Access::Write},
+        {9, Resource::image("environment", *voxels.environment.image, voxels.environment.sampler),
+         Access::Sampled},
+        // Trace scale 1: the history its sample is added to (trace.comp, accumulateHistory).
+        {10, Target::motion, Access::Sampled},
+        {11, Target::prevDepth, Access::Sampled},
+        {12, Target::prevNormalRoughness, Access::Sampled},
+        {13, Target::indirectHistory, Access::Sampled}};
+    voxels.addRows(rows, 3);
+    return {"trace", std::move(rows)};
+}
+
+}  // namespace
+
 TracePass::TracePass(const vk::Context& context, uint32_t traceScale, const VoxelSource& voxels)
     : output_(traceScale <= 1 ? Target::indirect : Target::indirectLow),
-      // Binding numbers: shaders/trace.comp's.
-      resources_("trace",
-                 {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-                  {1, Target::depth, Access::Sampled},
-                  {2, Target::normalRoughness, Access::Sampled},
-                  {3, Resource::image("voxels", *voxels.radiance, voxels.sampler), Access::Sampled},
-                  {4, output_, Access::Write},
-                  // 1×1 stand-ins at trace scale 1 (the pipeline declares them, never writes them).
-                  {6, Target::guidePosition, Access::Write},
-                  {7, Target::guideNormal, Access::Write},
-                  {8, Target::guideAxis, Access::Write},
-                  {9, Resource::image("environment", *voxels.environment.image, voxels.environment.sampler),
-                   Access::Sampled},
-                  // Trace scale 1: the history its sample is added to (trace.comp, accumulateHistory).
-                  {10, Target::motion, Access::Sampled},
-                  {11, Target::prevDepth, Access::Sampled},
-                  {12, Target::prevNormalRoughness, Access::Sampled},
-                  {13, Target::indirectHistory, Access::Sampled}}) {
+      resources_(traceResources(output_, voxels)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "trace.comp", resources_.bindings(), 0,
                                       {traceScale});  // VCT_SPEC_TRACE_SCALE
 }

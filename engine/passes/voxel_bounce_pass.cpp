@@ -14,7 +14,10 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
           {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
            {1, Resource::image("albedo", grid.albedo()), Access::Read},
            {2, Resource::image("normal", grid.normal()), Access::Read},
-           {3, Resource::image("radiance", grid.radiance(), grid.sampler()), Access::Sampled},
+           {3, Resource::image("radianceMips", grid.radianceMips(), grid.sampler()), Access::Sampled},
+           {VCT_BINDING_VOXEL_ATLAS,
+            Resource::image("radianceAtlas", grid.radianceAtlas(), grid.atlasSampler()), Access::Sampled},
+           {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read},
            {4, Resource::image("bounce", grid.bounce()), Access::Write},
            // Cones that leave the grid see the environment: sky light bounces too.
            {5, Resource::image("environment", *environment.image, environment.sampler), Access::Sampled}}) {
@@ -22,12 +25,11 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
 }
 
 void VoxelBouncePass::execute(const FrameContext& frame) {
-    const uint32_t groups = voxelTileCount(grid_.resolution());
     for (uint32_t i = 0; i < iterations_; ++i) {
         // Gather from the grid as it stands (its mips included)...
         pipeline_.bind(frame.cmd);
         resources_.bind(frame, pipeline_);
-        vkCmdDispatch(frame.cmd, groups, groups, groups);
+        dispatchBricks(frame.cmd, grid_.bricks().brickCount());
         // ...and send it on: direct light + albedo × gathered, and the mips of that.
         inject_.inject(frame, true);
         mips_.execute(frame);

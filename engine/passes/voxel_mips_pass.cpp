@@ -9,24 +9,29 @@ namespace vct {
 namespace {
 
 // Binding numbers: shaders/voxel_mips.comp's.
-constexpr uint32_t kSource = 1, kDest = 2;
+constexpr uint32_t kSource = 1, kDest = 2, kAtlas = 3;
 
 }  // namespace
 
 VoxelMipsPass::VoxelMipsPass(const vk::Context& context, VoxelGrid& grid)
     : grid_(grid),
-      // Both bindings are views of one level of the radiance texture, written per dispatch; the image stays
-      // in GENERAL for the whole pass (read-write), ordered level by level by the memory barrier below.
-      resources_("mips",
-                 {{kSource, Resource::image("radiance", grid.radiance()).eachDispatch(), Access::Read},
-                  {kDest, Resource::image("radiance", grid.radiance()).eachDispatch(), Access::Write}}) {
+      // Source and destination are views of one level of the radiance mips, written per dispatch; the image
+      // stays in GENERAL for the whole pass (read-write), ordered level by level by the memory barrier below.
+      // Mip 1 reads mip 0 from the radiance atlas.
+      resources_(
+          "mips",
+          {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+           {kSource, Resource::image("radianceMips", grid.radianceMips()).eachDispatch(), Access::Read},
+           {kDest, Resource::image("radianceMips", grid.radianceMips()).eachDispatch(), Access::Write},
+           {kAtlas, Resource::image("radianceAtlas", grid.radianceAtlas()), Access::Read},
+           {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_mips.comp", resources_.bindings(),
                                       sizeof(gpu::VoxelMipsPushConstants));
 }
 
 void VoxelMipsPass::execute(const FrameContext& frame) {
     VkCommandBuffer cmd = frame.cmd;
-    vk::Image& radiance = grid_.radiance();
+    vk::Image& radiance = grid_.radianceMips();
     const std::optional<VoxelGrid::UpdateRegions>& regions = grid_.updateRegions();
     pipeline_.bind(cmd);
     resources_.barriers(frame);
@@ -38,9 +43,10 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
                               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                               VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
         }
+        // Mip m is the texture's level m − 1; for mip 1 the source binding is unused (it reads the atlas).
         resources_.writer(frame)
-            .storage(kSource, radiance.mipView(level - 1))
-            .storage(kDest, radiance.mipView(level))
+            .storage(kSource, radiance.mipView(level == 1 ? 0 : level - 2))
+            .storage(kDest, radiance.mipView(level - 1))
             .push(frame.context, cmd, pipeline_);
         // The texels with a child in the frame's region (the whole level without one), in each of the six
         // direction slabs side by side along x (lib/voxel.glsl).
@@ -49,7 +55,8 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
             regions ? regions->inject.atLevel(level) : VoxelRegion{glm::uvec3(0), glm::uvec3(size)};
         if (region.empty()) continue;
         const glm::uvec3 extent = region.max - region.min;
-        const gpu::VoxelMipsPushConstants push{glm::uvec4(region.min, extent.x)};
+        const gpu::VoxelMipsPushConstants push{glm::uvec4(region.min, extent.x),
+                                               glm::uvec4(level == 1 ? 1u : 0u, 0u, 0u, 0u)};
         pipeline_.pushConstants(cmd, &push, sizeof(push));
         vkCmdDispatch(cmd, voxelTileCount(extent.x * uint32_t(glsl::VOXEL_SLAB_COUNT)),
                       voxelTileCount(extent.y), voxelTileCount(extent.z));

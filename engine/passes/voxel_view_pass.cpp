@@ -23,10 +23,14 @@ VoxelViewPass::VoxelViewPass(const vk::Context& context, VoxelGrid& grid)
       // 1×1 until prepare() sizes it; made here so that the pipeline's check sees its format.
       output_(makeOutput(context, 1, 1)),
       // Binding numbers: shaders/voxel_view.comp's.
-      resources_("voxel_view",
-                 {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-                  {1, Resource::image("voxels", grid.radiance(), grid.sampler()), Access::Sampled},
-                  {2, Resource::image("output", output_), Access::Write}}) {
+      resources_(
+          "voxel_view",
+          {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+           {1, Resource::image("voxels", grid.radianceMips(), grid.sampler()), Access::Sampled},
+           {VCT_BINDING_VOXEL_ATLAS,
+            Resource::image("radianceAtlas", grid.radianceAtlas(), grid.atlasSampler()), Access::Sampled},
+           {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read},
+           {2, Resource::image("output", output_), Access::Write}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_view.comp", resources_.bindings(),
                                       sizeof(gpu::VoxelViewPushConstants));
 }

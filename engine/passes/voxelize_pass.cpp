@@ -20,7 +20,8 @@ ResourceTable resolveResources(VoxelGrid& grid) {
              {2, Resource::buffer("dynamicAccumulator", dynamic), Access::ReadWrite},
              {3, Resource::image("albedo", grid.albedo()), Access::ReadWrite},
              {4, Resource::image("normal", grid.normal()), Access::ReadWrite},
-             {5, Resource::image("emission", grid.emission()), Access::ReadWrite}}};
+             {5, Resource::image("emission", grid.emission()), Access::ReadWrite},
+             {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read}}};
 }
 
 }  // namespace
@@ -38,7 +39,8 @@ VoxelizePass::VoxelizePass(const vk::Context& context, VoxelGrid& grid)
                           // The material's textures, and the accumulator of the instances being voxelized.
                           {kBaseColor, Resource::perDraw("baseColorTexture"), Access::Sampled},
                           {kEmissive, Resource::perDraw("emissiveTexture"), Access::Sampled},
-                          {kAccumulator, Resource::perDraw("accumulator", true), Access::ReadWrite}}),
+                          {kAccumulator, Resource::perDraw("accumulator", true), Access::ReadWrite},
+                          {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read}}),
       resolveResources_(resolveResources(grid)) {
     voxelize_ = vk::Pipeline::compute(context, name(), "voxelize.comp", voxelizeResources_.bindings(),
                                       sizeof(gpu::VoxelizePushConstants));
@@ -138,9 +140,14 @@ void VoxelizePass::execute(const FrameContext& frame) {
     resolveResources_.bind(frame, resolve_);
     gpu::VoxelizePushConstants push{};
     push.params = glm::uvec4(0, moving ? 1u : 0u, moving ? 1u : 0u, 0);
-    const VoxelRegion region =
-        regions ? regions->resolve : VoxelRegion{glm::uvec3(0), glm::uvec3(grid_.resolution())};
-    push.region = glm::uvec4(region.min, 0u);
+    // The whole grid: every allocated brick; a region: each brick of its (brick-aligned) box.
+    if (!regions) {
+        resolve_.pushConstants(cmd, &push, sizeof(push));
+        dispatchBricks(cmd, grid_.bricks().brickCount());
+        return;
+    }
+    const VoxelRegion& region = regions->resolve;
+    push.region = glm::uvec4(region.min, 1u);
     resolve_.pushConstants(cmd, &push, sizeof(push));
     if (region.empty()) return;
     const glm::uvec3 size = region.max - region.min;

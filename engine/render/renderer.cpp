@@ -34,6 +34,18 @@ RenderSettings resolveForDevice(const vk::Context& context, RenderSettings setti
     return settings;
 }
 
+// What the cone-tracing passes read of the grid.
+VoxelSource voxelSource(VoxelGrid& grid, const EnvironmentSource& environment) {
+    VoxelSource source;
+    source.radianceMips = &grid.radianceMips();
+    source.sampler = grid.sampler();
+    source.radianceAtlas = &grid.radianceAtlas();
+    source.atlasSampler = grid.atlasSampler();
+    source.brickTable = &grid.brickTable();
+    source.environment = environment;
+    return source;
+}
+
 }  // namespace
 
 Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings,
@@ -86,7 +98,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     passes_.push_back(std::make_unique<DirectPass>(context, environment));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
-        const VoxelSource voxels{&voxelGrid_->radiance(), voxelGrid_->sampler(), environment};
+        const VoxelSource voxels = voxelSource(*voxelGrid_, environment);
         passes_.push_back(std::make_unique<TracePass>(context, settings.traceScale, voxels));
         // Upsampling and adaptive re-tracing only where something is traced at low resolution: at scale 1 the
         // trace writes the full-res targets itself.
@@ -98,9 +110,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     // Blended surfaces, drawn forward over the opaque frame's depth into their own layer, which composite puts
     // over the frame (docs/design.md §2.6); a scene without any has no blend pass.
     if (gpuScene_.hasBlended()) {
-        const VoxelSource voxels =
-            voxelGrid_ ? VoxelSource{&voxelGrid_->radiance(), voxelGrid_->sampler(), environment}
-                       : VoxelSource{};
+        const VoxelSource voxels = voxelGrid_ ? voxelSource(*voxelGrid_, environment) : VoxelSource{};
         passes_.push_back(
             std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment, vertexColors));
     }
@@ -198,6 +208,8 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
         u.voxels.voxelSize = voxelGrid_->voxelSize();
         u.voxels.resolution = voxelGrid_->resolution();
         u.voxels.mipCount = voxelGrid_->mipCount();
+        u.voxels.brickAtlasSide = voxelGrid_->bricks().atlasSide;
+        u.voxels.brickCount = voxelGrid_->bricks().brickCount();
     }
 
     // Spatio-temporal upsampling (docs/design.md §6): weights, history and this frame's trace offset o_k. The

@@ -33,20 +33,11 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
     }
     if (n < 32 || n > 256 || !std::has_single_bit(n))
         throw UsageError("voxel resolution " + std::to_string(n) + " must be a power of two in 32..256");
-    // The voxelize and resolve passes bind each accumulator whole as one storage buffer: N³ × 40 bytes must
-    // fit the device's range (only 2^27 bytes guaranteed: lavapipe's 128 MiB holds 128³, not 256³).
-    const VkDeviceSize maxRange = context.properties().limits.maxStorageBufferRange;
-    auto accumulatorBytes = [](uint64_t size) { return size * size * size * kAccumVoxelBytes; };
-    if (accumulatorBytes(n) > maxRange) {
-        uint32_t largest = n;
-        while (largest > 32 && accumulatorBytes(largest) > maxRange) largest /= 2;
-        throw UsageError("--voxels " + std::to_string(n) + ": the voxel accumulator needs " +
-                         byteSizeText(accumulatorBytes(n)) +
-                         ", more than this device's maxStorageBufferRange (" + byteSizeText(maxRange) +
-                         "); the largest N it holds is " + std::to_string(largest));
-    }
-    if (n > context.properties().limits.maxImageDimension3D)
-        throw UsageError("--voxels " + std::to_string(n) + ": more than this device's maxImageDimension3D (" +
+    // The radiance's mips 1.. are one dense texture, six slabs of N/2 side by side: 3N texels wide. What the
+    // sparse storage needs is checked with the scene (VoxelGrid's constructor).
+    if (3 * n > context.properties().limits.maxImageDimension3D)
+        throw UsageError("--voxels " + std::to_string(n) + ": its radiance mips (" + std::to_string(3 * n) +
+                         " texels wide) exceed this device's maxImageDimension3D (" +
                          std::to_string(context.properties().limits.maxImageDimension3D) + ")");
     return n;
 }
@@ -72,10 +63,39 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     contentBounds_ = bounds;
     originSize_ = glsl::voxelGridFit(bounds.min, bounds.max, float(resolution));
 
-    auto volume = [&](VkFormat format, uint32_t mips, VkImageUsageFlags usage, uint32_t slabs = 1) {
+    // Sparse storage (docs/design.md §5.10): which bricks the scene can reach, and the table the shaders read.
+    bricks_ = allocateBricks(scene, originSize_, resolution);
+    const uint64_t brickCount = std::max<uint64_t>(bricks_.brickCount(), 1);  // no empty buffers or images
+    const std::vector<uint32_t> table = bricks_.table();
+    brickTable_ = vk::Buffer::withData(context, table.data(), table.size() * sizeof(uint32_t),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    // The voxelize and resolve passes bind each accumulator whole as one storage buffer (only 2^27 bytes are
+    // guaranteed: lavapipe's 128 MiB holds about 47,000 bricks).
+    const VkDeviceSize accumBytes =
+        brickCount * VCT_VOXEL_BRICK * VCT_VOXEL_BRICK * VCT_VOXEL_BRICK * kAccumVoxelBytes;
+    const VkDeviceSize maxRange = context.properties().limits.maxStorageBufferRange;
+    const std::string occupancy =
+        std::to_string(bricks_.brickCount()) + " of " + std::to_string(bricks_.map.size()) + " bricks";
+    if (accumBytes > maxRange)
+        throw UsageError("--voxels " + std::to_string(resolution) + ": the scene reaches " + occupancy +
+                         ", whose voxel accumulator needs " + byteSizeText(accumBytes) +
+                         ", more than this device's maxStorageBufferRange (" + byteSizeText(maxRange) +
+                         "); use a smaller --voxels");
+    const uint32_t maxImage = context.properties().limits.maxImageDimension3D;
+    const uint32_t side = bricks_.atlasSide, layers = bricks_.atlasLayers;
+    const uint32_t apron = uint32_t(glsl::VOXEL_BRICK_APRON), slabs = uint32_t(glsl::VOXEL_SLAB_COUNT);
+    if (uint64_t(slabs) * side * apron > maxImage || uint64_t(layers) * apron > maxImage)
+        throw UsageError("--voxels " + std::to_string(resolution) + ": the scene reaches " + occupancy +
+                         ", whose radiance atlas (" + std::to_string(slabs * side * apron) +
+                         " texels wide) exceeds this device's maxImageDimension3D (" +
+                         std::to_string(maxImage) + "); use a smaller --voxels");
+
+    auto volume = [&](VkFormat format, glm::uvec3 size, uint32_t mips, VkImageUsageFlags usage) {
         vk::ImageDesc desc;
-        desc.width = resolution * slabs;
-        desc.height = desc.depth = resolution;
+        desc.width = size.x;
+        desc.height = size.y;
+        desc.depth = size.z;
         desc.mipLevels = mips;
         desc.format = format;
         desc.usage = usage;
@@ -83,17 +103,21 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     };
     // TRANSFER_SRC so that later tools (OpenVDB export, tests) can read them back.
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    // Transfer destination: inject clears mip 0 before writing the occupied voxels only.
-    radiance_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, mipCount_,
-                       storage | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                       uint32_t(glsl::VOXEL_SLAB_COUNT));
-    albedo_ = volume(VK_FORMAT_R8G8B8A8_UNORM, 1, storage);
-    normal_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
-    emission_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
-    bounce_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, 1, storage);
+    constexpr VkImageUsageFlags sampledStorage = storage | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const uint32_t half = std::max(resolution / 2, 1u);
+    radianceMips_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, {half * slabs, half, half},
+                           std::max(mipCount_ - 1, 1u), sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    // Transfer destination: inject clears it before writing the occupied voxels only.
+    radianceAtlas_ =
+        volume(VK_FORMAT_R16G16B16A16_SFLOAT, {slabs * side * apron, side * apron, layers * apron}, 1,
+               sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    const uint32_t brick = VCT_VOXEL_BRICK;
+    const glm::uvec3 materialSize(side * brick, side * brick, layers * brick);
+    albedo_ = volume(VK_FORMAT_R8G8B8A8_UNORM, materialSize, 1, storage);
+    normal_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
+    emission_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
+    bounce_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
 
-    const VkDeviceSize accumBytes =
-        VkDeviceSize(resolution) * resolution * resolution * VCT_VOXEL_ACCUM_STRIDE * 4;
     // TRANSFER_DST: cleared, and filled from a voxel cache; TRANSFER_SRC: read back for `vct voxelize`.
     constexpr VkBufferUsageFlags accumUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT |
@@ -103,6 +127,20 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     bool moving = false;
     for (const Instance& instance : scene.instances(0.0f)) moving |= instance.moving;
     if (moving) dynamicAccum_ = vk::Buffer(context, accumBytes, accumUsage, vk::MemoryUsage::DeviceLocal);
+
+    // Bytes per voxel of each store, for the report (what dense N³ volumes would take beside what these do).
+    const uint64_t accumulators = moving ? 2 : 1;
+    const uint64_t materialTexel = 4 + 3 * 8;  // albedo RGBA8, normal, emission, bounce RGBA16F
+    const uint64_t voxels = uint64_t(resolution) * resolution * resolution;
+    uint64_t mipsBytes = 0;
+    for (uint32_t size = half; mipCount_ > 1; size /= 2) {
+        mipsBytes += uint64_t(slabs) * size * size * size * 8;
+        if (size == 1) break;
+    }
+    memory_.denseBytes = voxels * (slabs * 8 + materialTexel + accumulators * kAccumVoxelBytes) + mipsBytes;
+    memory_.bytes = uint64_t(radianceAtlas_.width()) * radianceAtlas_.height() * radianceAtlas_.depth() * 8 +
+                    uint64_t(materialSize.x) * materialSize.y * materialSize.z * materialTexel +
+                    accumulators * accumBytes + mipsBytes + table.size() * sizeof(uint32_t);
 
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = VK_FILTER_LINEAR;
@@ -114,8 +152,12 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     // slabs' u is kept inside each slab (lib/voxel.glsl's voxelSlabU), so edge clamping never mixes two.
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     info.minLod = 0.0f;
-    info.maxLod = float(mipCount_ - 1);
+    info.maxLod = float(std::max(mipCount_, 2u) - 2);  // the texture's levels: mips 1 ..
     sampler_ = vk::Sampler(context, info);
+    // The atlas: one level, filtered within a block (lib/cone_trace.glsl never reads across one).
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.maxLod = 0.0f;
+    atlasSampler_ = vk::Sampler(context, info);
 }
 
 VoxelGrid::~VoxelGrid() = default;
@@ -159,16 +201,23 @@ void VoxelGrid::loadStaticCache(const std::filesystem::path& path) {
     if (info.sceneHash == 0 && std::filesystem::path(info.scene).stem().string() != scene_.name)
         throw Error(name + " was voxelized from scene '" + info.scene + "', not '" + scene_.name + "'");
 
-    // Pack the voxels back to back; one copy region per run of consecutive linear indices.
+    // Pack the voxels back to back; one copy region per run of voxels consecutive in the accumulator.
     staticCache_ = vk::Buffer(context_, std::max<VkDeviceSize>(1, file.staticAccum.size()) * kAccumVoxelBytes,
                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::HostVisible);
     staticCacheRegions_.clear();
     auto* dst = static_cast<uint8_t*>(staticCache_.mapped());
     uint64_t previous = 0;
     for (size_t i = 0; i < file.staticAccum.size(); ++i) {
-        const StaticAccumVoxel& voxel = file.staticAccum[i];
+        const StaticAccumVoxel& voxel = file.staticAccum[i];  // in the grid (readVoxelFile)
+        const glm::ivec3 brick = glsl::voxelBrickOf(voxel.ijk);
+        const uint32_t k = bricks_.map[glsl::brickLinearIndex(brick, int(bricks_.bricksPerAxis))];
+        // The same scene's voxels are all where its triangles are (the hash above); a voxel elsewhere was put
+        // there by hand.
+        if (k == VCT_BRICK_NONE)
+            throw Error(name + " has a voxel at " + formatVec3(glm::vec3(voxel.ijk)) +
+                        " where this scene has no surface");
         const uint64_t index =
-            voxelFileIndex(voxel.ijk, resolution_);  // sorted and in the grid (readVoxelFile)
+            glsl::voxelAccumIndex(k, voxel.ijk - brick * glsl::VOXEL_BRICK) / VCT_VOXEL_ACCUM_STRIDE;
         std::memcpy(dst + i * kAccumVoxelBytes, voxel.accum.data(), kAccumVoxelBytes);
         if (i > 0 && index == previous + 1)
             staticCacheRegions_.back().size += kAccumVoxelBytes;
@@ -189,13 +238,13 @@ void VoxelGrid::releaseStaticCache() {
     staticCacheRegions_ = {};
 }
 
-std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
-    const uint32_t size = std::max(1u, resolution_ >> mip);
-    const uint32_t width = size * (volume.width() / resolution_);  // the radiance's six slabs side by side
-    const size_t texels = size_t(width) * size * size;
+std::vector<glm::vec4> VoxelGrid::readLevel(vk::Image& volume, uint32_t mip) {
+    const uint32_t width = std::max(1u, volume.width() >> mip), height = std::max(1u, volume.height() >> mip),
+                   depth = std::max(1u, volume.depth() >> mip);
+    const size_t texels = size_t(width) * height * depth;
     const VkFormat format = volume.format();
     if (format != VK_FORMAT_R8G8B8A8_UNORM && format != VK_FORMAT_R16G16B16A16_SFLOAT)
-        throw Error("readVolume: only RGBA8 and RGBA16F volumes are supported");
+        throw Error("readLevel: only RGBA8 and RGBA16F volumes are supported");
     const uint32_t texelBytes = vk::bytesPerPixel(format);
     vk::Buffer staging(context_, texels * texelBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        vk::MemoryUsage::HostVisible);
@@ -207,7 +256,7 @@ std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
         volume.use(cmd, vk::ImageAccess::TransferSrc);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
-        region.imageExtent = {width, size, size};
+        region.imageExtent = {width, height, depth};
         staging.use(cmd, vk::BufferAccess::TransferWrite);
         vkCmdCopyImageToBuffer(cmd, volume.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(),
                                1, &region);
@@ -230,41 +279,88 @@ std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& volume, uint32_t mip) {
     return texelsOut;
 }
 
+std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& atlas) {
+    const std::vector<glm::vec4> texels = readLevel(atlas, 0);
+    const size_t n = resolution_;
+    std::vector<glm::vec4> out(n * n * n, glm::vec4(0.0f));
+    const uint32_t side = bricks_.atlasSide;
+    const size_t width = atlas.width(), height = atlas.height();
+    for (uint32_t k = 0; k < bricks_.brickCount(); ++k)
+        for (int z = 0; z < glsl::VOXEL_BRICK; ++z)
+            for (int y = 0; y < glsl::VOXEL_BRICK; ++y)
+                for (int x = 0; x < glsl::VOXEL_BRICK; ++x) {
+                    const glm::ivec3 local(x, y, z);
+                    const glm::ivec3 t = glsl::materialAtlasTexel(k, side, local);
+                    const glm::ivec3 v = glm::ivec3(bricks_.bricks[k]) * glsl::VOXEL_BRICK + local;
+                    out[glsl::voxelLinearIndex(v, int(n))] =
+                        texels[size_t(t.x) + width * (size_t(t.y) + height * size_t(t.z))];
+                }
+    return out;
+}
+
 std::vector<StaticAccumVoxel> VoxelGrid::readStaticAccumulator() {
-    // In slabs of z-slices (at most ~64 MiB of staging each): 256³ voxels would take 640 MiB at once.
-    const uint64_t n = resolution_;
-    const VkDeviceSize sliceBytes = n * n * kAccumVoxelBytes;
-    const uint64_t slicesPerSlab = std::max<uint64_t>(1, (VkDeviceSize(64) << 20) / sliceBytes);
-    vk::Buffer staging(context_, sliceBytes * std::min(n, slicesPerSlab), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                       vk::MemoryUsage::HostVisible);
+    // In slabs of bricks (at most ~64 MiB of staging each).
+    constexpr uint64_t brickVoxels = uint64_t(VCT_VOXEL_BRICK) * VCT_VOXEL_BRICK * VCT_VOXEL_BRICK;
+    const VkDeviceSize brickBytes = brickVoxels * kAccumVoxelBytes;
+    const uint64_t count = bricks_.brickCount();
+    const uint64_t bricksPerSlab = std::max<uint64_t>(1, (VkDeviceSize(64) << 20) / brickBytes);
+    vk::Buffer staging(context_, brickBytes * std::max<uint64_t>(1, std::min(count, bricksPerSlab)),
+                       VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::HostVisible);
     std::vector<StaticAccumVoxel> voxels;
-    for (uint64_t z0 = 0; z0 < n; z0 += slicesPerSlab) {
-        const uint64_t slices = std::min(slicesPerSlab, n - z0);
+    for (uint64_t first = 0; first < count; first += bricksPerSlab) {
+        const uint64_t slab = std::min(bricksPerSlab, count - first);
         context_.submitAndWait([&](VkCommandBuffer cmd) {
             staticAccum_.use(cmd, vk::BufferAccess::TransferRead);
             staging.use(cmd, vk::BufferAccess::TransferWrite);
-            VkBufferCopy region{z0 * sliceBytes, 0, slices * sliceBytes};
+            VkBufferCopy region{first * brickBytes, 0, slab * brickBytes};
             vkCmdCopyBuffer(cmd, staticAccum_.handle(), staging.handle(), 1, &region);
             staging.use(cmd, vk::BufferAccess::HostRead);
         });
         const auto* src = static_cast<const uint32_t*>(staging.mapped());
-        for (uint64_t i = 0; i < slices * n * n; ++i) {
+        for (uint64_t i = 0; i < slab * brickVoxels; ++i) {
             const uint32_t* accum = src + i * VCT_VOXEL_ACCUM_STRIDE;
             if (accum[VCT_VOXEL_ACCUM_COUNT] == 0) continue;  // no sample: empty
-            const uint64_t index = z0 * n * n + i;
+            const uint64_t k = first + i / brickVoxels, inBrick = i % brickVoxels;
+            const glm::ivec3 local(int(inBrick % VCT_VOXEL_BRICK),
+                                   int((inBrick / VCT_VOXEL_BRICK) % VCT_VOXEL_BRICK),
+                                   int(inBrick / (VCT_VOXEL_BRICK * VCT_VOXEL_BRICK)));
             StaticAccumVoxel voxel;
-            voxel.ijk = glm::ivec3(int(index % n), int((index / n) % n), int(index / (n * n)));
+            voxel.ijk = glm::ivec3(bricks_.bricks[k]) * glsl::VOXEL_BRICK + local;
             std::memcpy(voxel.accum.data(), accum, kAccumVoxelBytes);
             voxels.push_back(voxel);
         }
     }
+    // The file lists voxels in linear-index order (io/vdb_io.h); bricks are not.
+    std::sort(voxels.begin(), voxels.end(),
+              [n = int(resolution_)](const StaticAccumVoxel& a, const StaticAccumVoxel& b) {
+                  return glsl::voxelLinearIndex(a.ijk, n) < glsl::voxelLinearIndex(b.ijk, n);
+              });
     return voxels;
 }
 
 std::vector<glm::vec4> VoxelGrid::readRadiance(uint32_t mip) {
-    const std::vector<glm::vec4> slabs = readVolume(radiance_, mip);
     const size_t size = std::max(1u, resolution_ >> mip);
     std::vector<glm::vec4> out(size * size * size, glm::vec4(0.0f));
+    if (mip == 0) {
+        // From the atlas: each brick's voxels (not its apron), the largest of the six slabs.
+        const std::vector<glm::vec4> texels = readLevel(radianceAtlas_, 0);
+        const size_t width = radianceAtlas_.width(), height = radianceAtlas_.height();
+        for (uint32_t k = 0; k < bricks_.brickCount(); ++k)
+            for (int z = 0; z < glsl::VOXEL_BRICK; ++z)
+                for (int y = 0; y < glsl::VOXEL_BRICK; ++y)
+                    for (int x = 0; x < glsl::VOXEL_BRICK; ++x) {
+                        const glm::ivec3 local(x, y, z);
+                        const glm::ivec3 v = glm::ivec3(bricks_.bricks[k]) * glsl::VOXEL_BRICK + local;
+                        glm::vec4& o = out[glsl::voxelLinearIndex(v, int(size))];
+                        for (int slab = 0; slab < glsl::VOXEL_SLAB_COUNT; ++slab) {
+                            const glm::ivec3 t = glsl::radianceAtlasTexel(k, bricks_.atlasSide, local, slab);
+                            o = glm::max(o,
+                                         texels[size_t(t.x) + width * (size_t(t.y) + height * size_t(t.z))]);
+                        }
+                    }
+        return out;
+    }
+    const std::vector<glm::vec4> slabs = readLevel(radianceMips_, mip - 1);
     for (size_t i = 0; i < out.size(); ++i) {
         const size_t x = i % size, yz = i / size;
         for (size_t slab = 0; slab < size_t(glsl::VOXEL_SLAB_COUNT); ++slab)

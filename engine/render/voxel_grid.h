@@ -9,8 +9,11 @@
 //    origin + (i + 0.5)·voxelSize. Texture coordinate of a world point: UVW = (p − origin) / (N·voxelSize).
 //  - Mip level m has max(1, N >> m)³ texels, each the 2×2×2 premultiplied average of level m−1; a texel of
 //    level m spans 2^m voxels. mipCount() = log2(N) + 1 (down to 1³).
-//  - radiance(): RGBA16F, rgb = outgoing radiance × opacity, a = opacity (premultiplied). Sample it with
-//    sampler(): trilinear, linear between mips, clamp-to-border transparent black (outside = empty space).
+//  - Radiance: RGBA16F, rgb = outgoing radiance × opacity, a = opacity (premultiplied), in six direction slabs.
+//    Mip 0 is sparse, in the radiance atlas (docs/design.md §5.10); mips 1.. are dense, in radianceMips()
+//    (its level m − 1 holds mip m), sampled with sampler(): trilinear, linear between mips, clamped to the edge.
+//  - Sparse storage: only the bricks of VCT_VOXEL_BRICK³ voxels the scene can reach have storage (bricks(),
+//    render/voxel_bricks.h): the accumulators, the material atlases and the radiance atlas hold those alone.
 //  - N is a power of two in 32..256. Default (settings.voxelResolution = 0): 64 on a CPU device (lavapipe),
 //    128 on a GPU.
 #pragma once
@@ -23,18 +26,11 @@
 
 #include "io/vdb_io.h"
 #include "render/settings.h"
+#include "render/voxel_bricks.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
 #include "vk/sampler.h"
-
-// The voxel math of the shaders (shaders/lib/voxel.glsl) as C++, in namespace vct::glsl like
-// render/shader_math.h (include guards keep the two compatible in one translation unit).
-#include "lib/cpp_glsl.h"
-namespace vct::glsl {
-using namespace glm;
-#include "lib/voxel.glsl"
-}  // namespace vct::glsl
 
 namespace vct {
 
@@ -74,22 +70,38 @@ class VoxelGrid {
     const Aabb& contentBounds() const { return contentBounds_; }
     uint32_t mipCount() const { return mipCount_; }
 
-    // Premultiplied radiance + opacity, 3D RGBA16F with the full mip chain (SAMPLED | STORAGE): six direction
-    // slabs of N³ side by side along x (6N × N × N; lib/voxel.glsl, directional radiance).
-    vk::Image& radiance() { return radiance_; }
+    // Premultiplied radiance + opacity, mips 1 and coarser, 3D RGBA16F (SAMPLED | STORAGE): six direction slabs
+    // of (N/2)³ side by side along x (3N × N/2 × N/2 at its level 0, which is mip 1; lib/voxel.glsl, directional
+    // radiance). Sampled with sampler().
+    vk::Image& radianceMips() { return radianceMips_; }
     VkSampler sampler() const { return sampler_.handle(); }
+    // Mip 0: the radiance atlas (lib/voxel_bricks.glsl), 3D RGBA16F (SAMPLED | STORAGE), sampled with
+    // atlasSampler() (trilinear within a block, one level).
+    vk::Image& radianceAtlas() { return radianceAtlas_; }
+    VkSampler atlasSampler() const { return atlasSampler_.handle(); }
+    // The brick table the shaders read (lib/voxel_storage.glsl) and the layout it came from.
+    vk::Buffer& brickTable() { return brickTable_; }
+    const BrickLayout& bricks() const { return bricks_; }
 
-    // Resolved material volumes (mip 0 only, STORAGE): albedo rgb + opacity a (RGBA8), averaged normal
-    // (RGBA16F xyz, not renormalised: shorter where surfaces in the voxel disagree), emission (RGBA16F rgb).
+    // Resolved material atlases (one level, STORAGE; lib/voxel_bricks.glsl): albedo rgb + opacity a (RGBA8),
+    // averaged normal (RGBA16F xyz, not renormalised: shorter where surfaces in the voxel disagree), emission
+    // (RGBA16F rgb).
     vk::Image& albedo() { return albedo_; }
     vk::Image& normal() { return normal_; }
     vk::Image& emission() { return emission_; }
-    // The light each occupied voxel gathers from the grid for the next bounce (RGBA16F rgb, mip 0, STORAGE):
-    // cosine-weighted mean incoming radiance about its normal (voxel_bounce.comp).
+    // The light each occupied voxel gathers from the grid for the next bounce (RGBA16F rgb, an atlas like the
+    // materials): cosine-weighted mean incoming radiance about its normal (voxel_bounce.comp).
     vk::Image& bounce() { return bounce_; }
 
-    // Fixed-point accumulators (VCT_VOXEL_ACCUM_STRIDE uints per voxel): static geometry, written once, and
-    // moving instances, cleared and rewritten every frame (absent when the scene has none).
+    // Device memory of the grid's storage, and what dense N³ volumes and accumulators would take.
+    struct Memory {
+        uint64_t bytes = 0, denseBytes = 0;
+    };
+    Memory memory() const { return memory_; }
+
+    // Fixed-point accumulators (VCT_VOXEL_ACCUM_STRIDE uints per voxel of each allocated brick, brick after
+    // brick): static geometry, written once, and moving instances, cleared and rewritten every frame (absent
+    // when the scene has none).
     vk::Buffer& staticAccumulator() { return staticAccum_; }
     vk::Buffer& dynamicAccumulator() { return dynamicAccum_; }
     bool hasMovingInstances() const { return dynamicAccum_.handle() != VK_NULL_HANDLE; }
@@ -124,17 +136,19 @@ class VoxelGrid {
     void releaseStaticCache();
 
     // ---- readback (host copies; call between frames) ----
-    // Level `mip` of a volume (albedo, normal, emission or radiance) as RGBA floats, x fastest then y then z
-    // (voxelLinearIndex order), max(1, N >> mip)³ of them (6× for the radiance's slabs, x running across all
-    // six). RGBA8 reads as value / 255.
-    std::vector<glm::vec4> readVolume(vk::Image& volume, uint32_t mip = 0);
-    // Level `mip` of the radiance per voxel, N³ (not 6N·N²): the largest of its six slabs, channel by
-    // channel (the radiance leaving towards the side its surfaces face, and the opacity).
+    // A material atlas (albedo, normal, emission or bounce) as a dense N³ volume of RGBA floats, x fastest then
+    // y then z (voxelLinearIndex order), zero where no brick has storage. RGBA8 reads as value / 255.
+    std::vector<glm::vec4> readVolume(vk::Image& atlas);
+    // Level `mip` of the radiance per voxel, max(1, N >> mip)³ (not 6×): the largest of its six slabs, channel
+    // by channel (the radiance leaving towards the side its surfaces face, and the opacity).
     std::vector<glm::vec4> readRadiance(uint32_t mip = 0);
     // The static accumulator's voxels with at least one sample, in linear-index order.
     std::vector<StaticAccumVoxel> readStaticAccumulator();
 
   private:
+    // Level `level` of `image` as RGBA floats, x fastest (the whole level: every slab, every block).
+    std::vector<glm::vec4> readLevel(vk::Image& image, uint32_t level);
+
     std::optional<UpdateRegions> updateRegions_;
     Aabb contentBounds_;
     const vk::Context& context_;
@@ -142,12 +156,15 @@ class VoxelGrid {
     uint32_t resolution_ = 0;
     uint32_t mipCount_ = 1;
     glm::vec4 originSize_{0.0f};
-    vk::Image radiance_, albedo_, normal_, emission_, bounce_;
+    BrickLayout bricks_;
+    vk::Buffer brickTable_;
+    vk::Image radianceMips_, radianceAtlas_, albedo_, normal_, emission_, bounce_;
     vk::Buffer staticAccum_, dynamicAccum_;
-    vk::Sampler sampler_;
+    vk::Sampler sampler_, atlasSampler_;
+    Memory memory_;
     bool staticVoxelized_ = false;
     // Voxel cache staged for upload: the cached voxels packed back to back, and one copy region per run of
-    // consecutive voxels (the accumulator is cleared first, empty voxels need no bytes).
+    // voxels consecutive in the accumulator (it is cleared first, empty voxels need no bytes).
     vk::Buffer staticCache_;
     std::vector<VkBufferCopy> staticCacheRegions_;
 };

@@ -6,9 +6,22 @@
 
 #include "core/error.h"
 #include "io/safe_write.h"
+#include "render/renderer.h"
 #include "report/settings_json.h"
 
 namespace vct {
+
+TimingReport::VoxelStorage voxelStorageReport(Renderer& renderer) {
+    TimingReport::VoxelStorage storage;
+    const VoxelGrid* grid = renderer.voxelGrid();
+    if (!grid) return storage;
+    storage.resolution = grid->resolution();
+    storage.bricks = grid->bricks().brickCount();
+    storage.brickSlots = uint32_t(grid->bricks().map.size());
+    storage.bytes = grid->memory().bytes;
+    storage.denseBytes = grid->memory().denseBytes;
+    return storage;
+}
 
 void writeTimingsJson(const std::filesystem::path& path, const TimingReport& report) {
     nlohmann::json passes = nlohmann::json::array();
@@ -28,6 +41,12 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                            {"fps", report.frame.medianMs > 0.0 ? 1000.0 / report.frame.medianMs : 0.0},
                            {"settings", settingsJson(report.settings)},
                            {"resampled_fraction", report.resampledFraction}};
+    if (report.voxels.resolution > 0)
+        json["voxel_storage"] = {{"resolution", report.voxels.resolution},
+                                 {"bricks", report.voxels.bricks},
+                                 {"brick_slots", report.voxels.brickSlots},
+                                 {"bytes", report.voxels.bytes},
+                                 {"dense_bytes", report.voxels.denseBytes}};
     writeTextReplacing(path, json.dump(2) + "\n");  // replaces a planted symlink instead of following it
 }
 
@@ -55,6 +74,15 @@ std::string formatTimingTable(const TimingReport& report) {
     std::snprintf(line, sizeof(line), "re-traced    %9.2f%% of the pixels (last frame)\n",
                   100.0 * report.resampledFraction);
     table += line;
+    const TimingReport::VoxelStorage& v = report.voxels;
+    if (v.resolution > 0 && v.brickSlots > 0 && v.denseBytes > 0) {
+        std::snprintf(line, sizeof(line),
+                      "voxels       %u^3: %u of %u bricks (%.1f%%), %.1f MiB (dense %.1f MiB: %.1f%%)\n",
+                      v.resolution, v.bricks, v.brickSlots, 100.0 * v.bricks / v.brickSlots,
+                      double(v.bytes) / 1048576.0, double(v.denseBytes) / 1048576.0,
+                      100.0 * double(v.bytes) / double(v.denseBytes));
+        table += line;
+    }
     return table;
 }
 

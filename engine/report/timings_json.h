@@ -10,6 +10,8 @@
 
 namespace vct {
 
+class Renderer;
+
 struct TimingReport {
     std::string device;
     uint32_t width = 0, height = 0;
@@ -19,7 +21,16 @@ struct TimingReport {
     std::vector<vk::PassTiming> passes;
     vk::PassTiming frame;
     float resampledFraction = 0.0f;  // share of the pixels re-traced in the last frame (adaptive re-tracing)
+    // The voxel grid's sparse storage (docs/design.md §5.10); resolution 0: no grid (GI off).
+    struct VoxelStorage {
+        uint32_t resolution = 0;
+        uint32_t bricks = 0, brickSlots = 0;  // allocated, and (N / VCT_VOXEL_BRICK)³
+        uint64_t bytes = 0, denseBytes = 0;   // device memory, and what dense N³ storage would take
+    } voxels;
 };
+
+// The renderer's voxel storage for the report (all zero without a grid).
+TimingReport::VoxelStorage voxelStorageReport(Renderer& renderer);
 
 void writeTimingsJson(const std::filesystem::path& path, const TimingReport& report);
 // A fixed-width table for the terminal.

@@ -51,6 +51,7 @@ class Image {
     const ImageDesc& desc() const { return desc_; }
     uint32_t width() const { return desc_.width; }
     uint32_t height() const { return desc_.height; }
+    uint32_t depth() const { return desc_.depth; }
     VkFormat format() const { return desc_.format; }
     VkImageAspectFlags aspect() const;
     bool valid() const { return image_ != VK_NULL_HANDLE; }

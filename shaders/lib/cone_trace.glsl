@@ -1,25 +1,56 @@
 // Cone tracing of one full-res pixel through the voxel grid (docs/design.md §5.3–5.5): shared by trace.comp (one
-// low-res sample per thread) and resample.comp (the listed full-res pixels). GLSL only: it marches a sampler3D.
-// Expects before inclusion: `frame` (FrameUniforms), `environmentMap` (lib/environment_sample.glsl), lib/constants,
-// brdf, cone, voxel and gbuffer_read.
+// low-res sample per thread) and resample.comp (the listed full-res pixels). GLSL only: it marches the radiance,
+// mip 0 in the radiance atlas (declared here, with the brick table: lib/voxel_storage.glsl) and the coarser mips in
+// the sampler3D the caller passes (its level m − 1 holds mip m). Expects before inclusion: `frame`
+// (FrameUniforms), `environmentMap` (lib/environment_sample.glsl), lib/constants, brdf, cone, voxel and
+// gbuffer_read.
 #ifndef VCT_CONE_TRACE_GLSL
 #define VCT_CONE_TRACE_GLSL
 
 #include "lib/environment_sample.glsl"
 #include "lib/voxel.glsl"
+#include "lib/voxel_bricks.glsl"
+#include "lib/voxel_storage.glsl"
+
+// Mip 0 of the radiance: the six slabs' blocks of the allocated bricks (lib/voxel_bricks.glsl), trilinear, no mips.
+layout(set = 0, binding = VCT_BINDING_VOXEL_ATLAS) uniform sampler3D voxelAtlas;
 
 // The grid as a cone travelling along unit `dir` sees it at `uvw` and (fractional) `mip`: the three direction
 // slabs facing it (lib/voxel.glsl), weighted by dir² per axis. Slabs with no weight are not sampled (an
-// axis-aligned cone reads one).
+// axis-aligned cone reads one). Below mip 1 the sample blends mip 0 from the atlas with mip 1 (what a trilinear
+// read between the two levels of one texture does): the atlas read is the block of the brick holding the
+// sample's lower corner voxel, which its apron makes hold all eight voxels the filter reads; no block there means
+// none of them is occupied.
 vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
     const vec3 w = voxelSlabWeights(dir);
-    // Texels per slab at the coarser of the two mips the sample blends.
-    const float texels = float(max(int(frame.voxels.resolution) >> int(ceil(mip)), 1));
+    const int n = int(frame.voxels.resolution);
     vec4 s = vec4(0.0);
-    for (int axis = 0; axis < 3; ++axis) {
-        if (w[axis] <= 0.0) continue;
-        const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
-        s += w[axis] * textureLod(voxels, slabUvw, mip);
+    const float fine = 1.0 - min(mip, 1.0);
+    if (fine > 0.0) {
+        // Voxel units, clamped to the outermost texel centres (the coarse sampler's clamp to the edge).
+        const vec3 p = clamp(uvw * float(n), vec3(0.5), vec3(float(n) - 0.5));
+        const ivec3 brick = voxelBrickOf(ivec3(floor(p - 0.5)));
+        const uint k = brickIndex(brick);
+        if (k != VCT_BRICK_NONE) {
+            const vec3 inBlock = p - vec3(brick * VOXEL_BRICK);
+            const vec3 atlasSize = vec3(textureSize(voxelAtlas, 0));
+            for (int axis = 0; axis < 3; ++axis) {
+                if (w[axis] <= 0.0) continue;
+                const ivec3 block =
+                    radianceAtlasTexel(k, frame.voxels.brickAtlasSide, ivec3(0), voxelSlabFor(dir, axis));
+                s += (w[axis] * fine) * textureLod(voxelAtlas, (vec3(block) + inBlock) / atlasSize, 0.0);
+            }
+        }
+    }
+    if (mip > 0.0) {
+        // Texels per slab at the coarser of the two mips the sample blends.
+        const float texels = float(max(n >> int(ceil(max(mip, 1.0))), 1));
+        const float coarse = min(mip, 1.0);
+        for (int axis = 0; axis < 3; ++axis) {
+            if (w[axis] <= 0.0) continue;
+            const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
+            s += (w[axis] * coarse) * textureLod(voxels, slabUvw, max(mip - 1.0, 0.0));
+        }
     }
     return s;
 }

@@ -61,7 +61,8 @@ struct VoxelUniforms {
     float voxelSize;  // edge length of one voxel, world units; 0 while there is no grid
     uint resolution;  // N (N³ voxels)
     uint mipCount;
-    uint pad0, pad1;
+    uint brickAtlasSide;  // bricks per atlas row and column (lib/voxel_bricks.glsl)
+    uint brickCount;      // bricks allocated (the atlases' and pools' blocks in use)
 };
 
 // Spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6): trace, upsample, resample.
@@ -155,8 +156,11 @@ struct SkinPushConstants {
 // ---- binding numbers ----
 // Each pass declares its resources, with their binding numbers, once in its resource table
 // (engine/passes/NAME_pass.cpp, render/pass_resources.h); its shader declares the same numbers, and the
-// pipeline's creation checks the two against each other (vk/binding_check.h). Only the frame's is common:
-#define VCT_BINDING_FRAME 0  // FrameUniforms, in every pass that needs it
+// pipeline's creation checks the two against each other (vk/binding_check.h). Only the frame's and the sparse
+// voxel storage's are common (lib/voxel_storage.glsl declares those):
+#define VCT_BINDING_FRAME 0         // FrameUniforms, in every pass that needs it
+#define VCT_BINDING_BRICKS 20       // the brick table (map, then coordinates), in every pass reading voxels
+#define VCT_BINDING_VOXEL_ATLAS 21  // mip 0 of the radiance (the radiance atlas), where cones are traced
 
 // upsample's specialization constants (one pipeline per configuration), after VCT_SPEC_TRACE_SCALE (2 or 4)
 #define VCT_UPSAMPLE_SPEC_WEIGHTS 1     // VCT_WEIGHTS_*
@@ -176,6 +180,12 @@ struct ResampleListHeader {
 // voxelize (triangles → fixed-point accumulators) and its resolve (accumulators → albedo/normal/emission)
 #define VCT_VOXEL_GROUP_SIZE 64  // voxelize: triangles per workgroup
 #define VCT_VOXEL_TILE 4         // resolve / inject / mips: 4×4×4 voxels per workgroup
+// Sparse storage (docs/design.md §5.10): the grid is stored in bricks of VCT_VOXEL_BRICK³ voxels, allocated where
+// the scene can have surfaces. One brick is one workgroup of the resolve, inject and bounce.
+#define VCT_VOXEL_BRICK VCT_VOXEL_TILE
+#define VCT_BRICK_NONE 0xFFFFFFFFu  // the brick map's entry for a brick with no storage
+// Whole-grid dispatches run one workgroup per allocated brick, in rows of this many (maxComputeWorkGroupCount).
+#define VCT_BRICK_DISPATCH_ROW 32768
 // uints per voxel: albedo rgb, normal xyz, emission rgb, count, then the transparency sum: Σ (1 − alpha) of
 // the samples of alphaMode BLEND surfaces (0 for opaque ones), from which the resolve takes the opacity.
 #define VCT_VOXEL_ACCUM_STRIDE 11
@@ -197,19 +207,23 @@ struct VoxelizePushConstants {
     // resolve: y = 1 when the dynamic accumulator is bound, z = 1 to zero it once read (the next frame's
     // moving instances start from zero where they were)
     uvec4 params;
-    uvec4 region;  // resolve: xyz, the first voxel of the region its dispatch covers
+    uvec4 region;  // resolve: as InjectPushConstants::region
 };
 
 // Push constants of inject: params.x = 1 adds the gathered bounce (albedo × the voxel_bounce image) to the
 // direct light; 0 (the first inject of a frame) injects direct light and emission only.
 struct InjectPushConstants {
-    uvec4 params;  // x = 1: add the gathered bounce; y = 1: store empty voxels too (level 0 was not cleared)
-    uvec4 region;  // xyz: the first voxel of the region the dispatch covers
+    uvec4 params;  // x = 1: add the gathered bounce
+    // xyz: the first voxel of the region the dispatch covers, w = 1 when it covers a region (then empty voxels are
+    // stored too: the atlas was not cleared); w = 0: one workgroup per allocated brick (lib/voxel_storage.glsl)
+    uvec4 region;
 };
 
-// Push constants of mips: the region of the level written, its first texel (xyz, per slab) and width in x.
+// Push constants of mips: the region of the level written, its first texel (xyz, per slab) and width in x; params.x
+// = 1 for level 1 (read from the radiance atlas).
 struct VoxelMipsPushConstants {
     uvec4 region;
+    uvec4 params;
 };
 
 #ifdef __cplusplus
@@ -241,7 +255,7 @@ static_assert(sizeof(DrawPushConstants) == 16);
 static_assert(sizeof(VoxelizePushConstants) == 48);
 static_assert(sizeof(SkinPushConstants) == 48);
 static_assert(sizeof(InjectPushConstants) == 32);
-static_assert(sizeof(VoxelMipsPushConstants) == 16);
+static_assert(sizeof(VoxelMipsPushConstants) == 32);
 }  // namespace vct::gpu
 #endif
 

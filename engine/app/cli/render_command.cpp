@@ -116,6 +116,7 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.passes = renderer.timer().passStats();
         report.frame = renderer.timer().frameStats();
         report.resampledFraction = renderer.resampledFraction();
+        report.voxels = voxelStorageReport(renderer);
         writeTimingsJson(outDir / "timings.json", report);
         if (args.has("aux"))
             for (const std::string& name : writeAuxImages(renderer, outDir))

@@ -1,0 +1,133 @@
+#include "render/voxel_bricks.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lib/shared.h"
+
+namespace vct {
+
+namespace {
+
+constexpr int kBrick = VCT_VOXEL_BRICK;
+
+// The bricks whose block (voxels bB .. bB + B on each axis, the apron included) holds a voxel of [lo, hi].
+struct BrickRange {
+    glm::ivec3 min, max;  // inclusive
+};
+BrickRange bricksHolding(glm::ivec3 lo, glm::ivec3 hi, int bricksPerAxis) {
+    // Voxel v is in brick v / B and, on a brick's lower face (v % B == 0), in the apron of the one below: the first
+    // brick is (lo − 1) / B (lo ≥ 0; C++ division truncates, so lo = 0 gives brick 0).
+    return {glm::max((lo - 1) / kBrick, glm::ivec3(0)), glm::min(hi / kBrick, glm::ivec3(bricksPerAxis - 1))};
+}
+
+// Samples of the animation for moving instances' bounds (as voxelSceneBounds).
+constexpr int kAnimationSamples = 32;
+
+}  // namespace
+
+std::vector<uint32_t> BrickLayout::table() const {
+    std::vector<uint32_t> out = map;
+    out.reserve(map.size() + bricks.size());
+    for (const glm::uvec3& b : bricks) out.push_back(b.x | (b.y << 10) | (b.z << 20));
+    return out;
+}
+
+double BrickLayout::occupancy() const { return map.empty() ? 0.0 : double(bricks.size()) / double(map.size()); }
+
+glm::uvec2 brickAtlasShape(uint32_t count) {
+    const uint32_t blocks = std::max(count, 1u);
+    uint32_t side = uint32_t(std::ceil(std::cbrt(double(blocks))));
+    while (side > 1 && uint64_t(side - 1) * (side - 1) * (side - 1) >= blocks) --side;  // cbrt's rounding
+    while (uint64_t(side) * side * side < blocks) ++side;
+    const uint32_t layers = (blocks + side * side - 1) / (side * side);
+    return {side, layers};
+}
+
+BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t resolution) {
+    BrickLayout layout;
+    layout.resolution = resolution;
+    const int perAxis = int(resolution) / kBrick;
+    layout.bricksPerAxis = uint32_t(perAxis);
+    std::vector<uint8_t> needed(size_t(perAxis) * perAxis * perAxis, 0);
+    auto mark = [&](glm::ivec3 b) { needed[glsl::brickLinearIndex(b, perAxis)] = 1; };
+    const glm::vec3 origin(originSize);
+    const float voxelSize = originSize.w;
+    const int n = int(resolution);
+
+    // Static triangles: the voxelizer's loop (shaders/voxelize.comp) visits the voxels of the triangle's bounds
+    // and keeps those its box overlaps; a brick's block holds such a voxel only if the block's box overlaps the
+    // triangle too. The test's box is widened a little for the CPU's and GPU's rounding.
+    constexpr float kSlack = 1e-3f;
+    const glm::vec3 blockHalf(0.5f * float(kBrick + 1) + kSlack);
+    for (const Instance& instance : scene.instances(0.0f)) {
+        if (instance.moving || instance.mesh < 0) continue;
+        for (uint32_t primitiveIndex : scene.meshes[size_t(instance.mesh)].primitives) {
+            const Primitive& primitive = scene.primitives[primitiveIndex];
+            for (uint32_t t = 0; t + 2 < primitive.indexCount; t += 3) {
+                glm::vec3 p[3];
+                bool inside = true;  // the loader checks indices; a scene built in code might not
+                for (int k = 0; k < 3; ++k) {
+                    const int64_t v = int64_t(scene.indices[primitive.firstIndex + t + uint32_t(k)]) +
+                                      primitive.vertexOffset;
+                    inside = inside && v >= 0 && size_t(v) < scene.vertices.size();
+                    if (!inside) break;
+                    const glm::vec3 world =
+                        glm::vec3(instance.world * glm::vec4(scene.vertices[size_t(v)].position, 1.0f));
+                    p[k] = (world - origin) / voxelSize;
+                }
+                if (!inside) continue;
+                const glm::vec3 low = glm::min(p[0], glm::min(p[1], p[2]));
+                const glm::vec3 high = glm::max(p[0], glm::max(p[1], p[2]));
+                if (!glm::all(glm::greaterThan(high, glm::vec3(-1.0f))) ||
+                    !glm::all(glm::lessThan(low, glm::vec3(float(n) + 1.0f))))
+                    continue;  // outside the grid (or not finite)
+                const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0));
+                const glm::ivec3 hi = glm::min(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(n - 1));
+                if (glm::any(glm::greaterThan(lo, hi))) continue;
+                const BrickRange range = bricksHolding(lo, hi, perAxis);
+                for (int z = range.min.z; z <= range.max.z; ++z)
+                    for (int y = range.min.y; y <= range.max.y; ++y)
+                        for (int x = range.min.x; x <= range.max.x; ++x) {
+                            const glm::vec3 centre = glm::vec3(x, y, z) * float(kBrick) + 0.5f * float(kBrick + 1);
+                            if (glsl::triangleBoxOverlap(centre, blockHalf, p[0], p[1], p[2]))
+                                mark(glm::ivec3(x, y, z));
+                        }
+            }
+        }
+    }
+
+    // Moving instances: every brick within a voxel of their bounds at any sampled time.
+    float duration = 0.0f;
+    for (const Animation& animation : scene.animations) duration = std::max(duration, animation.duration);
+    for (int s = 0; s <= (duration > 0.0f ? kAnimationSamples : 0); ++s) {
+        const float time = duration * float(s) / float(kAnimationSamples);
+        for (const Instance& instance : scene.instances(time)) {
+            if (!instance.moving || instance.bounds.empty()) continue;
+            const glm::vec3 low = (instance.bounds.min - origin) / voxelSize;
+            const glm::vec3 high = (instance.bounds.max - origin) / voxelSize;
+            const glm::ivec3 lo = glm::clamp(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0), glm::ivec3(n - 1));
+            const glm::ivec3 hi = glm::clamp(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(0), glm::ivec3(n - 1));
+            const BrickRange range = bricksHolding(lo, hi, perAxis);
+            for (int z = range.min.z; z <= range.max.z; ++z)
+                for (int y = range.min.y; y <= range.max.y; ++y)
+                    for (int x = range.min.x; x <= range.max.x; ++x) mark(glm::ivec3(x, y, z));
+        }
+    }
+
+    layout.map.assign(needed.size(), VCT_BRICK_NONE);
+    for (int z = 0; z < perAxis; ++z)
+        for (int y = 0; y < perAxis; ++y)
+            for (int x = 0; x < perAxis; ++x) {
+                const uint32_t i = glsl::brickLinearIndex(glm::ivec3(x, y, z), perAxis);
+                if (!needed[i]) continue;
+                layout.map[i] = uint32_t(layout.bricks.size());
+                layout.bricks.push_back(glm::uvec3(x, y, z));
+            }
+    const glm::uvec2 shape = brickAtlasShape(layout.brickCount());
+    layout.atlasSide = shape.x;
+    layout.atlasLayers = shape.y;
+    return layout;
+}
+
+}  // namespace vct

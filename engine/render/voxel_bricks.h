@@ -1,0 +1,49 @@
+// Sparse voxel storage (docs/design.md §5.10, shaders/lib/voxel_bricks.glsl): which bricks of VCT_VOXEL_BRICK³
+// voxels get storage, and where. Computed once per grid on the CPU from the scene: every brick a static triangle
+// can write (the voxelizer's own overlap test, on the brick's block with its apron) and every brick moving
+// geometry can reach over the animation. The voxel passes never write outside them.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "lib/shared.h"
+#include "scene/scene.h"
+
+// The voxel math of the shaders (shaders/lib/voxel.glsl, voxel_bricks.glsl) as C++, in namespace vct::glsl like
+// render/shader_math.h (include guards keep the two compatible in one translation unit).
+#include "lib/cpp_glsl.h"
+namespace vct::glsl {
+using namespace glm;
+#include "lib/voxel.glsl"
+#include "lib/voxel_bricks.glsl"
+}  // namespace vct::glsl
+
+namespace vct {
+
+struct BrickLayout {
+    uint32_t resolution = 0;     // N
+    uint32_t bricksPerAxis = 0;  // N / VCT_VOXEL_BRICK
+    // (N / VCT_VOXEL_BRICK)³ entries, brickLinearIndex order: the brick's index k, or VCT_BRICK_NONE.
+    std::vector<uint32_t> map;
+    std::vector<glm::uvec3> bricks;  // the allocated bricks' coordinates, k order (linear order)
+    uint32_t atlasSide = 1;          // blocks per atlas row and column (lib/voxel_bricks.glsl)
+    uint32_t atlasLayers = 1;        // layers of atlasSide² blocks
+
+    uint32_t brickCount() const { return uint32_t(bricks.size()); }
+    // What the shaders' brick table holds: the map, then each allocated brick packed x | y << 10 | z << 20.
+    std::vector<uint32_t> table() const;
+    // Share of the grid's bricks that have storage (0..1).
+    double occupancy() const;
+};
+
+// The bricks the scene needs in the grid (origin, voxel size) of N³ voxels: those whose block (the brick and its
+// apron) a static triangle overlaps, and those within a voxel of a moving instance's bounds at any time of the
+// animation (sampled as voxelSceneBounds samples it).
+BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t resolution);
+
+// The atlas shape (side, layers) for `count` bricks: the smallest cube-like arrangement.
+glm::uvec2 brickAtlasShape(uint32_t count);
+
+}  // namespace vct

@@ -1,0 +1,21 @@
+// Sparse voxel storage in the shaders (docs/design.md §5.10, lib/voxel_bricks.glsl): the brick table. GLSL only. Expects before inclusion: `frame`
+// (FrameUniforms), lib/voxel_bricks.glsl.
+#ifndef VCT_VOXEL_STORAGE_GLSL
+#define VCT_VOXEL_STORAGE_GLSL
+
+// The brick table (render/voxel_bricks.h): the brick map, (N / VOXEL_BRICK)³ entries in brickLinearIndex order,
+// each the brick's index k or VCT_BRICK_NONE; then brickCount packed brick coordinates (x | y << 10 | z << 20), the
+// allocated bricks in index order.
+layout(set = 0, binding = VCT_BINDING_BRICKS, std430) readonly buffer BrickTable { uint brickTable[]; };
+
+int bricksPerAxis() { return int(frame.voxels.resolution) / VOXEL_BRICK; }
+
+// Index k of `brick` (inside the grid), VCT_BRICK_NONE when it has no storage.
+uint brickIndex(ivec3 brick) { return brickTable[brickLinearIndex(brick, bricksPerAxis())]; }
+
+ivec3 allocatedBrick(uint k) {
+    const uint bits = brickTable[uint(bricksPerAxis() * bricksPerAxis() * bricksPerAxis()) + k];
+    return ivec3(bits & 1023u, (bits >> 10) & 1023u, bits >> 20);
+}
+
+#endif  // VCT_VOXEL_STORAGE_GLSL
