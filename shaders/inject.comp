@@ -25,6 +25,8 @@ layout(set = 0, binding = 5) uniform sampler2DShadow shadowMap;
 layout(set = 0, binding = 6, rgba16f) uniform image3D radianceImage;
 // The light the voxels gathered from the grid (voxel_bounce.comp): cosine-weighted mean incoming radiance.
 layout(set = 0, binding = 7, rgba16f) uniform readonly image3D bounceImage;
+// Mip 0 when it is dense (level 0 of the radiance mips, six slabs of N³ side by side along x), cleared alike.
+layout(set = 0, binding = 8, rgba16f) uniform image3D denseRadianceImage;
 
 #include "lib/voxel_storage.glsl"
 #include "lib/voxel_workgroup.glsl"
@@ -42,9 +44,17 @@ float shadowVisibility(vec3 p) {
     return texture(shadowMap, vec3(uv, ndc.z));
 }
 
-// The voxel's six slab values, in its brick's block and in the apron of each brick below it whose block reaches
-// it (a voxel on the brick's −x face is the +x apron of the brick before it in x, and so on: up to 8 blocks).
+// The voxel's six slab values: in the dense mip 0, or in its brick's atlas block and in the apron of each brick
+// below it whose block reaches it (a voxel on the brick's −x face is the +x apron of the brick before it in x, and
+// so on: up to 8 blocks).
 void storeRadiance(uint k, ivec3 brick, ivec3 local, const vec4 slabs[VOXEL_SLAB_COUNT]) {
+    if (frame.voxels.atlasInvSize.w == 0.0) {  // dense mip 0
+        const ivec3 voxel = brick * VOXEL_BRICK + local;
+        const int n = int(frame.voxels.resolution);
+        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
+            imageStore(denseRadianceImage, ivec3(voxel.x + slab * n, voxel.yz), slabs[slab]);
+        return;
+    }
     const uint side = frame.voxels.brickAtlasSide;
     for (int below = 0; below < 8; ++below) {
         const ivec3 step = ivec3(below & 1, (below >> 1) & 1, below >> 2);

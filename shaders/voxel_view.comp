@@ -30,10 +30,11 @@ layout(set = 0, binding = 2,
 layout(push_constant) uniform Push { VoxelViewPushConstants push; };
 #include "lib/voxel_storage.glsl"
 
-// Texel `cell` of slab `slab` at level `mip`: mip 0 from its brick's atlas block (empty without one), the
-// others from the coarse texture (its level mip − 1).
+// Texel `cell` of slab `slab` at level `mip`: from the radiance mips' texture, or for a sparse mip 0 from its
+// brick's atlas block (empty without one).
 vec4 fetchTexel(ivec3 cell, int slab, int cells, int mip) {
-    if (mip > 0) return texelFetch(voxels, ivec3(cell.x + slab * cells, cell.yz), mip - 1);
+    const int mipBase = int(frame.voxels.atlasInvSize.w);  // 1: mip 0 is in the atlas
+    if (mip >= mipBase) return texelFetch(voxels, ivec3(cell.x + slab * cells, cell.yz), mip - mipBase);
     const ivec3 brick = voxelBrickOf(cell);
     const uint k = brickIndex(brick);
     if (k == VCT_BRICK_NONE) return vec4(0.0);

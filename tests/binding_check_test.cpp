@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "lib/shared.h"
 #include "render/pass_resources.h"
 #include "test_util.h"
 #include "vk/spirv_reflect.h"
@@ -38,9 +39,12 @@ std::string errorOf(F&& f) {
 
 TEST(SpirvReflect, TraceShader) {
     const std::vector<vk::ShaderBinding> bindings = vk::reflectBindings(vk::readSpirv("trace.comp"));
-    EXPECT_EQ(bindings.size(),
-              13u);  // 9: the environment map (issue 20); 10-13: the history at trace scale 1
+    // 9: the environment map (issue 20); 10-13: the history at trace scale 1; the radiance atlas and the brick
+    // table (sparse voxel storage, issue 19)
+    EXPECT_EQ(bindings.size(), 15u);
     EXPECT_EQ(find(bindings, 0).type, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    EXPECT_EQ(find(bindings, VCT_BINDING_BRICKS).type, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(find(bindings, VCT_BINDING_VOXEL_ATLAS).dimension, VK_IMAGE_VIEW_TYPE_3D);
     const vk::ShaderBinding& voxels = find(bindings, 3);
     EXPECT_EQ(voxels.type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     EXPECT_EQ(voxels.dimension, VK_IMAGE_VIEW_TYPE_3D);
@@ -88,7 +92,11 @@ std::vector<vk::Binding> traceBindings() {
             {10, sampled, cs, "motion", VK_FORMAT_R16G16_SFLOAT, d2},
             {11, sampled, cs, "prevDepth", VK_FORMAT_D32_SFLOAT, d2},
             {12, sampled, cs, "prevNormalRoughness", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
-            {13, sampled, cs, "indirectHistory", VK_FORMAT_R32G32B32A32_UINT, d2}};
+            {13, sampled, cs, "indirectHistory", VK_FORMAT_R32G32B32A32_UINT, d2},
+            // Sparse voxel storage (docs/design.md §5.10): mip 0 of the radiance and the brick table.
+            {VCT_BINDING_BRICKS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs, "bricks"},
+            {VCT_BINDING_VOXEL_ATLAS, sampled, cs, "radianceAtlas", VK_FORMAT_R16G16B16A16_SFLOAT,
+             VK_IMAGE_VIEW_TYPE_3D}};
 }
 
 std::string checkTrace(const std::vector<vk::Binding>& declared) {

@@ -43,10 +43,13 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
                               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                               VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
         }
-        // Mip m is the texture's level m − 1; for mip 1 the source binding is unused (it reads the atlas).
+        // Mip m is the texture's level m − mipBase; a sparse mip 1 reads mip 0 from the atlas (the source binding
+        // is then unused).
+        const uint32_t base = grid_.mipBase();
+        const bool fromAtlas = level == 1 && grid_.sparseMip0();
         resources_.writer(frame)
-            .storage(kSource, radiance.mipView(level == 1 ? 0 : level - 2))
-            .storage(kDest, radiance.mipView(level - 1))
+            .storage(kSource, radiance.mipView(fromAtlas ? 0 : level - 1 - base))
+            .storage(kDest, radiance.mipView(level - base))
             .push(frame.context, cmd, pipeline_);
         // The texels with a child in the frame's region (the whole level without one), in each of the six
         // direction slabs side by side along x (lib/voxel.glsl).
@@ -56,7 +59,7 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
         if (region.empty()) continue;
         const glm::uvec3 extent = region.max - region.min;
         const gpu::VoxelMipsPushConstants push{glm::uvec4(region.min, extent.x),
-                                               glm::uvec4(level == 1 ? 1u : 0u, 0u, 0u, 0u)};
+                                               glm::uvec4(fromAtlas ? 1u : 0u, 0u, 0u, 0u)};
         pipeline_.pushConstants(cmd, &push, sizeof(push));
         vkCmdDispatch(cmd, voxelTileCount(extent.x * uint32_t(glsl::VOXEL_SLAB_COUNT)),
                       voxelTileCount(extent.y), voxelTileCount(extent.z));

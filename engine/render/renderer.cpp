@@ -74,7 +74,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     passes_.push_back(std::make_unique<ShadowPass>(context));
     if (settings.gi) {
         // The voxel grid and its light (docs/design.md §5.1–5.2); inject reads the shadow map drawn just before.
-        voxelGrid_ = std::make_unique<VoxelGrid>(context, scene, chooseVoxelResolution(context, settings));
+        const uint32_t n = chooseVoxelResolution(context, settings);
+        voxelGrid_ = std::make_unique<VoxelGrid>(context, scene, n, n >= settings.sparseMip0From);
         settings_.voxelResolution = voxelGrid_->resolution();
         // The static voxelization from a file (vct voxelize) instead of computing it; validated here.
         if (!settings.voxelCache.empty()) voxelGrid_->loadStaticCache(settings.voxelCache);
@@ -210,6 +211,9 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
         u.voxels.mipCount = voxelGrid_->mipCount();
         u.voxels.brickAtlasSide = voxelGrid_->bricks().atlasSide;
         u.voxels.brickCount = voxelGrid_->bricks().brickCount();
+        const vk::Image& atlas = voxelGrid_->radianceAtlas();
+        u.voxels.atlasInvSize = glm::vec4(1.0f / glm::vec3(atlas.width(), atlas.height(), atlas.depth()),
+                                          voxelGrid_->sparseMip0() ? 1.0f : 0.0f);
     }
 
     // Spatio-temporal upsampling (docs/design.md §6): weights, history and this frame's trace offset o_k. The

@@ -47,6 +47,11 @@ const SettingSpec kTable[] = {
      .help = "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
      .value = ChoiceValue{&S::voxelResolution, kVoxelResolutions, 0u}, .apply = A::Rebuild, .group = G::Gi,
      .demo = true, .json = true, .widget = W::Combo, .label = "voxels"},
+    {.name = "sparse-mip0-from", .valueName = "N",
+     .help = "store the radiance's mip 0 sparse (a brick atlas) from voxel resolution N up; dense below "
+             "(faster cone samples near surfaces, N^3 memory)",
+     .value = ChoiceValue{&S::sparseMip0From, kVoxelResolutions}, .apply = A::Rebuild, .group = G::Gi,
+     .json = true},
     {.name = "voxel-cache", .valueName = "FILE.vdb",
      .help = "load the static voxelization from FILE (written by vct voxelize) instead of computing it",
      .value = TextValue{&S::voxelCache, "a file name"}, .apply = A::Rebuild, .group = G::Gi},

@@ -53,6 +53,9 @@ struct RenderSettings {
     // ---- global illumination (voxel cone tracing) ----
     bool gi = true;  // false: the environment, unoccluded, instead of cone-traced indirect light
     uint32_t voxelResolution = 0;  // N for the N³ grid (32..256); 0 = chosen from the scene
+    // From this N up the radiance's mip 0 is sparse, in the brick atlas (docs/design.md §5.10); below, one dense
+    // texture with the other mips (a cone sample between mips 0 and 1 is then one texture read, not two).
+    uint32_t sparseMip0From = 256;
     // Bounces of indirect light (1: light from directly lit surfaces; N: the voxels also send on light that
     // has bounced N − 1 times, docs/design.md §5.7).
     uint32_t bounces = kDefaultBounces;

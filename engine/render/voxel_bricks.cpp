@@ -33,7 +33,9 @@ std::vector<uint32_t> BrickLayout::table() const {
     return out;
 }
 
-double BrickLayout::occupancy() const { return map.empty() ? 0.0 : double(bricks.size()) / double(map.size()); }
+double BrickLayout::occupancy() const {
+    return map.empty() ? 0.0 : double(bricks.size()) / double(map.size());
+}
 
 glm::uvec2 brickAtlasShape(uint32_t count) {
     const uint32_t blocks = std::max(count, 1u);
@@ -89,7 +91,8 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
                 for (int z = range.min.z; z <= range.max.z; ++z)
                     for (int y = range.min.y; y <= range.max.y; ++y)
                         for (int x = range.min.x; x <= range.max.x; ++x) {
-                            const glm::vec3 centre = glm::vec3(x, y, z) * float(kBrick) + 0.5f * float(kBrick + 1);
+                            const glm::vec3 centre =
+                                glm::vec3(x, y, z) * float(kBrick) + 0.5f * float(kBrick + 1);
                             if (glsl::triangleBoxOverlap(centre, blockHalf, p[0], p[1], p[2]))
                                 mark(glm::ivec3(x, y, z));
                         }
@@ -106,8 +109,10 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
             if (!instance.moving || instance.bounds.empty()) continue;
             const glm::vec3 low = (instance.bounds.min - origin) / voxelSize;
             const glm::vec3 high = (instance.bounds.max - origin) / voxelSize;
-            const glm::ivec3 lo = glm::clamp(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0), glm::ivec3(n - 1));
-            const glm::ivec3 hi = glm::clamp(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(0), glm::ivec3(n - 1));
+            const glm::ivec3 lo =
+                glm::clamp(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0), glm::ivec3(n - 1));
+            const glm::ivec3 hi =
+                glm::clamp(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(0), glm::ivec3(n - 1));
             const BrickRange range = bricksHolding(lo, hi, perAxis);
             for (int z = range.min.z; z <= range.max.z; ++z)
                 for (int y = range.min.y; y <= range.max.y; ++y)

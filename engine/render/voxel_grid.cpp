@@ -55,8 +55,8 @@ Aabb voxelSceneBounds(const Scene& scene) {
     return box;
 }
 
-VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution)
-    : context_(context), scene_(scene), resolution_(resolution) {
+VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution, bool sparseMip0)
+    : context_(context), scene_(scene), resolution_(resolution), sparseMip0_(sparseMip0) {
     mipCount_ = uint32_t(std::countr_zero(resolution)) + 1;
     Aabb bounds = voxelSceneBounds(scene);
     if (bounds.empty()) bounds = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
@@ -85,7 +85,7 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     const uint32_t maxImage = context.properties().limits.maxImageDimension3D;
     const uint32_t side = bricks_.atlasSide, layers = bricks_.atlasLayers;
     const uint32_t apron = uint32_t(glsl::VOXEL_BRICK_APRON), slabs = uint32_t(glsl::VOXEL_SLAB_COUNT);
-    if (uint64_t(slabs) * side * apron > maxImage || uint64_t(layers) * apron > maxImage)
+    if (sparseMip0 && (uint64_t(slabs) * side * apron > maxImage || uint64_t(layers) * apron > maxImage))
         throw UsageError("--voxels " + std::to_string(resolution) + ": the scene reaches " + occupancy +
                          ", whose radiance atlas (" + std::to_string(slabs * side * apron) +
                          " texels wide) exceeds this device's maxImageDimension3D (" +
@@ -104,13 +104,15 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     // TRANSFER_SRC so that later tools (OpenVDB export, tests) can read them back.
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     constexpr VkImageUsageFlags sampledStorage = storage | VK_IMAGE_USAGE_SAMPLED_BIT;
-    const uint32_t half = std::max(resolution / 2, 1u);
-    radianceMips_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, {half * slabs, half, half},
-                           std::max(mipCount_ - 1, 1u), sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    // Transfer destination: inject clears it before writing the occupied voxels only.
+    // Transfer destination: inject clears mip 0 (the atlas or level 0) before writing the occupied voxels only.
+    const uint32_t first = resolution >> mipBase();  // texels per slab of the texture's level 0
+    radianceMips_ =
+        volume(VK_FORMAT_R16G16B16A16_SFLOAT, {first * slabs, first, first},
+               std::max(mipCount_ - mipBase(), 1u), sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    const glm::uvec3 atlasSize = sparseMip0 ? glm::uvec3(slabs * side * apron, side * apron, layers * apron)
+                                            : glm::uvec3(1, 1, 2);  // 3D
     radianceAtlas_ =
-        volume(VK_FORMAT_R16G16B16A16_SFLOAT, {slabs * side * apron, side * apron, layers * apron}, 1,
-               sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        volume(VK_FORMAT_R16G16B16A16_SFLOAT, atlasSize, 1, sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const uint32_t brick = VCT_VOXEL_BRICK;
     const glm::uvec3 materialSize(side * brick, side * brick, layers * brick);
     albedo_ = volume(VK_FORMAT_R8G8B8A8_UNORM, materialSize, 1, storage);
@@ -132,13 +134,12 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     const uint64_t accumulators = moving ? 2 : 1;
     const uint64_t materialTexel = 4 + 3 * 8;  // albedo RGBA8, normal, emission, bounce RGBA16F
     const uint64_t voxels = uint64_t(resolution) * resolution * resolution;
-    uint64_t mipsBytes = 0;
-    for (uint32_t size = half; mipCount_ > 1; size /= 2) {
+    uint64_t mipsBytes = 0;  // mips 1..
+    for (uint32_t size = resolution / 2; size >= 1; size /= 2)
         mipsBytes += uint64_t(slabs) * size * size * size * 8;
-        if (size == 1) break;
-    }
-    memory_.denseBytes = voxels * (slabs * 8 + materialTexel + accumulators * kAccumVoxelBytes) + mipsBytes;
-    memory_.bytes = uint64_t(radianceAtlas_.width()) * radianceAtlas_.height() * radianceAtlas_.depth() * 8 +
+    const uint64_t mip0Bytes = voxels * slabs * 8;
+    memory_.denseBytes = voxels * (materialTexel + accumulators * kAccumVoxelBytes) + mip0Bytes + mipsBytes;
+    memory_.bytes = (sparseMip0 ? uint64_t(atlasSize.x) * atlasSize.y * atlasSize.z * 8 : mip0Bytes) +
                     uint64_t(materialSize.x) * materialSize.y * materialSize.z * materialTexel +
                     accumulators * accumBytes + mipsBytes + table.size() * sizeof(uint32_t);
 
@@ -152,7 +153,7 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     // slabs' u is kept inside each slab (lib/voxel.glsl's voxelSlabU), so edge clamping never mixes two.
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     info.minLod = 0.0f;
-    info.maxLod = float(std::max(mipCount_, 2u) - 2);  // the texture's levels: mips 1 ..
+    info.maxLod = float(radianceMips_.desc().mipLevels - 1);
     sampler_ = vk::Sampler(context, info);
     // The atlas: one level, filtered within a block (lib/cone_trace.glsl never reads across one).
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
@@ -341,7 +342,7 @@ std::vector<StaticAccumVoxel> VoxelGrid::readStaticAccumulator() {
 std::vector<glm::vec4> VoxelGrid::readRadiance(uint32_t mip) {
     const size_t size = std::max(1u, resolution_ >> mip);
     std::vector<glm::vec4> out(size * size * size, glm::vec4(0.0f));
-    if (mip == 0) {
+    if (mip == 0 && sparseMip0_) {
         // From the atlas: each brick's voxels (not its apron), the largest of the six slabs.
         const std::vector<glm::vec4> texels = readLevel(radianceAtlas_, 0);
         const size_t width = radianceAtlas_.width(), height = radianceAtlas_.height();
@@ -360,7 +361,7 @@ std::vector<glm::vec4> VoxelGrid::readRadiance(uint32_t mip) {
                     }
         return out;
     }
-    const std::vector<glm::vec4> slabs = readLevel(radianceMips_, mip - 1);
+    const std::vector<glm::vec4> slabs = readLevel(radianceMips_, mip - mipBase());
     for (size_t i = 0; i < out.size(); ++i) {
         const size_t x = i % size, yz = i / size;
         for (size_t slab = 0; slab < size_t(glsl::VOXEL_SLAB_COUNT); ++slab)

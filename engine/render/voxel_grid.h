@@ -56,7 +56,9 @@ struct VoxelRegion {
 
 class VoxelGrid {
   public:
-    VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution);
+    // `sparseMip0`: the radiance's mip 0 in the brick atlas, else dense in radianceMips() (RenderSettings::
+    // sparseMip0From).
+    VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution, bool sparseMip0 = true);
     ~VoxelGrid();
     VoxelGrid(const VoxelGrid&) = delete;
     VoxelGrid& operator=(const VoxelGrid&) = delete;
@@ -70,13 +72,17 @@ class VoxelGrid {
     const Aabb& contentBounds() const { return contentBounds_; }
     uint32_t mipCount() const { return mipCount_; }
 
-    // Premultiplied radiance + opacity, mips 1 and coarser, 3D RGBA16F (SAMPLED | STORAGE): six direction slabs
-    // of (N/2)³ side by side along x (3N × N/2 × N/2 at its level 0, which is mip 1; lib/voxel.glsl, directional
-    // radiance). Sampled with sampler().
+    // Premultiplied radiance + opacity, 3D RGBA16F (SAMPLED | STORAGE): six direction slabs side by side along x
+    // (lib/voxel.glsl, directional radiance), mips from mipBase() on: its level l holds mip l + mipBase().
+    // Sampled with sampler().
     vk::Image& radianceMips() { return radianceMips_; }
+    bool sparseMip0() const { return sparseMip0_; }
+    // The image whose level 0 holds mip 0: the atlas or the mips' texture.
+    vk::Image& mip0Image() { return sparseMip0_ ? radianceAtlas_ : radianceMips_; }
+    uint32_t mipBase() const { return sparseMip0_ ? 1u : 0u; }
     VkSampler sampler() const { return sampler_.handle(); }
-    // Mip 0: the radiance atlas (lib/voxel_bricks.glsl), 3D RGBA16F (SAMPLED | STORAGE), sampled with
-    // atlasSampler() (trilinear within a block, one level).
+    // Mip 0 when sparseMip0(): the radiance atlas (lib/voxel_bricks.glsl), 3D RGBA16F (SAMPLED | STORAGE),
+    // sampled with atlasSampler() (trilinear within a block, one level); else a 1×1×2 stand-in.
     vk::Image& radianceAtlas() { return radianceAtlas_; }
     VkSampler atlasSampler() const { return atlasSampler_.handle(); }
     // The brick table the shaders read (lib/voxel_storage.glsl) and the layout it came from.
@@ -163,6 +169,7 @@ class VoxelGrid {
     vk::Sampler sampler_, atlasSampler_;
     Memory memory_;
     bool staticVoxelized_ = false;
+    bool sparseMip0_ = true;
     // Voxel cache staged for upload: the cached voxels packed back to back, and one copy region per run of
     // voxels consecutive in the accumulator (it is cleared first, empty voxels need no bytes).
     vk::Buffer staticCache_;

@@ -25,6 +25,16 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
     const vec3 w = voxelSlabWeights(dir);
     const int n = int(frame.voxels.resolution);
     vec4 s = vec4(0.0);
+    if (frame.voxels.atlasInvSize.w == 0.0) {
+        // Mip 0 dense (RenderSettings::sparseMip0From): every mip in the one texture, one read per slab.
+        const float texels = float(max(n >> int(ceil(mip)), 1));  // per slab, at the coarser mip read
+        for (int axis = 0; axis < 3; ++axis) {
+            if (w[axis] <= 0.0) continue;
+            const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
+            s += w[axis] * textureLod(voxels, slabUvw, mip);
+        }
+        return s;
+    }
     const float fine = 1.0 - min(mip, 1.0);
     if (fine > 0.0) {
         // Voxel units, clamped to the outermost texel centres (the coarse sampler's clamp to the edge).
@@ -33,12 +43,12 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
         const uint k = brickIndex(brick);
         if (k != VCT_BRICK_NONE) {
             const vec3 inBlock = p - vec3(brick * VOXEL_BRICK);
-            const vec3 atlasSize = vec3(textureSize(voxelAtlas, 0));
             for (int axis = 0; axis < 3; ++axis) {
                 if (w[axis] <= 0.0) continue;
                 const ivec3 block =
                     radianceAtlasTexel(k, frame.voxels.brickAtlasSide, ivec3(0), voxelSlabFor(dir, axis));
-                s += (w[axis] * fine) * textureLod(voxelAtlas, (vec3(block) + inBlock) / atlasSize, 0.0);
+                s += (w[axis] * fine) *
+                     textureLod(voxelAtlas, (vec3(block) + inBlock) * frame.voxels.atlasInvSize.xyz, 0.0);
             }
         }
     }

@@ -63,6 +63,9 @@ struct VoxelUniforms {
     uint mipCount;
     uint brickAtlasSide;  // bricks per atlas row and column (lib/voxel_bricks.glsl)
     uint brickCount;      // bricks allocated (the atlases' and pools' blocks in use)
+    // xyz: 1 / the radiance atlas's size in texels (lib/cone_trace.glsl); w: 1 when mip 0 is in the atlas (sparse),
+    // 0 when it is level 0 of the radiance mips' texture (dense; RenderSettings::sparseMip0From)
+    vec4 atlasInvSize;
 };
 
 // Spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6): trace, upsample, resample.
@@ -231,7 +234,7 @@ struct VoxelMipsPushConstants {
 static_assert(sizeof(LightingUniforms) == 32 && offsetof(LightingUniforms, lightCount) == 12 &&
               offsetof(LightingUniforms, shadowLight) == 16 &&
               offsetof(LightingUniforms, shadowTexelSize) == 24);
-static_assert(sizeof(VoxelUniforms) == 32 && offsetof(VoxelUniforms, voxelSize) == 12 &&
+static_assert(sizeof(VoxelUniforms) == 48 && offsetof(VoxelUniforms, voxelSize) == 12 &&
               offsetof(VoxelUniforms, resolution) == 16 && offsetof(VoxelUniforms, mipCount) == 20);
 static_assert(sizeof(UpsampleUniforms) == 48 && offsetof(UpsampleUniforms, beta) == 8 &&
               offsetof(UpsampleUniforms, normalVariance) == 16 && offsetof(UpsampleUniforms, tau) == 28 &&
@@ -245,8 +248,8 @@ static_assert(offsetof(FrameUniforms, cameraPosition) == 7 * 64 &&
               offsetof(FrameUniforms, texelSize) == 7 * 64 + 40);
 static_assert(offsetof(FrameUniforms, lighting) == 7 * 64 + 48 &&
               offsetof(FrameUniforms, voxels) == 7 * 64 + 80 &&
-              offsetof(FrameUniforms, upsample) == 7 * 64 + 112);
-static_assert(sizeof(FrameUniforms) == 7 * 64 + 160);
+              offsetof(FrameUniforms, upsample) == 7 * 64 + 128);
+static_assert(sizeof(FrameUniforms) == 7 * 64 + 176);
 static_assert(sizeof(ResampleListHeader) == 32);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuMaterial) == 64);

@@ -30,7 +30,8 @@ VCT_INLINE ivec3 materialAtlasTexel(uint k, uint side, ivec3 local) {
 }
 // Voxel `local` (0..VOXEL_BRICK per axis: VOXEL_BRICK is the apron) of brick k in slab `slab` of the radiance atlas.
 VCT_INLINE ivec3 radianceAtlasTexel(uint k, uint side, ivec3 local, int slab) {
-    return brickAtlasBlock(k, side) * VOXEL_BRICK_APRON + local + ivec3(slab * int(side) * VOXEL_BRICK_APRON, 0, 0);
+    return brickAtlasBlock(k, side) * VOXEL_BRICK_APRON + local +
+           ivec3(slab * int(side) * VOXEL_BRICK_APRON, 0, 0);
 }
 // First accumulator uint of voxel `local` of brick k.
 VCT_INLINE uint voxelAccumIndex(uint k, ivec3 local) {
