@@ -48,7 +48,7 @@ float shadowVisibility(vec3 p) {
 // below it whose block reaches it (a voxel on the brick's −x face is the +x apron of the brick before it in x, and
 // so on: up to 8 blocks).
 void storeRadiance(uint k, ivec3 brick, ivec3 local, const vec4 slabs[VOXEL_SLAB_COUNT]) {
-    if (frame.voxels.atlasInvSize.w == 0.0) {  // dense mip 0
+    if (!SPARSE_MIP0) {
         const ivec3 voxel = brick * VOXEL_BRICK + local;
         const int n = int(frame.voxels.resolution);
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)

@@ -33,7 +33,8 @@ layout(push_constant) uniform Push { VoxelViewPushConstants push; };
 // Texel `cell` of slab `slab` at level `mip`: from the radiance mips' texture, or for a sparse mip 0 from its
 // brick's atlas block (empty without one).
 vec4 fetchTexel(ivec3 cell, int slab, int cells, int mip) {
-    const int mipBase = int(frame.voxels.atlasInvSize.w);  // 1: mip 0 is in the atlas
+    const int mipBase =
+        SPARSE_MIP0 ? 1 : 0;  // the mips' texture's level 0 is mip 1 when mip 0 is in the atlas
     if (mip >= mipBase) return texelFetch(voxels, ivec3(cell.x + slab * cells, cell.yz), mip - mipBase);
     const ivec3 brick = voxelBrickOf(cell);
     const uint k = brickIndex(brick);

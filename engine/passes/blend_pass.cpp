@@ -80,7 +80,8 @@ BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
     desc.pushConstantSize = sizeof(gpu::DrawPushConstants);
     desc.depthWrite = false;
     desc.blendOver = true;
-    desc.specialization = {vertexColors ? 1u : 0u};  // VCT_SPEC_VERTEX_COLORS
+    // VCT_SPEC_VERTEX_COLORS, then VCT_SPEC_SPARSE_MIP0 (GI off: the shader reads no voxel).
+    desc.specialization = withSparseMip0({vertexColors ? 1u : 0u}, voxels && voxels->sparseMip0);
     pipeline_ = vk::Pipeline::graphics(context, desc);
 }
 

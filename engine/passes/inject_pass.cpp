@@ -5,24 +5,23 @@ namespace vct {
 InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid)
     : grid_(grid),
       // Binding numbers: shaders/inject.comp's.
-      resources_(
-          "inject",
-          {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-           {1, Resource::scene(SceneBuffer::Lights), Access::Read},
-           {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read},
-           {2, Resource::image("albedo", grid.albedo()), Access::Read},
-           {3, Resource::image("normal", grid.normal()), Access::Read},
-           {4, Resource::image("emission", grid.emission()), Access::Read},
-           {5, Target::shadowMap, Access::SampledCompare},
-           // Read-write, not write: a pure write would discard the clear before it (vk::Image::use).
-           {6, Resource::image("radianceAtlas", grid.radianceAtlas()), Access::ReadWrite},
-           {7, Resource::image("bounce", grid.bounce()), Access::Read},
-           // Mip 0 when dense (the shader writes one of the two: FrameUniforms::voxels.atlasInvSize.w).
-           {8, Resource::image("radianceMips", grid.radianceMips()).atLevel(0), Access::ReadWrite}}),
+      resources_("inject",
+                 {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+                  {1, Resource::scene(SceneBuffer::Lights), Access::Read},
+                  {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read},
+                  {2, Resource::image("albedo", grid.albedo()), Access::Read},
+                  {3, Resource::image("normal", grid.normal()), Access::Read},
+                  {4, Resource::image("emission", grid.emission()), Access::Read},
+                  {5, Target::shadowMap, Access::SampledCompare},
+                  // Read-write, not write: a pure write would discard the clear before it (vk::Image::use).
+                  {6, Resource::image("radianceAtlas", grid.radianceAtlas()), Access::ReadWrite},
+                  {7, Resource::image("bounce", grid.bounce()), Access::Read},
+                  // Mip 0 when dense (the shader writes one of the two: VCT_SPEC_SPARSE_MIP0).
+                  {8, Resource::image("radianceMips", grid.radianceMips()).atLevel(0), Access::ReadWrite}}),
       clear_("inject clear",
              {{kNoBinding, Resource::image("mip0", grid.mip0Image()), Access::TransferWrite}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "inject.comp", resources_.bindings(),
-                                      sizeof(gpu::InjectPushConstants));
+                                      sizeof(gpu::InjectPushConstants), grid.specialization());
 }
 
 void InjectPass::execute(const FrameContext& frame) {

@@ -29,7 +29,8 @@ ResourceTable resampleResources(const VoxelSource& voxels) {
 
 ResamplePass::ResamplePass(const vk::Context& context, const VoxelSource& voxels)
     : resources_(resampleResources(voxels)) {
-    pipeline_ = vk::Pipeline::compute(context, name(), "resample.comp", resources_.bindings(), 0);
+    pipeline_ = vk::Pipeline::compute(context, name(), "resample.comp", resources_.bindings(), 0,
+                                      voxels.specialization());
 }
 
 void ResamplePass::execute(const FrameContext& frame) {

@@ -32,7 +32,7 @@ TracePass::TracePass(const vk::Context& context, uint32_t traceScale, const Voxe
     : output_(traceScale <= 1 ? Target::indirect : Target::indirectLow),
       resources_(traceResources(output_, voxels)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "trace.comp", resources_.bindings(), 0,
-                                      {traceScale});  // VCT_SPEC_TRACE_SCALE
+                                      voxels.specialization({traceScale}));  // VCT_SPEC_TRACE_SCALE
 }
 
 void TracePass::execute(const FrameContext& frame) {

@@ -5,6 +5,7 @@
 
 #include "render/gpu_environment.h"
 #include "render/pass.h"
+#include "render/voxel_grid.h"
 #include "vk/pipeline.h"
 
 namespace vct {
@@ -18,7 +19,12 @@ struct VoxelSource {
     vk::Image* radianceAtlas = nullptr;
     VkSampler atlasSampler = VK_NULL_HANDLE;
     vk::Buffer* brickTable = nullptr;
+    bool sparseMip0 = false;        // mip 0 in the atlas (VCT_SPEC_SPARSE_MIP0)
     EnvironmentSource environment;  // what a cone that leaves the grid sees (lib/cone_trace.glsl)
+
+    std::vector<uint32_t> specialization(std::vector<uint32_t> first = {}) const {
+        return withSparseMip0(std::move(first), sparseMip0);  // render/voxel_grid.h
+    }
 
     // Its rows in a pass's table: the mips at binding `mipsBinding`, the atlas and the brick table at theirs
     // (VCT_BINDING_VOXEL_ATLAS, VCT_BINDING_BRICKS).

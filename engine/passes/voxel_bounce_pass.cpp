@@ -21,7 +21,8 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
            {4, Resource::image("bounce", grid.bounce()), Access::Write},
            // Cones that leave the grid see the environment: sky light bounces too.
            {5, Resource::image("environment", *environment.image, environment.sampler), Access::Sampled}}) {
-    pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(), 0);
+    pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(), 0,
+                                      grid.specialization());
 }
 
 void VoxelBouncePass::execute(const FrameContext& frame) {

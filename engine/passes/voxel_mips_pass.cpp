@@ -26,7 +26,7 @@ VoxelMipsPass::VoxelMipsPass(const vk::Context& context, VoxelGrid& grid)
            {kAtlas, Resource::image("radianceAtlas", grid.radianceAtlas()), Access::Read},
            {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_mips.comp", resources_.bindings(),
-                                      sizeof(gpu::VoxelMipsPushConstants));
+                                      sizeof(gpu::VoxelMipsPushConstants), grid.specialization());
 }
 
 void VoxelMipsPass::execute(const FrameContext& frame) {

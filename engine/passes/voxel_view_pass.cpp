@@ -32,7 +32,7 @@ VoxelViewPass::VoxelViewPass(const vk::Context& context, VoxelGrid& grid)
            {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read},
            {2, Resource::image("output", output_), Access::Write}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_view.comp", resources_.bindings(),
-                                      sizeof(gpu::VoxelViewPushConstants));
+                                      sizeof(gpu::VoxelViewPushConstants), grid.specialization());
 }
 
 void VoxelViewPass::prepare(uint32_t mip, uint32_t width, uint32_t height) {

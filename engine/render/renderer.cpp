@@ -42,6 +42,7 @@ VoxelSource voxelSource(VoxelGrid& grid, const EnvironmentSource& environment) {
     source.radianceAtlas = &grid.radianceAtlas();
     source.atlasSampler = grid.atlasSampler();
     source.brickTable = &grid.brickTable();
+    source.sparseMip0 = grid.sparseMip0();
     source.environment = environment;
     return source;
 }
@@ -212,8 +213,8 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
         u.voxels.brickAtlasSide = voxelGrid_->bricks().atlasSide;
         u.voxels.brickCount = voxelGrid_->bricks().brickCount();
         const vk::Image& atlas = voxelGrid_->radianceAtlas();
-        u.voxels.atlasInvSize = glm::vec4(1.0f / glm::vec3(atlas.width(), atlas.height(), atlas.depth()),
-                                          voxelGrid_->sparseMip0() ? 1.0f : 0.0f);
+        u.voxels.atlasInvSize =
+            glm::vec4(1.0f / glm::vec3(atlas.width(), atlas.height(), atlas.depth()), 0.0f);
     }
 
     // Spatio-temporal upsampling (docs/design.md §6): weights, history and this frame's trace offset o_k. The

@@ -38,6 +38,14 @@ namespace vct {
 // --voxels but with a voxel cache, the cache's N.
 uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings& settings);
 
+// The specialization of a pipeline reading the radiance's mip 0: the shader's own constants `first`
+// (constant_id 0, 1, ...), then VCT_SPEC_SPARSE_MIP0.
+inline std::vector<uint32_t> withSparseMip0(std::vector<uint32_t> first, bool sparseMip0) {
+    first.resize(VCT_SPEC_SPARSE_MIP0 + 1, 0u);
+    first[VCT_SPEC_SPARSE_MIP0] = sparseMip0 ? 1u : 0u;
+    return first;
+}
+
 // World bounds the grid must cover: every instance over the scene's animation (sampled), so that moving
 // geometry stays inside the grid.
 Aabb voxelSceneBounds(const Scene& scene);
@@ -77,6 +85,9 @@ class VoxelGrid {
     // Sampled with sampler().
     vk::Image& radianceMips() { return radianceMips_; }
     bool sparseMip0() const { return sparseMip0_; }
+    std::vector<uint32_t> specialization(std::vector<uint32_t> first = {}) const {
+        return withSparseMip0(std::move(first), sparseMip0_);
+    }
     // The image whose level 0 holds mip 0: the atlas or the mips' texture.
     vk::Image& mip0Image() { return sparseMip0_ ? radianceAtlas_ : radianceMips_; }
     uint32_t mipBase() const { return sparseMip0_ ? 1u : 0u; }

@@ -25,7 +25,7 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
     const vec3 w = voxelSlabWeights(dir);
     const int n = int(frame.voxels.resolution);
     vec4 s = vec4(0.0);
-    if (frame.voxels.atlasInvSize.w == 0.0) {
+    if (!SPARSE_MIP0) {
         // Mip 0 dense (RenderSettings::sparseMip0From): every mip in the one texture, one read per slab.
         const float texels = float(max(n >> int(ceil(mip)), 1));  // per slab, at the coarser mip read
         for (int axis = 0; axis < 3; ++axis) {

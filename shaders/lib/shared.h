@@ -44,6 +44,10 @@ using glm::vec4;
 // has COLOR_0. Without, the colour varying is not passed at all (one interpolant less per fragment on a GPU;
 // on lavapipe it measured within noise).
 #define VCT_SPEC_VERTEX_COLORS 0
+// Every shader that reads the radiance's mip 0 (lib/voxel_storage.glsl): whether it is sparse, in the brick atlas
+// (RenderSettings::sparseMip0From). A constant, not a uniform: lavapipe runs both sides of a branch its lanes
+// could take, so the path not taken would still cost its texture reads (trace 3.3× measured with a uniform).
+#define VCT_SPEC_SPARSE_MIP0 4
 
 // The lights and the shadow map (direct, inject), the environment's rotation (lib/environment_sample.glsl).
 struct LightingUniforms {
@@ -63,9 +67,7 @@ struct VoxelUniforms {
     uint mipCount;
     uint brickAtlasSide;  // bricks per atlas row and column (lib/voxel_bricks.glsl)
     uint brickCount;      // bricks allocated (the atlases' and pools' blocks in use)
-    // xyz: 1 / the radiance atlas's size in texels (lib/cone_trace.glsl); w: 1 when mip 0 is in the atlas (sparse),
-    // 0 when it is level 0 of the radiance mips' texture (dense; RenderSettings::sparseMip0From)
-    vec4 atlasInvSize;
+    vec4 atlasInvSize;    // xyz: 1 / the radiance atlas's size in texels (lib/cone_trace.glsl), w unused
 };
 
 // Spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6): trace, upsample, resample.

@@ -8,6 +8,9 @@
 // allocated bricks in index order.
 layout(set = 0, binding = VCT_BINDING_BRICKS, std430) readonly buffer BrickTable { uint brickTable[]; };
 
+// Mip 0 of the radiance in the brick atlas (true) or dense, level 0 of the mips' texture (lib/shared.h).
+layout(constant_id = VCT_SPEC_SPARSE_MIP0) const bool SPARSE_MIP0 = true;
+
 int bricksPerAxis() { return int(frame.voxels.resolution) / VOXEL_BRICK; }
 
 // Index k of `brick` (inside the grid), VCT_BRICK_NONE when it has no storage.
