@@ -38,7 +38,7 @@ void main() {
     const int axis = slab / 2;
     // The children: 2×2×2 voxels of the same slab one level up (n·2 texels per slab there), for level 1 in the
     // atlas block of the brick holding them (even, so all eight are in one brick), zero where it has no storage.
-    const bool fromAtlas = push.params.x != 0u;
+    const bool fromAtlas = SPARSE_MIP0 && push.params.x != 0u;  // a constant false when mip 0 is dense
     ivec3 s = ivec3(slab * 2 * n + 2 * (texel.x - slab * n), 2 * texel.yz);
     if (fromAtlas) {
         const ivec3 voxel = 2 * inSlab;

@@ -204,14 +204,15 @@ TEST(HostileFlags, GiOffAuxWritesOnlyFiniteImagesOfPassesThatRan) {
     }
 }
 
-// ---- class 8: every documented voxel resolution renders or is refused naming the device limit ----
+// ---- class 8: every documented voxel resolution renders ----
 
-TEST(HostileFlags, Voxels256RendersOrNamesTheDeviceLimit) {
+TEST(HostileFlags, Voxels256Renders) {
     const fs::path dir = caseDir();
     const fs::path scene = writeGltf(dir, triangleScene());
     std::vector<std::string> args = renderArgs(scene, dir / "out");
     args[8] = "256";  // --voxels
-    expectGraceful(args, dir / "out", {Outcome::Either, {"--voxels 256", "maxStorageBufferRange"}, 2});
+    // Sparse voxel storage (docs/design.md §5.10): a triangle reaches a few bricks, which fit any device.
+    expectGraceful(args, dir / "out", {Outcome::MustRender, {}, 0});
 }
 
 // ---- class 12: flags that used to fail late or with a message that named nothing ----
