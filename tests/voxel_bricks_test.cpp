@@ -1,6 +1,8 @@
 // Sparse voxel storage (docs/design.md §5.10, render/voxel_bricks.h): the CPU's brick allocation against the
 // voxelizer's own overlap test, the atlas shape, and 256³ grids rendering on lavapipe within a quarter of the
 // dense memory, the sparse and dense mip 0 agreeing.
+#include "render/voxel_bricks.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include "io/image_io.h"
-#include "render/voxel_bricks.h"
 #include "scene/builtin_scenes.h"
 #include "test_util.h"
 
@@ -45,8 +46,8 @@ void expectCoversVoxelizedVoxels(const std::string& sceneName, uint32_t n, doubl
     const BrickLayout layout = allocateBricks(*scene, grid, n);
     const int perAxis = int(layout.bricksPerAxis);
     auto allocated = [&](glm::ivec3 b) {
-        return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && layout.map[g::brickLinearIndex(b, perAxis)] !=
-                                                                          VCT_BRICK_NONE;
+        return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) &&
+               layout.map[g::brickLinearIndex(b, perAxis)] != VCT_BRICK_NONE;
     };
     size_t voxels = 0, missing = 0;
     for (const Instance& instance : scene->instances(0.0f)) {
@@ -59,25 +60,28 @@ void expectCoversVoxelizedVoxels(const std::string& sceneName, uint32_t n, doubl
                     const uint32_t index = scene->indices[primitive.firstIndex + t + uint32_t(k)];
                     const glm::vec3 world = glm::vec3(
                         instance.world *
-                        glm::vec4(scene->vertices[size_t(int64_t(index) + primitive.vertexOffset)].position, 1.0f));
+                        glm::vec4(scene->vertices[size_t(int64_t(index) + primitive.vertexOffset)].position,
+                                  1.0f));
                     v[k] = g::voxelFromWorld(world, grid);
                 }
-                const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(glm::min(v[0], glm::min(v[1], v[2])))), 0);
+                const glm::ivec3 lo =
+                    glm::max(glm::ivec3(glm::floor(glm::min(v[0], glm::min(v[1], v[2])))), 0);
                 const glm::ivec3 hi =
                     glm::min(glm::ivec3(glm::floor(glm::max(v[0], glm::max(v[1], v[2])))), int(n) - 1);
                 for (int z = lo.z; z <= hi.z; ++z)
                     for (int y = lo.y; y <= hi.y; ++y)
                         for (int x = lo.x; x <= hi.x; ++x) {
                             const glm::ivec3 voxel(x, y, z);
-                            if (!g::triangleBoxOverlap(glm::vec3(voxel) + 0.5f, glm::vec3(0.5f), v[0], v[1], v[2]))
+                            if (!g::triangleBoxOverlap(glm::vec3(voxel) + 0.5f, glm::vec3(0.5f), v[0], v[1],
+                                                       v[2]))
                                 continue;
                             ++voxels;
                             const glm::ivec3 brick = voxel / g::VOXEL_BRICK;
                             // Its own brick, and each brick below whose apron (the +x/+y/+z face) it is.
                             for (int below = 0; below < 8; ++below) {
                                 const glm::ivec3 step(below & 1, (below >> 1) & 1, below >> 2);
-                                if (glm::any(glm::greaterThan(step, glm::ivec3(glm::equal(voxel % g::VOXEL_BRICK,
-                                                                                           glm::ivec3(0))))))
+                                if (glm::any(glm::greaterThan(
+                                        step, glm::ivec3(glm::equal(voxel % g::VOXEL_BRICK, glm::ivec3(0))))))
                                     continue;
                                 if (glm::all(glm::greaterThanEqual(brick - step, glm::ivec3(0))) &&
                                     !allocated(brick - step))
@@ -114,8 +118,8 @@ TEST(BrickAllocation, EmptySceneHasNoBricksAndAValidAtlas) {
 // `vct render` of a built-in scene at `size` for `frames` frames; its timings.json.
 nlohmann::json renderTimings(const std::string& scene, const std::string& out, const std::string& size,
                              const std::string& frames, std::vector<std::string> extra) {
-    std::vector<std::string> args{"render", "--scene", scene, "--size", size, "--frames", frames, "--validate",
-                                  "--out", out};
+    std::vector<std::string> args{"render",   "--scene", scene,        "--size", size,
+                                  "--frames", frames,    "--validate", "--out",  out};
     args.insert(args.end(), extra.begin(), extra.end());
     const test::RunResult run = test::runVct(args);
     EXPECT_TRUE(run.exited() && run.exitCode == 0) << run.describe();
@@ -148,10 +152,11 @@ TEST(SparseVoxels, Grid256RendersWithinAQuarterOfTheDenseMemory) {
 // (measured PSNR 122 dB on the final image at 64³, cornell 160x90; the sampling between mips 0 and 1 is one
 // hardware read with the dense texture, two blended in the shader with the atlas).
 TEST(SparseVoxels, SparseAndDenseMip0Agree) {
-    const auto dense = test::freshOutputDir("sparse_mip0_dense"), sparse = test::freshOutputDir("sparse_mip0_atlas");
+    const auto dense = test::freshOutputDir("sparse_mip0_dense"),
+               sparse = test::freshOutputDir("sparse_mip0_atlas");
     renderTimings("cornell", dense.string(), "96x54", "2", {"--voxels", "32"});
-    const nlohmann::json timings =
-        renderTimings("cornell", sparse.string(), "96x54", "2", {"--voxels", "32", "--sparse-mip0-from", "32"});
+    const nlohmann::json timings = renderTimings("cornell", sparse.string(), "96x54", "2",
+                                                 {"--voxels", "32", "--sparse-mip0-from", "32"});
     const ImageRgba32f a = readExr(dense / "final.exr"), b = readExr(sparse / "final.exr");
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     double squared = 0.0, peak = 0.0;
