@@ -95,39 +95,45 @@ struct Sample {
     vec3 p;
     float valid;  // 1, or 0 outside the image and on the background
     vec3 n;
-    float specularSharpness;  // λ̄
-    vec3 specularAxis;
-    vec3 preparedSharpness;  // of λ̄ (lib/upsample_weights.glsl)
+    FoldedLobe specularLobe;  // axis ξ and λ̄, prepared for lobeLogWeightFolded (lib/upsample_weights.glsl)
     vec3 diffuse;
     vec3 specular;
     vec2 at;  // the full-res pixel it was traced at
 };
 
-// ln of the (diffuse, specular) lobe weight of a surface with normal nq and specular lobe (axis, prepared
-// sharpness) seen from pixel `a`, by the chosen guide; bilinear has none (0 = ln 1). The diffuse lobes share
-// one sharpness, so their lobe weight is the angle term alone (equalLobeLogWeight). Sharpnesses come prepared
-// (preparedSharpness: λ̄, ln λ̄, 1/λ̄), once per pixel and once per sample.
-vec2 lobeLogWeights(Guide a, vec3 sharpnessA, vec3 nq, vec3 axisQ, vec3 sharpnessQ) {
+// The pixel being reconstructed: its guide, tangent plane and specular lobe prepared for many weights.
+struct PixelGuide {
+    Guide guide;
+    vec4 plane;
+    FoldedLobe specularLobe;
+};
+
+// ln of the (diffuse, specular) lobe weight of a surface with normal nq and specular lobe q seen from pixel
+// `a`, by the chosen guide; bilinear has none (0 = ln 1). The diffuse lobes share one sharpness, so their lobe
+// weight is the angle term alone (equalLobeLogWeight). The specular lobes come folded (foldedLobe: β and the
+// logarithm of λ̄ per lobe, non-finite lobes replaced), once per pixel and once per sample, so that a pair
+// costs one log2 and one division (lobeLogWeightFolded).
+vec2 lobeLogWeights(PixelGuide a, vec3 nq, FoldedLobe q) {
     if (WEIGHTS == VCT_WEIGHTS_BILINEAR) return vec2(0.0);
-    if (WEIGHTS == VCT_WEIGHTS_NORMAL) return vec2(normalLogWeight(a.n, nq, frame.upsample.normalVariance));
+    if (WEIGHTS == VCT_WEIGHTS_NORMAL)
+        return vec2(normalLogWeight(a.guide.n, nq, frame.upsample.normalVariance));
     const float beta = frame.upsample.beta;
     const float diffuseSharpness =
         smoothedSharpness(1.0 / frame.upsample.diffuseSharpness, frame.upsample.kappa);
-    return vec2(equalLobeLogWeight(a.n, nq, diffuseSharpness, beta),
-                lobeLogWeightPrepared(a.specularAxis, sharpnessA, axisQ, sharpnessQ, beta));
+    return vec2(equalLobeLogWeight(a.guide.n, nq, diffuseSharpness, beta),
+                lobeLogWeightFolded(a.specularLobe, q, beta * 0.6931472));
+}
+
+// The folded specular lobe of a guide (FOLDED_SENTINEL_PIXEL for the pixel's own, _SAMPLE for the others).
+FoldedLobe foldedSpecularLobe(vec3 axis, float sharpness, float sentinel) {
+    return WEIGHTS == VCT_WEIGHTS_SG ? foldedLobe(axis, sharpness, frame.upsample.beta, sentinel)
+                                     : FoldedLobe(vec3(0.0), vec3(0.0));
 }
 
 // ln of the plane-distance weight of point q against a pixel's scaledTangentPlane (none for bilinear).
 float planeLogWeightFrom(vec4 plane, vec3 q) {
     return WEIGHTS == VCT_WEIGHTS_BILINEAR ? 0.0 : planeLogWeightScaled(plane, q);
 }
-
-// The pixel being reconstructed: its guide, tangent plane and prepared lobe sharpness.
-struct PixelGuide {
-    Guide guide;
-    vec4 plane;
-    vec3 sharpness;
-};
 
 // Sums over the cell's samples (spatial) or over the history (temporal) of weighted diffuse and specular light.
 struct WeightedLight {
@@ -149,8 +155,7 @@ WeightedLight spatialLight(ivec2 pixel, PixelGuide here, Sample samples[MAX_SAMP
         const float f =
             (WEIGHTS == VCT_WEIGHTS_BILINEAR ? tentKernel(offset, 1.0) : bsplineKernel(offset)) * j.valid;
         const vec2 w =
-            f * (exp(planeLogWeightFrom(here.plane, j.p) +
-                     lobeLogWeights(here.guide, here.sharpness, j.n, j.specularAxis, j.preparedSharpness)) +
+            f * (exp(planeLogWeightFrom(here.plane, j.p) + lobeLogWeights(here, j.n, j.specularLobe)) +
                  FALLBACK_SHARE);
         const float share = WEIGHTS != VCT_WEIGHTS_BILINEAR && all(equal(j.at, vec2(pixel)))
                                 ? EXACT_SAMPLE_WEIGHT / BSPLINE_CENTRE
@@ -209,14 +214,13 @@ WeightedLight historyLight(ivec2 pixel, vec2 uv, PixelGuide here) {
         const Guide then = guideFromGBuffer(texelFetch(prevNormalRoughnessTexture, at, 0),
                                             worldFromDepth(frame.prevInvViewProj, atUv, prevDepth),
                                             frame.prevCameraPosition, frame.upsample.kappa);
-        const vec3 thenSharpness =
-            WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(then.specularSharpness) : vec3(0.0);
+        const FoldedLobe thenLobe =
+            foldedSpecularLobe(then.specularAxis, then.specularSharpness, FOLDED_SENTINEL_SAMPLE);
         const uvec4 historyTexel = texelFetch(indirectHistory, at, 0);
         const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
         const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
         const vec2 guide =
-            exp(planeLogWeightFrom(here.plane, then.p) +
-                lobeLogWeights(here.guide, here.sharpness, then.n, then.specularAxis, thenSharpness));
+            exp(planeLogWeightFrom(here.plane, then.p) + lobeLogWeights(here, then.n, thenLobe));
         // Outside last frame's image or on its background: no history (the select also keeps the garbage
         // guide of a far-plane position out of the sums).
         sum.weight = inside && !isBackground(prevDepth) && !isDegeneratePosition(then.p)
@@ -274,7 +278,8 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     here.guide = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0), position,
                                   frame.cameraPosition, frame.upsample.kappa);
     here.plane = scaledTangentPlane(here.guide.n, here.guide.p, here.guide.cameraDistance);
-    here.sharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(here.guide.specularSharpness) : vec3(0.0);
+    here.specularLobe =
+        foldedSpecularLobe(here.guide.specularAxis, here.guide.specularSharpness, FOLDED_SENTINEL_PIXEL);
     writePixel(pixel, background, spatialLight(pixel, here, samples), historyLight(pixel, uv, here));
 }
 
@@ -301,9 +306,6 @@ void main() {
         const vec4 normalSharpness =
             WEIGHTS != VCT_WEIGHTS_BILINEAR ? texelFetch(guideNormalTexture, at, 0) : vec4(0.0);
         j.n = normalSharpness.xyz;
-        j.specularSharpness = normalSharpness.w;
-        j.specularAxis = WEIGHTS == VCT_WEIGHTS_SG ? texelFetch(guideAxisTexture, at, 0).xyz : vec3(0.0);
-        j.preparedSharpness = WEIGHTS == VCT_WEIGHTS_SG ? preparedSharpness(j.specularSharpness) : vec3(0.0);
         const uvec4 light = texelFetch(indirectLow, at, 0);
         j.diffuse = unpackIndirectDiffuse(light).rgb;
         j.specular = unpackIndirectSpecular(light).rgb;
@@ -313,8 +315,9 @@ void main() {
         const bool valid = j.valid > 0.0;
         j.p = valid ? j.p : vec3(0.0);
         j.n = valid ? j.n : vec3(0.0, 0.0, 1.0);
-        j.specularAxis = valid ? j.specularAxis : vec3(0.0, 0.0, 1.0);
-        j.preparedSharpness = valid ? j.preparedSharpness : vec3(1.0, 0.0, 1.0);
+        const vec3 axis = WEIGHTS == VCT_WEIGHTS_SG ? texelFetch(guideAxisTexture, at, 0).xyz : vec3(0.0);
+        j.specularLobe = foldedSpecularLobe(valid ? axis : vec3(0.0, 0.0, 1.0),
+                                            valid ? normalSharpness.w : 1.0, FOLDED_SENTINEL_SAMPLE);
         j.diffuse = valid ? j.diffuse : vec3(0.0);
         j.specular = valid ? j.specular : vec3(0.0);
         samples[k] = j;

@@ -81,6 +81,41 @@ VCT_INLINE float lobeLogWeightPrepared(vec3 axisA, vec3 a, vec3 axisB, vec3 b, f
     return isnan(result) || result < -1e30f ? -1e30f : result;
 }
 
+// The form upsample.comp evaluates for every (pixel, sample) pair (docs/design.md §6.3): the same terms as
+// lobeLogWeightPrepared, grouped per lobe with β folded in, so that a pair costs one log2 and one division and
+// no NaN check:
+//   ln w = min(y_a + y_b − β·ln 2·log2(λ̄a + λ̄b), 0) − ‖ξa − ξb‖² / (z_a + z_b),
+//   y = ½β(ln 2 + ln λ̄),  z = 2/(β·λ̄)   (foldedLobe, once per lobe: per low-res sample, per pixel).
+// The NaN check moves to foldedLobe: a lobe that is not finite (NaN or infinite axis or sharpness) becomes a
+// sentinel (sharpness `sentinel`, y = −1e30, axis +z) whose ln w against any lobe is about −1e30 (exp gives 0),
+// as lobeLogWeightPrepared gives. The two sides of a pair take different sentinels (FOLDED_SENTINEL_PIXEL,
+// FOLDED_SENTINEL_SAMPLE), so that two sentinels never count as equal lobes (weight 1). With finite lobes
+// min() sees no NaN, so it is the same on every device.
+struct FoldedLobe {
+    vec3 axis;
+    vec3 sharpness;  // (λ̄, y, z)
+};
+const float FOLDED_SENTINEL_PIXEL = 2e30f;
+const float FOLDED_SENTINEL_SAMPLE = 1e30f;
+VCT_INLINE FoldedLobe foldedLobe(vec3 axis, float smoothed, float beta, float sentinel) {
+    // NaN < x is false: a NaN stays, and is caught by the finiteness test.
+    const float l = smoothed < 1e-30f ? 1e-30f : smoothed;
+    const bool finite = all(lessThan(abs(vec4(axis, l)), vec4(1e30f)));  // false for NaN and ±inf
+    FoldedLobe lobe;
+    lobe.axis = finite ? axis : vec3(0.0f, 0.0f, 1.0f);
+    lobe.sharpness = finite ? vec3(l, 0.5f * beta * (0.6931472f + log(l)), 2.0f / (beta * l))
+                            : vec3(sentinel, -1e30f, 1.0f);
+    return lobe;
+}
+
+// ln w of the lobe-aware weight between two folded lobes; betaLn2 = β·ln 2.
+VCT_INLINE float lobeLogWeightFolded(FoldedLobe a, FoldedLobe b, float betaLn2) {
+    const float ratioTerm = a.sharpness.y + b.sharpness.y - betaLn2 * log2(a.sharpness.x + b.sharpness.x);
+    const float logRatio = a.sharpness.x == b.sharpness.x ? 0.0f : min(ratioTerm, 0.0f);
+    const vec3 d = a.axis - b.axis;
+    return logRatio - dot(d, d) / (a.sharpness.z + b.sharpness.z);
+}
+
 VCT_INLINE float lobeLogWeightSmoothed(vec3 axisA, float la, vec3 axisB, float lb, float beta) {
     return lobeLogWeightPrepared(axisA, preparedSharpness(la), axisB, preparedSharpness(lb), beta);
 }
