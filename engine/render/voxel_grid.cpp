@@ -19,6 +19,19 @@ namespace {
 
 constexpr VkDeviceSize kAccumVoxelBytes = VCT_VOXEL_ACCUM_STRIDE * sizeof(uint32_t);
 
+// f(k, local, voxel) for every voxel of every allocated brick: its brick index, its place in the brick
+// (0..VCT_VOXEL_BRICK − 1 per axis) and in the grid.
+template <typename F>
+void forEachVoxel(const BrickLayout& bricks, F&& f) {
+    for (uint32_t k = 0; k < bricks.brickCount(); ++k)
+        for (int z = 0; z < VCT_VOXEL_BRICK; ++z)
+            for (int y = 0; y < VCT_VOXEL_BRICK; ++y)
+                for (int x = 0; x < VCT_VOXEL_BRICK; ++x) {
+                    const glm::ivec3 local(x, y, z);
+                    f(k, local, glm::ivec3(bricks.bricks[k]) * VCT_VOXEL_BRICK + local);
+                }
+}
+
 }  // namespace
 
 uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings& settings) {
@@ -286,16 +299,11 @@ std::vector<glm::vec4> VoxelGrid::readVolume(vk::Image& atlas) {
     std::vector<glm::vec4> out(n * n * n, glm::vec4(0.0f));
     const uint32_t side = bricks_.atlasSide;
     const size_t width = atlas.width(), height = atlas.height();
-    for (uint32_t k = 0; k < bricks_.brickCount(); ++k)
-        for (int z = 0; z < glsl::VOXEL_BRICK; ++z)
-            for (int y = 0; y < glsl::VOXEL_BRICK; ++y)
-                for (int x = 0; x < glsl::VOXEL_BRICK; ++x) {
-                    const glm::ivec3 local(x, y, z);
-                    const glm::ivec3 t = glsl::materialAtlasTexel(k, side, local);
-                    const glm::ivec3 v = glm::ivec3(bricks_.bricks[k]) * glsl::VOXEL_BRICK + local;
-                    out[glsl::voxelLinearIndex(v, int(n))] =
-                        texels[size_t(t.x) + width * (size_t(t.y) + height * size_t(t.z))];
-                }
+    forEachVoxel(bricks_, [&](uint32_t k, glm::ivec3 local, glm::ivec3 voxel) {
+        const glm::ivec3 t = glsl::materialAtlasTexel(k, side, local);
+        out[glsl::voxelLinearIndex(voxel, int(n))] =
+            texels[size_t(t.x) + width * (size_t(t.y) + height * size_t(t.z))];
+    });
     return out;
 }
 
@@ -346,19 +354,13 @@ std::vector<glm::vec4> VoxelGrid::readRadiance(uint32_t mip) {
         // From the atlas: each brick's voxels (not its apron), the largest of the six slabs.
         const std::vector<glm::vec4> texels = readLevel(radianceAtlas_, 0);
         const size_t width = radianceAtlas_.width(), height = radianceAtlas_.height();
-        for (uint32_t k = 0; k < bricks_.brickCount(); ++k)
-            for (int z = 0; z < glsl::VOXEL_BRICK; ++z)
-                for (int y = 0; y < glsl::VOXEL_BRICK; ++y)
-                    for (int x = 0; x < glsl::VOXEL_BRICK; ++x) {
-                        const glm::ivec3 local(x, y, z);
-                        const glm::ivec3 v = glm::ivec3(bricks_.bricks[k]) * glsl::VOXEL_BRICK + local;
-                        glm::vec4& o = out[glsl::voxelLinearIndex(v, int(size))];
-                        for (int slab = 0; slab < glsl::VOXEL_SLAB_COUNT; ++slab) {
-                            const glm::ivec3 t = glsl::radianceAtlasTexel(k, bricks_.atlasSide, local, slab);
-                            o = glm::max(o,
-                                         texels[size_t(t.x) + width * (size_t(t.y) + height * size_t(t.z))]);
-                        }
-                    }
+        forEachVoxel(bricks_, [&](uint32_t k, glm::ivec3 local, glm::ivec3 voxel) {
+            glm::vec4& o = out[glsl::voxelLinearIndex(voxel, int(size))];
+            for (int slab = 0; slab < glsl::VOXEL_SLAB_COUNT; ++slab) {
+                const glm::ivec3 t = glsl::radianceAtlasTexel(k, bricks_.atlasSide, local, slab);
+                o = glm::max(o, texels[size_t(t.x) + width * (size_t(t.y) + height * size_t(t.z))]);
+            }
+        });
         return out;
     }
     const std::vector<glm::vec4> slabs = readLevel(radianceMips_, mip - mipBase());
