@@ -215,6 +215,25 @@ TEST(HostileFlags, Voxels256Renders) {
     expectGraceful(args, dir / "out", {Outcome::MustRender, {}, 0});
 }
 
+// A scene whose surfaces reach more bricks than a device's storage buffers hold at 256³ (25 planes across a unit
+// cube: 68,576 of 262,144 bricks, 193 MB of accumulator): it renders where they fit, else one line names
+// the limit (lavapipe: 128 MiB, about 47,000 bricks).
+TEST(HostileFlags, Voxels256OverTheDeviceLimitNamesIt) {
+    const fs::path dir = caseDir();
+    GltfScene scene = triangleScene();
+    json nodes = json::array(), children = json::array();
+    for (int i = 0; i <= 24; ++i) {
+        nodes.push_back({{"mesh", 0}, {"translation", {0.0, 0.0, double(i) / 24.0}}});
+        children.push_back(i);
+    }
+    scene.doc["nodes"] = nodes;
+    scene.doc["scenes"] = {{{"nodes", children}}};
+    std::vector<std::string> args = renderArgs(writeGltf(dir, scene), dir / "out");
+    args[8] = "256";  // --voxels
+    expectGraceful(args, dir / "out",
+                   {Outcome::Either, {"--voxels 256", "bricks", "maxStorageBufferRange"}, 2});
+}
+
 // ---- class 12: flags that used to fail late or with a message that named nothing ----
 
 TEST(HostileFlags, OutputPathThatIsAFileIsRefusedBeforeRendering) {
