@@ -100,23 +100,35 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
         }
     }
 
-    // Moving instances: every brick within a voxel of their bounds at any sampled time.
+    // Moving instances: every brick within a voxel of the box around their bounds at two consecutive sampled times
+    // (what they sweep between the samples, for motion along a line; a fast object would otherwise jump over
+    // bricks between samples, and its voxels there would have no storage).
+    auto markBox = [&](const Aabb& box) {
+        const glm::vec3 low = (box.min - origin) / voxelSize, high = (box.max - origin) / voxelSize;
+        const glm::ivec3 lo = glm::clamp(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0), glm::ivec3(n - 1));
+        const glm::ivec3 hi = glm::clamp(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(0), glm::ivec3(n - 1));
+        const BrickRange range = bricksHolding(lo, hi, perAxis);
+        for (int z = range.min.z; z <= range.max.z; ++z)
+            for (int y = range.min.y; y <= range.max.y; ++y)
+                for (int x = range.min.x; x <= range.max.x; ++x) mark(glm::ivec3(x, y, z));
+    };
     float duration = 0.0f;
     for (const Animation& animation : scene.animations) duration = std::max(duration, animation.duration);
+    std::vector<Aabb> previous;  // each instance's bounds at the last sample (empty: not moving)
     for (int s = 0; s <= (duration > 0.0f ? kAnimationSamples : 0); ++s) {
-        const float time = duration * float(s) / float(kAnimationSamples);
-        for (const Instance& instance : scene.instances(time)) {
+        const std::vector<Instance> instances =
+            scene.instances(duration * float(s) / float(kAnimationSamples));
+        previous.resize(instances.size());
+        for (size_t i = 0; i < instances.size(); ++i) {
+            const Instance& instance = instances[i];
             if (!instance.moving || instance.bounds.empty()) continue;
-            const glm::vec3 low = (instance.bounds.min - origin) / voxelSize;
-            const glm::vec3 high = (instance.bounds.max - origin) / voxelSize;
-            const glm::ivec3 lo =
-                glm::clamp(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0), glm::ivec3(n - 1));
-            const glm::ivec3 hi =
-                glm::clamp(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(0), glm::ivec3(n - 1));
-            const BrickRange range = bricksHolding(lo, hi, perAxis);
-            for (int z = range.min.z; z <= range.max.z; ++z)
-                for (int y = range.min.y; y <= range.max.y; ++y)
-                    for (int x = range.min.x; x <= range.max.x; ++x) mark(glm::ivec3(x, y, z));
+            Aabb swept = instance.bounds;
+            swept.extend(previous[i]);
+            if (!(glm::all(glm::lessThan(glm::abs(swept.min), glm::vec3(1e30f))) &&
+                  glm::all(glm::lessThan(glm::abs(swept.max), glm::vec3(1e30f)))))
+                continue;  // not finite: nothing the grid holds
+            markBox(swept);
+            previous[i] = instance.bounds;
         }
     }
 
