@@ -52,9 +52,7 @@ void InjectPass::inject(const FrameContext& frame, bool addBounce) {
     const VoxelRegion& region = regions->inject;
     const gpu::InjectPushConstants push{params, glm::uvec4(region.min, 1u)};
     pipeline_.pushConstants(frame.cmd, &push, sizeof(push));
-    if (region.empty()) return;
-    const glm::uvec3 size = region.max - region.min;
-    vkCmdDispatch(frame.cmd, voxelTileCount(size.x), voxelTileCount(size.y), voxelTileCount(size.z));
+    dispatchRegionBricks(frame.cmd, region);
 }
 
 }  // namespace vct

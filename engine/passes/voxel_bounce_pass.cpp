@@ -1,6 +1,25 @@
 #include "passes/voxel_bounce_pass.h"
 
+#include "passes/voxel_source.h"
+
 namespace vct {
+
+namespace {
+
+// Binding numbers: shaders/voxel_bounce.comp's.
+ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environment) {
+    std::vector<ResourceRow> rows{
+        {VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+        {1, Resource::image("albedo", grid.albedo()), Access::Read},
+        {2, Resource::image("normal", grid.normal()), Access::Read},
+        {4, Resource::image("bounce", grid.bounce()), Access::Write},
+        // Cones that leave the grid see the environment: sky light bounces too.
+        {5, Resource::image("environment", *environment.image, environment.sampler), Access::Sampled}};
+    VoxelSource::of(grid).addRows(rows, 3);
+    return {"bounce", std::move(rows)};
+}
+
+}  // namespace
 
 VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject,
                                  VoxelMipsPass& mips, uint32_t bounces, const EnvironmentSource& environment)
@@ -8,19 +27,7 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
       inject_(inject),
       mips_(mips),
       iterations_(bounces > 1 ? bounces - 1 : 0),
-      // Binding numbers: shaders/voxel_bounce.comp's.
-      resources_(
-          "bounce",
-          {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-           {1, Resource::image("albedo", grid.albedo()), Access::Read},
-           {2, Resource::image("normal", grid.normal()), Access::Read},
-           {3, Resource::image("radianceMips", grid.radianceMips(), grid.sampler()), Access::Sampled},
-           {VCT_BINDING_VOXEL_ATLAS,
-            Resource::image("radianceAtlas", grid.radianceAtlas(), grid.atlasSampler()), Access::Sampled},
-           {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read},
-           {4, Resource::image("bounce", grid.bounce()), Access::Write},
-           // Cones that leave the grid see the environment: sky light bounces too.
-           {5, Resource::image("environment", *environment.image, environment.sampler), Access::Sampled}}) {
+      resources_(bounceResources(grid, environment)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(), 0,
                                       grid.specialization());
 }

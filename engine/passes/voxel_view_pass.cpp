@@ -1,6 +1,7 @@
 #include "passes/voxel_view_pass.h"
 
 #include "core/error.h"
+#include "passes/voxel_source.h"
 
 namespace vct {
 
@@ -15,6 +16,14 @@ vk::Image makeOutput(const vk::Context& context, uint32_t width, uint32_t height
     return vk::Image(context, desc);
 }
 
+// Binding numbers: shaders/voxel_view.comp's.
+ResourceTable viewResources(VoxelGrid& grid, vk::Image& output) {
+    std::vector<ResourceRow> rows{{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+                                  {2, Resource::image("output", output), Access::Write}};
+    VoxelSource::of(grid).addRows(rows, 1);
+    return {"voxel_view", std::move(rows)};
+}
+
 }  // namespace
 
 VoxelViewPass::VoxelViewPass(const vk::Context& context, VoxelGrid& grid)
@@ -22,15 +31,7 @@ VoxelViewPass::VoxelViewPass(const vk::Context& context, VoxelGrid& grid)
       grid_(grid),
       // 1×1 until prepare() sizes it; made here so that the pipeline's check sees its format.
       output_(makeOutput(context, 1, 1)),
-      // Binding numbers: shaders/voxel_view.comp's.
-      resources_(
-          "voxel_view",
-          {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-           {1, Resource::image("voxels", grid.radianceMips(), grid.sampler()), Access::Sampled},
-           {VCT_BINDING_VOXEL_ATLAS,
-            Resource::image("radianceAtlas", grid.radianceAtlas(), grid.atlasSampler()), Access::Sampled},
-           {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read},
-           {2, Resource::image("output", output_), Access::Write}}) {
+      resources_(viewResources(grid, output_)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_view.comp", resources_.bindings(),
                                       sizeof(gpu::VoxelViewPushConstants), grid.specialization());
 }

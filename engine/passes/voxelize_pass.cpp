@@ -149,9 +149,7 @@ void VoxelizePass::execute(const FrameContext& frame) {
     const VoxelRegion& region = regions->resolve;
     push.region = glm::uvec4(region.min, 1u);
     resolve_.pushConstants(cmd, &push, sizeof(push));
-    if (region.empty()) return;
-    const glm::uvec3 size = region.max - region.min;
-    vkCmdDispatch(cmd, voxelTileCount(size.x), voxelTileCount(size.y), voxelTileCount(size.z));
+    dispatchRegionBricks(cmd, region);
 }
 
 }  // namespace vct

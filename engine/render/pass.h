@@ -3,7 +3,6 @@
 // (Renderer) times each pass with a GPU timestamp scope.
 #pragma once
 
-#include <algorithm>
 #include <vector>
 
 #include "render/frame_targets.h"
@@ -58,13 +57,6 @@ inline uint32_t tileCount(uint32_t pixels) {
 // Dispatch size along one axis for a compute pass over voxels (or voxel texels) in VCT_VOXEL_TILE tiles.
 inline uint32_t voxelTileCount(uint32_t voxels) {
     return (voxels + VCT_VOXEL_TILE - 1) / VCT_VOXEL_TILE;
-}
-
-// A voxel pass over the whole grid: one workgroup per allocated brick, in rows (lib/voxel_workgroup.glsl).
-inline void dispatchBricks(VkCommandBuffer cmd, uint32_t bricks) {
-    if (bricks == 0) return;
-    vkCmdDispatch(cmd, std::min<uint32_t>(bricks, VCT_BRICK_DISPATCH_ROW),
-                  (bricks + VCT_BRICK_DISPATCH_ROW - 1) / VCT_BRICK_DISPATCH_ROW, 1);
 }
 
 }  // namespace vct

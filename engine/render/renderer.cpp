@@ -34,19 +34,6 @@ RenderSettings resolveForDevice(const vk::Context& context, RenderSettings setti
     return settings;
 }
 
-// What the cone-tracing passes read of the grid.
-VoxelSource voxelSource(VoxelGrid& grid, const EnvironmentSource& environment) {
-    VoxelSource source;
-    source.radianceMips = &grid.radianceMips();
-    source.sampler = grid.sampler();
-    source.radianceAtlas = &grid.radianceAtlas();
-    source.atlasSampler = grid.atlasSampler();
-    source.brickTable = &grid.brickTable();
-    source.sparseMip0 = grid.sparseMip0();
-    source.environment = environment;
-    return source;
-}
-
 }  // namespace
 
 Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderSettings& settings,
@@ -100,7 +87,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     passes_.push_back(std::make_unique<DirectPass>(context, environment));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
-        const VoxelSource voxels = voxelSource(*voxelGrid_, environment);
+        const VoxelSource voxels = VoxelSource::of(*voxelGrid_, environment);
         passes_.push_back(std::make_unique<TracePass>(context, settings.traceScale, voxels));
         // Upsampling and adaptive re-tracing only where something is traced at low resolution: at scale 1 the
         // trace writes the full-res targets itself.
@@ -112,7 +99,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     // Blended surfaces, drawn forward over the opaque frame's depth into their own layer, which composite puts
     // over the frame (docs/design.md §2.6); a scene without any has no blend pass.
     if (gpuScene_.hasBlended()) {
-        const VoxelSource voxels = voxelGrid_ ? voxelSource(*voxelGrid_, environment) : VoxelSource{};
+        const VoxelSource voxels = voxelGrid_ ? VoxelSource::of(*voxelGrid_, environment) : VoxelSource{};
         passes_.push_back(
             std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment, vertexColors));
     }

@@ -21,6 +21,21 @@ BrickRange bricksHolding(glm::ivec3 lo, glm::ivec3 hi, int bricksPerAxis) {
     return {glm::max((lo - 1) / kBrick, glm::ivec3(0)), glm::min(hi / kBrick, glm::ivec3(bricksPerAxis - 1))};
 }
 
+// The bricks holding the voxels of voxel-space box [low, high] widened by one voxel, inside the N³ grid; false when
+// the box misses the grid (or is not finite).
+bool bricksAround(glm::vec3 low, glm::vec3 high, int n, int bricksPerAxis, BrickRange& range) {
+    const glm::vec3 huge(1e30f);  // also false for NaN
+    if (!glm::all(glm::lessThan(glm::abs(low), huge)) || !glm::all(glm::lessThan(glm::abs(high), huge)) ||
+        !glm::all(glm::greaterThan(high, glm::vec3(-1.0f))) ||
+        !glm::all(glm::lessThan(low, glm::vec3(float(n) + 1.0f))))
+        return false;
+    const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0));
+    const glm::ivec3 hi = glm::min(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(n - 1));
+    if (glm::any(glm::greaterThan(lo, hi))) return false;
+    range = bricksHolding(lo, hi, bricksPerAxis);
+    return true;
+}
+
 // Samples of the animation for moving instances' bounds (as voxelSceneBounds).
 constexpr int kAnimationSamples = 32;
 
@@ -79,15 +94,10 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
                     p[k] = (world - origin) / voxelSize;
                 }
                 if (!inside) continue;
-                const glm::vec3 low = glm::min(p[0], glm::min(p[1], p[2]));
-                const glm::vec3 high = glm::max(p[0], glm::max(p[1], p[2]));
-                if (!glm::all(glm::greaterThan(high, glm::vec3(-1.0f))) ||
-                    !glm::all(glm::lessThan(low, glm::vec3(float(n) + 1.0f))))
-                    continue;  // outside the grid (or not finite)
-                const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0));
-                const glm::ivec3 hi = glm::min(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(n - 1));
-                if (glm::any(glm::greaterThan(lo, hi))) continue;
-                const BrickRange range = bricksHolding(lo, hi, perAxis);
+                BrickRange range;
+                if (!bricksAround(glm::min(p[0], glm::min(p[1], p[2])), glm::max(p[0], glm::max(p[1], p[2])),
+                                  n, perAxis, range))
+                    continue;
                 for (int z = range.min.z; z <= range.max.z; ++z)
                     for (int y = range.min.y; y <= range.max.y; ++y)
                         for (int x = range.min.x; x <= range.max.x; ++x) {
@@ -104,10 +114,9 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
     // (what they sweep between the samples, for motion along a line; a fast object would otherwise jump over
     // bricks between samples, and its voxels there would have no storage).
     auto markBox = [&](const Aabb& box) {
-        const glm::vec3 low = (box.min - origin) / voxelSize, high = (box.max - origin) / voxelSize;
-        const glm::ivec3 lo = glm::clamp(glm::ivec3(glm::floor(low)) - 1, glm::ivec3(0), glm::ivec3(n - 1));
-        const glm::ivec3 hi = glm::clamp(glm::ivec3(glm::floor(high)) + 1, glm::ivec3(0), glm::ivec3(n - 1));
-        const BrickRange range = bricksHolding(lo, hi, perAxis);
+        BrickRange range;
+        if (!bricksAround((box.min - origin) / voxelSize, (box.max - origin) / voxelSize, n, perAxis, range))
+            return;
         for (int z = range.min.z; z <= range.max.z; ++z)
             for (int y = range.min.y; y <= range.max.y; ++y)
                 for (int x = range.min.x; x <= range.max.x; ++x) mark(glm::ivec3(x, y, z));
@@ -124,9 +133,6 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
             if (!instance.moving || instance.bounds.empty()) continue;
             Aabb swept = instance.bounds;
             swept.extend(previous[i]);
-            if (!(glm::all(glm::lessThan(glm::abs(swept.min), glm::vec3(1e30f))) &&
-                  glm::all(glm::lessThan(glm::abs(swept.max), glm::vec3(1e30f)))))
-                continue;  // not finite: nothing the grid holds
             markBox(swept);
             previous[i] = instance.bounds;
         }

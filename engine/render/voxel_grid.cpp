@@ -32,6 +32,16 @@ void forEachVoxel(const BrickLayout& bricks, F&& f) {
                 }
 }
 
+// Device bytes of an image's texels, every mip level.
+uint64_t imageBytes(const vk::Image& image) {
+    const vk::ImageDesc& d = image.desc();
+    uint64_t bytes = 0;
+    for (uint32_t level = 0; level < d.mipLevels; ++level)
+        bytes += uint64_t(std::max(1u, d.width >> level)) * std::max(1u, d.height >> level) *
+                 std::max(1u, d.depth >> level) * vk::bytesPerPixel(d.format);
+    return bytes;
+}
+
 }  // namespace
 
 uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings& settings) {
@@ -46,12 +56,8 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
     }
     if (n < 32 || n > 256 || !std::has_single_bit(n))
         throw UsageError("voxel resolution " + std::to_string(n) + " must be a power of two in 32..256");
-    // The radiance's mips 1.. are one dense texture, six slabs of N/2 side by side: 3N texels wide. What the
-    // sparse storage needs is checked with the scene (VoxelGrid's constructor).
-    if (3 * n > context.properties().limits.maxImageDimension3D)
-        throw UsageError("--voxels " + std::to_string(n) + ": its radiance mips (" + std::to_string(3 * n) +
-                         " texels wide) exceed this device's maxImageDimension3D (" +
-                         std::to_string(context.properties().limits.maxImageDimension3D) + ")");
+    // What the grid's buffers and images need of the device is checked with the scene's bricks (VoxelGrid's
+    // constructor).
     return n;
 }
 
@@ -95,16 +101,20 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
                          ", whose voxel accumulator needs " + byteSizeText(accumBytes) +
                          ", more than this device's maxStorageBufferRange (" + byteSizeText(maxRange) +
                          "); use a smaller --voxels");
-    const uint32_t maxImage = context.properties().limits.maxImageDimension3D;
     const uint32_t side = bricks_.atlasSide, layers = bricks_.atlasLayers;
     const uint32_t apron = uint32_t(glsl::VOXEL_BRICK_APRON), slabs = uint32_t(glsl::VOXEL_SLAB_COUNT);
-    if (sparseMip0 && (uint64_t(slabs) * side * apron > maxImage || uint64_t(layers) * apron > maxImage))
-        throw UsageError("--voxels " + std::to_string(resolution) + ": the scene reaches " + occupancy +
-                         ", whose radiance atlas (" + std::to_string(slabs * side * apron) +
-                         " texels wide) exceeds this device's maxImageDimension3D (" +
-                         std::to_string(maxImage) + "); use a smaller --voxels");
 
-    auto volume = [&](VkFormat format, glm::uvec3 size, uint32_t mips, VkImageUsageFlags usage) {
+    // Every volume is checked against the device's 3D image limit before it is made (the radiance mips are 6N
+    // or 3N texels wide, the atlases grow with the scene's bricks).
+    const uint32_t maxImage = context.properties().limits.maxImageDimension3D;
+    auto volume = [&](const char* name, VkFormat format, glm::uvec3 size, uint32_t mips,
+                      VkImageUsageFlags usage) {
+        if (glm::any(glm::greaterThan(size, glm::uvec3(maxImage))))
+            throw UsageError("--voxels " + std::to_string(resolution) + ": the scene reaches " + occupancy +
+                             ", whose " + name + " (" + std::to_string(size.x) + "x" +
+                             std::to_string(size.y) + "x" + std::to_string(size.z) +
+                             " texels) exceeds this device's maxImageDimension3D (" +
+                             std::to_string(maxImage) + "); use a smaller --voxels");
         vk::ImageDesc desc;
         desc.width = size.x;
         desc.height = size.y;
@@ -120,18 +130,18 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     // Transfer destination: inject clears mip 0 (the atlas or level 0) before writing the occupied voxels only.
     const uint32_t first = resolution >> mipBase();  // texels per slab of the texture's level 0
     radianceMips_ =
-        volume(VK_FORMAT_R16G16B16A16_SFLOAT, {first * slabs, first, first},
+        volume("radiance mips", VK_FORMAT_R16G16B16A16_SFLOAT, {first * slabs, first, first},
                std::max(mipCount_ - mipBase(), 1u), sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const glm::uvec3 atlasSize = sparseMip0 ? glm::uvec3(slabs * side * apron, side * apron, layers * apron)
                                             : glm::uvec3(1, 1, 2);  // 3D
-    radianceAtlas_ =
-        volume(VK_FORMAT_R16G16B16A16_SFLOAT, atlasSize, 1, sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    radianceAtlas_ = volume("radiance atlas", VK_FORMAT_R16G16B16A16_SFLOAT, atlasSize, 1,
+                            sampledStorage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const uint32_t brick = VCT_VOXEL_BRICK;
     const glm::uvec3 materialSize(side * brick, side * brick, layers * brick);
-    albedo_ = volume(VK_FORMAT_R8G8B8A8_UNORM, materialSize, 1, storage);
-    normal_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
-    emission_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
-    bounce_ = volume(VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
+    albedo_ = volume("albedo atlas", VK_FORMAT_R8G8B8A8_UNORM, materialSize, 1, storage);
+    normal_ = volume("normal atlas", VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
+    emission_ = volume("emission atlas", VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
+    bounce_ = volume("bounce atlas", VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
 
     // TRANSFER_DST: cleared, and filled from a voxel cache; TRANSFER_SRC: read back for `vct voxelize`.
     constexpr VkBufferUsageFlags accumUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
@@ -143,18 +153,18 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     for (const Instance& instance : scene.instances(0.0f)) moving |= instance.moving;
     if (moving) dynamicAccum_ = vk::Buffer(context, accumBytes, accumUsage, vk::MemoryUsage::DeviceLocal);
 
-    // Bytes per voxel of each store, for the report (what dense N³ volumes would take beside what these do).
-    const uint64_t accumulators = moving ? 2 : 1;
-    const uint64_t materialTexel = 4 + 3 * 8;  // albedo RGBA8, normal, emission, bounce RGBA16F
+    // For the report: what the grid's images and buffers take, and what dense N³ storage of the same data would
+    // (per voxel: each material atlas's texel and the accumulators' words; the radiance's six slabs at every mip).
+    const vk::Image* images[] = {&radianceMips_, &radianceAtlas_, &albedo_, &normal_, &emission_, &bounce_};
+    memory_.bytes = brickTable_.size() + staticAccum_.size() + dynamicAccum_.size();
+    for (const vk::Image* image : images) memory_.bytes += imageBytes(*image);
     const uint64_t voxels = uint64_t(resolution) * resolution * resolution;
-    uint64_t mipsBytes = 0;  // mips 1..
-    for (uint32_t size = resolution / 2; size >= 1; size /= 2)
-        mipsBytes += uint64_t(slabs) * size * size * size * 8;
-    const uint64_t mip0Bytes = voxels * slabs * 8;
-    memory_.denseBytes = voxels * (materialTexel + accumulators * kAccumVoxelBytes) + mip0Bytes + mipsBytes;
-    memory_.bytes = (sparseMip0 ? uint64_t(atlasSize.x) * atlasSize.y * atlasSize.z * 8 : mip0Bytes) +
-                    uint64_t(materialSize.x) * materialSize.y * materialSize.z * materialTexel +
-                    accumulators * accumBytes + mipsBytes + table.size() * sizeof(uint32_t);
+    uint64_t denseRadiance = 0;
+    for (uint64_t size = resolution; size >= 1; size /= 2) denseRadiance += slabs * size * size * size;
+    memory_.denseBytes = denseRadiance * vk::bytesPerPixel(radianceMips_.format()) +
+                         voxels * kAccumVoxelBytes * (hasMovingInstances() ? 2 : 1);
+    for (const vk::Image* image : {&albedo_, &normal_, &emission_, &bounce_})
+        memory_.denseBytes += voxels * vk::bytesPerPixel(image->format());
 
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = VK_FILTER_LINEAR;

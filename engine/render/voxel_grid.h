@@ -18,6 +18,7 @@
 //    128 on a GPU.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
@@ -61,6 +62,21 @@ struct VoxelRegion {
     // The same box at mip `level`: every texel with a child in it.
     VoxelRegion atLevel(uint32_t level) const;
 };
+
+// A voxel pass over the whole grid: one workgroup per allocated brick, in rows (lib/voxel_workgroup.glsl).
+inline void dispatchBricks(VkCommandBuffer cmd, uint32_t bricks) {
+    if (bricks == 0) return;
+    vkCmdDispatch(cmd, std::min<uint32_t>(bricks, VCT_BRICK_DISPATCH_ROW),
+                  (bricks + VCT_BRICK_DISPATCH_ROW - 1) / VCT_BRICK_DISPATCH_ROW, 1);
+}
+
+// A voxel pass over a region: one workgroup per brick of its (brick-aligned) box (lib/voxel_workgroup.glsl).
+inline void dispatchRegionBricks(VkCommandBuffer cmd, const VoxelRegion& region) {
+    if (region.empty()) return;
+    const glm::uvec3 bricks =
+        (region.max - region.min + glm::uvec3(VCT_VOXEL_BRICK - 1)) / uint32_t(VCT_VOXEL_BRICK);
+    vkCmdDispatch(cmd, bricks.x, bricks.y, bricks.z);
+}
 
 class VoxelGrid {
   public:

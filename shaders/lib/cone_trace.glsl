@@ -21,20 +21,24 @@ layout(set = 0, binding = VCT_BINDING_VOXEL_ATLAS) uniform sampler3D voxelAtlas;
 // read between the two levels of one texture does): the atlas read is the block of the brick holding the
 // sample's lower corner voxel, which its apron makes hold all eight voxels the filter reads; no block there means
 // none of them is occupied.
+// The slabs with weights w read from the mips' texture at level `lod` (fractional: trilinear between levels);
+// `texels` per slab at the coarser level read, to keep u inside each slab.
+vec4 sampleMipSlabs(sampler3D voxels, vec3 uvw, vec3 dir, vec3 w, float lod, float texels) {
+    vec4 s = vec4(0.0);
+    for (int axis = 0; axis < 3; ++axis) {
+        if (w[axis] <= 0.0) continue;
+        const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
+        s += w[axis] * textureLod(voxels, slabUvw, lod);
+    }
+    return s;
+}
+
 vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
     const vec3 w = voxelSlabWeights(dir);
     const int n = int(frame.voxels.resolution);
+    // Mip 0 dense (RenderSettings::sparseMip0From): every mip in the one texture, one read per slab.
+    if (!SPARSE_MIP0) return sampleMipSlabs(voxels, uvw, dir, w, mip, float(max(n >> int(ceil(mip)), 1)));
     vec4 s = vec4(0.0);
-    if (!SPARSE_MIP0) {
-        // Mip 0 dense (RenderSettings::sparseMip0From): every mip in the one texture, one read per slab.
-        const float texels = float(max(n >> int(ceil(mip)), 1));  // per slab, at the coarser mip read
-        for (int axis = 0; axis < 3; ++axis) {
-            if (w[axis] <= 0.0) continue;
-            const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
-            s += w[axis] * textureLod(voxels, slabUvw, mip);
-        }
-        return s;
-    }
     const float fine = 1.0 - min(mip, 1.0);
     if (fine > 0.0) {
         // Voxel units, clamped to the outermost texel centres (the coarse sampler's clamp to the edge).
@@ -52,16 +56,10 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
             }
         }
     }
-    if (mip > 0.0) {
-        // Texels per slab at the coarser of the two mips the sample blends.
-        const float texels = float(max(n >> int(ceil(max(mip, 1.0))), 1));
-        const float coarse = min(mip, 1.0);
-        for (int axis = 0; axis < 3; ++axis) {
-            if (w[axis] <= 0.0) continue;
-            const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
-            s += (w[axis] * coarse) * textureLod(voxels, slabUvw, max(mip - 1.0, 0.0));
-        }
-    }
+    // Mip 1 and coarser: the texture's level mip − 1.
+    if (mip > 0.0)
+        s += min(mip, 1.0) * sampleMipSlabs(voxels, uvw, dir, w, max(mip - 1.0, 0.0),
+                                            float(max(n >> int(ceil(max(mip, 1.0))), 1)));
     return s;
 }
 
