@@ -23,8 +23,8 @@ struct VoxelSource {
 
     // The grid's, with `environment` (only the cone-tracing passes need one).
     static VoxelSource of(VoxelGrid& grid, const EnvironmentSource& environment = {}) {
-        return {&grid.radianceMips(), grid.sampler(),           &grid.radianceAtlas(),
-                grid.atlasSampler(),  &grid.brickTable(),       grid.sparseMip0(),
+        return {&grid.radianceMips(), grid.sampler(),     &grid.radianceAtlas(),
+                grid.atlasSampler(),  &grid.brickTable(), grid.sparseMip0(),
                 environment};
     }
 
