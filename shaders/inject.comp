@@ -10,6 +10,9 @@
 #include "lib/voxel.glsl"
 #include "lib/voxel_bricks.glsl"
 #include "lib/lights.glsl"
+#include "lib/brdf.glsl"
+#include "lib/toksvig.glsl"
+#include "lib/voxel_specular.glsl"
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
 
@@ -27,6 +30,8 @@ layout(set = 0, binding = 6, rgba16f) uniform image3D radianceImage;
 layout(set = 0, binding = 7, rgba16f) uniform readonly image3D bounceImage;
 // Mip 0 when it is dense (level 0 of the radiance mips, six slabs of N³ side by side along x), cleared alike.
 layout(set = 0, binding = 8, rgba16f) uniform image3D denseRadianceImage;
+// Split-sum DFG table, uv = (n·l, perceptual roughness): the specular lobes' directional albedo F0·A + B.
+layout(set = 0, binding = 9) uniform sampler2D dfgTable;
 
 #include "lib/voxel_storage.glsl"
 #include "lib/voxel_workgroup.glsl"
@@ -92,15 +97,28 @@ void main() {
         }
         return;
     }
-    const vec3 nbar = imageLoad(normalImage, texel).xyz;
-    const vec3 emission = imageLoad(emissionImage, texel).rgb;
+    const vec4 normalRoughness = imageLoad(normalImage, texel);
+    const vec4 emissionMetallic = imageLoad(emissionImage, texel);
+    const vec3 nbar = normalRoughness.xyz;
+    const vec3 baseColor = albedoOpacity.rgb;
+    const float nbarLength = length(nbar);
+    const float metallic = emissionMetallic.w;
+    const float perceptualRoughness = voxelLobeRoughness(normalRoughness.w, nbarLength);
+    const vec3 f0 = f0FromMetallic(baseColor, metallic);
+    const vec3 albedo = diffuseAlbedo(baseColor, metallic);
     const float voxelSize = frame.voxels.voxelSize;
     const vec3 center = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
 
-    vec3 radiance = emission;
-    // Light that has bounced before (multiple bounces): a Lambertian voxel sends albedo × the cosine-weighted
-    // mean radiance it receives, albedo/π · E.
-    if (push.params.x != 0u) radiance += albedoOpacity.rgb * imageLoad(bounceImage, texel).rgb;
+    // What leaves to every side alike: emission, the diffuse part of the direct light, and (multiple bounces)
+    // the light that has bounced before, which a voxel passes on as a Lambertian of its base colour would
+    // (the diffuse albedo of a dielectric, F0 of a metal), baseColor/π · E: the bounce gathers' irradiance is not
+    // resolved by direction, so it has no lobe to follow.
+    vec3 radiance = emissionMetallic.rgb;
+    if (push.params.x != 0u) radiance += baseColor * imageLoad(bounceImage, texel).rgb;
+    // What leaves in the specular lobes of the lights, per slab (lib/voxel_specular.glsl).
+    vec3 specular[VOXEL_SLAB_COUNT];
+    for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] = vec3(0.0);
+    const bool glossy = (frame.flags & VCT_FLAG_VOXEL_GLOSSY) != 0u;
     const int lightCount = int(frame.lighting.lightCount);
     const int shadowLight = frame.lighting.shadowLight;
     for (int i = 0; i < lightCount; ++i) {
@@ -109,20 +127,45 @@ void main() {
         const vec3 l = light.towardsLight;
         const float cosine = voxelCosine(nbar, l);
         if (cosine <= 0.0 || all(equal(incident, vec3(0.0)))) continue;
+        // The voxel's surface turned towards the light (both sides of a thin wall reflect the side lit).
+        const vec3 towardsLightSide =
+            nbarLength > 1e-3 ? nbar / nbarLength * sign(dot(nbar, l) + 1e-6) : vec3(0.0);
         float visibility = 1.0;
         if (i == shadowLight) {
             // The centre may lie up to half a diagonal behind the surface: step out along the light and
             // the normal (turned towards the light) so the surface does not shadow its own voxel.
-            const float r = length(nbar);
-            const vec3 towardsLightSide = r > 1e-3 ? nbar / r * sign(dot(nbar, l) + 1e-6) : vec3(0.0);
             visibility = shadowVisibility(center + voxelSize * (l + towardsLightSide));
         }
-        radiance += incident * albedoOpacity.rgb * INV_PI * cosine * visibility;
+        const vec3 irradiance = incident * (cosine * visibility);
+        // Off: Lambertian voxels of the diffuse albedo alone (the reference's --secondary diffuse).
+        if (!glossy) {
+            radiance += irradiance * albedo * INV_PI;
+            continue;
+        }
+        radiance += irradiance * albedo * INV_PI * (1.0 - F_Schlick(f0, cosine));
+        // No lobe without a direction: the surfaces in the voxel cancel (|nbar| → 0); their light stays diffuse.
+        if (nbarLength <= 1e-3) {
+            const vec2 dfg = textureLod(dfgTable, vec2(cosine, perceptualRoughness), 0.0).rg;
+            radiance += irradiance * (f0 * dfg.x + dfg.y) * INV_PI;
+            continue;
+        }
+        const float NoL = max(dot(towardsLightSide, l), MIN_N_DOT_V);
+        float shares[VOXEL_SLAB_COUNT];
+        float exitance = 0.0;  // of the shares as radiance
+        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
+            shares[slab] = specularSlabShare(nbar, towardsLightSide, l, NoL, perceptualRoughness, slab);
+            exitance += shares[slab] * slabExitance(towardsLightSide, slab);
+        }
+        if (exitance <= 1e-6) continue;  // the lobe points only where the surfaces do not face
+        const vec2 dfg = textureLod(dfgTable, vec2(NoL, perceptualRoughness), 0.0).rg;
+        const vec3 reflected = irradiance * (f0 * dfg.x + dfg.y) / exitance;
+        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] += reflected * shares[slab];
     }
-    // Each slab sees the light that leaves towards the cones reading it, i.e. against its direction.
+    // Each slab sees the light that leaves towards the cones reading it, i.e. against its direction (the
+    // specular shares have the facing in them already).
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
         const float facing = voxelFacing(nbar, -voxelSlabDirection(slab));
-        slabs[slab] = vec4(radiance * (facing * albedoOpacity.a), albedoOpacity.a);
+        slabs[slab] = vec4((radiance * facing + specular[slab]) * albedoOpacity.a, albedoOpacity.a);
     }
     storeRadiance(k, brick, local, slabs);
 }

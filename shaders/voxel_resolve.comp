@@ -17,9 +17,10 @@ layout(set = 0, binding = VCT_BINDING_FRAME) uniform Frame { FrameUniforms frame
 layout(set = 0, binding = 1) readonly buffer Static { uint staticAccum[]; };
 layout(set = 0, binding = 2) buffer Dynamic { uint dynamicAccum[]; };
 layout(set = 0, binding = 3, rgba8) uniform writeonly image3D albedoImage;  // albedo, opacity
-// Averaged normal (not renormalised), w unused.
+// Averaged normal (not renormalised), mean perceptual roughness.
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D normalImage;
-layout(set = 0, binding = 5, rgba16f) uniform writeonly image3D emissionImage;  // emitted radiance
+layout(set = 0, binding = 5,
+       rgba16f) uniform writeonly image3D emissionImage;  // emitted radiance, mean metallic
 #include "lib/voxel_storage.glsl"
 #include "lib/voxel_workgroup.glsl"
 
@@ -61,6 +62,8 @@ void main() {
     const uint transparency = sums[VCT_VOXEL_ACCUM_TRANSPARENCY];
     const float opacity = transparency == 0u ? 1.0 : 1.0 - voxelDecodeUnit(transparency, count);
     imageStore(albedoImage, texel, vec4(albedo, opacity));
-    imageStore(normalImage, texel, vec4(normal, 0.0));
-    imageStore(emissionImage, texel, vec4(emission, 0.0));
+    const float metallic = voxelDecodeUnit(sums[VCT_VOXEL_ACCUM_METALLIC], count);
+    const float roughness = voxelDecodeUnit(sums[VCT_VOXEL_ACCUM_ROUGHNESS], count);
+    imageStore(normalImage, texel, vec4(normal, roughness));
+    imageStore(emissionImage, texel, vec4(emission, metallic));
 }

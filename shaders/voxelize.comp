@@ -23,6 +23,8 @@ layout(set = 0, binding = 4) readonly buffer Indices { uint indices[]; };
 layout(set = 0, binding = 5) uniform sampler2D baseColorTexture;
 layout(set = 0, binding = 6) uniform sampler2D emissiveTexture;
 layout(set = 0, binding = 7) buffer Accum { uint accum[]; };
+layout(set = 0,
+       binding = 8) uniform sampler2D metallicRoughnessTexture;  // glTF: metallic in b, roughness in g
 #include "lib/voxel_storage.glsl"
 
 layout(push_constant) uniform Push { VoxelizePushConstants push; };
@@ -92,6 +94,7 @@ void main() {
     const float worldArea2 = length(cross(worldP[1] - worldP[0], worldP[2] - worldP[0]));
     const float baseLod = lodForVoxel(baseColorTexture, uv[0], uv[1], uv[2], worldArea2);
     const float emissiveLod = lodForVoxel(emissiveTexture, uv[0], uv[1], uv[2], worldArea2);
+    const float metallicRoughnessLod = lodForVoxel(metallicRoughnessTexture, uv[0], uv[1], uv[2], worldArea2);
     const vec3 faceNormal = cross(p[1] - p[0], p[2] - p[0]);
     const bool mask = material.flags.x == VCT_ALPHA_MASK;
     // A blended surface covers its voxels by its alpha (the resolve's opacity); opaque ones add nothing here.
@@ -109,6 +112,12 @@ void main() {
                 if (mask && base.a < material.metallicRoughnessCutoffAo.z) continue;  // cut-out
                 const vec3 emission =
                     material.emissiveNormalScale.rgb * fetchTexel(emissiveTexture, texcoord, emissiveLod).rgb;
+                // As gbuffer.frag's surface (lib/surface.glsl): factor × texture, without the normal map's Toksvig
+                // roughness (the voxel's own normals widen its lobe in inject.comp).
+                const vec4 metallicRoughness =
+                    fetchTexel(metallicRoughnessTexture, texcoord, metallicRoughnessLod);
+                const float metallic = material.metallicRoughnessCutoffAo.x * metallicRoughness.b;
+                const float roughness = material.metallicRoughnessCutoffAo.y * metallicRoughness.g;
                 // Interpolated shading normal; the face normal when the vertex normals cancel out.
                 vec3 normal = bary.x * nrm[0] + bary.y * nrm[1] + bary.z * nrm[2];
                 if (dot(normal, normal) < 1e-12) normal = faceNormal;
@@ -125,6 +134,8 @@ void main() {
                     atomicAdd(accum[base_ + 6 + c], voxelEncodeEmission(emission[c]));
                 }
                 atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_COUNT], 1u);
+                atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_METALLIC], voxelEncodeUnit(metallic));
+                atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_ROUGHNESS], voxelEncodeUnit(roughness));
                 if (blend)
                     atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_TRANSPARENCY], voxelEncodeUnit(1.0 - base.a));
             }

@@ -103,7 +103,7 @@ CacheScene cacheScene(const fs::path& dir, uint32_t n = 32) {
     for (int i = 0; i < 4; ++i) {
         StaticAccumVoxel v;
         v.ijk = glm::ivec3(i + 2, 2, 16);
-        v.accum = {500, 500, 500, 0, 0, 1023, 0, 0, 0, 1};
+        v.accum = {500, 500, 500, 0, 0, 1023, 0, 0, 0, 1, 0, 0, 1023};
         c.file.staticAccum.push_back(v);
     }
     return c;
@@ -427,7 +427,13 @@ INSTANTIATE_TEST_SUITE_P(
                     "normal sum"},
         ForgedCache{"TransparencySumBeyondCount",
                     [](VoxelFile& f) { f.staticAccum[0].accum[VCT_VOXEL_ACCUM_TRANSPARENCY] = 0xFFFFFFFFu; },
-                    "transparency sum"}),
+                    "transparency sum"},
+        ForgedCache{"MetallicSumBeyondCount",
+                    [](VoxelFile& f) { f.staticAccum[1].accum[VCT_VOXEL_ACCUM_METALLIC] = 1024; },
+                    "metallic sum"},
+        ForgedCache{"RoughnessSumBeyondCount",
+                    [](VoxelFile& f) { f.staticAccum[2].accum[VCT_VOXEL_ACCUM_ROUGHNESS] = 0x80000000u; },
+                    "roughness sum"}),
     [](const auto& param) { return param.param.name; });
 
 // Class 9: a cache of another scene whose scene hash was removed (re-sealed, so only the metadata is at
@@ -452,6 +458,32 @@ TEST(HostileVoxelCache, CacheWithoutItsSceneHashIsRefused) {
     sealVoxelFile(stripped);
     expectGraceful(cacheArgs(c, dir, stripped), dir / "out",
                    {Outcome::MustFail, {"scene.vdb", "vct_scene_hash"}, 1});
+}
+
+// A cache written before the voxels held metallic and roughness sums (docs/design.md §5.11) names the missing
+// grid instead of rendering some default material.
+TEST(HostileVoxelCache, CacheWithoutMaterialSumsIsRefusedByName) {
+    const fs::path dir = caseDir();
+    CacheScene c = cacheScene(dir);
+    writeVoxelFile(dir / "cache.vdb", c.file);
+    openvdb::initialize();
+    openvdb::io::File in((dir / "cache.vdb").string());
+    in.open(false);
+    openvdb::GridPtrVecPtr grids = in.getGrids();
+    openvdb::MetaMap::Ptr meta = in.getMetadata();
+    in.close();
+    openvdb::GridPtrVec older;
+    for (const openvdb::GridBase::Ptr& grid : *grids)
+        if (grid->getName() != "static_metallic_sum" && grid->getName() != "static_roughness_sum")
+            older.push_back(grid);
+    ASSERT_EQ(older.size() + 2, grids->size());
+    const fs::path path = dir / "older.vdb";
+    openvdb::io::File out(path.string());
+    out.write(older, *meta);
+    out.close();
+    sealVoxelFile(path);
+    expectGraceful(cacheArgs(c, dir, path), dir / "out",
+                   {Outcome::MustFail, {"older.vdb", "static_metallic_sum", "vct voxelize"}, 1});
 }
 
 // Class 2: every input and output path of every command goes through the one checked open: a FIFO is refused

@@ -39,7 +39,9 @@ const std::vector<std::string> kGridNames = {"albedo",
                                              "static_albedo_sum",
                                              "static_normal_sum",
                                              "static_emission_sum",
-                                             "static_transparency_sum"};
+                                             "static_transparency_sum",
+                                             "static_metallic_sum",
+                                             "static_roughness_sum"};
 
 // Voxels at the grid's corners and edges plus a pseudo-random scatter, with values that a lossy path would
 // change: negative normals, tiny and huge floats, accumulator words with the top bit set. Sorted by linear
@@ -82,6 +84,8 @@ VoxelFile syntheticFile(uint32_t n) {
             s.accum[3] = 0xFFFFFC01u;  // -1023: a normal sum pointing down
             s.accum[9] = count;
             s.accum[10] = next() % 3 == 0 ? next() % (1023 * count + 1) : 0;  // blended samples in some
+            s.accum[VCT_VOXEL_ACCUM_METALLIC] = next() % (1023 * count + 1);
+            s.accum[VCT_VOXEL_ACCUM_ROUGHNESS] = next() % (1023 * count + 1);
             file.staticAccum.push_back(s);
         }
     }

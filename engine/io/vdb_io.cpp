@@ -30,9 +30,11 @@ namespace vct {
 
 namespace {
 
-static_assert(VCT_VOXEL_ACCUM_STRIDE == 11 && VCT_VOXEL_ACCUM_COUNT == 9 &&
-                  VCT_VOXEL_ACCUM_TRANSPARENCY == 10,
-              "static_* grids assume albedo rgb, normal xyz, emission rgb, count, transparency");
+static_assert(VCT_VOXEL_ACCUM_STRIDE == 13 && VCT_VOXEL_ACCUM_COUNT == 9 &&
+                  VCT_VOXEL_ACCUM_TRANSPARENCY == 10 && VCT_VOXEL_ACCUM_METALLIC == 11 &&
+                  VCT_VOXEL_ACCUM_ROUGHNESS == 12,
+              "static_* grids assume albedo rgb, normal xyz, emission rgb, count, transparency, metallic, "
+              "roughness");
 
 // Grid names, in file order.
 constexpr const char* kAlbedo = "albedo";
@@ -45,6 +47,8 @@ constexpr const char* kStaticAlbedo = "static_albedo_sum";
 constexpr const char* kStaticNormal = "static_normal_sum";
 constexpr const char* kStaticEmission = "static_emission_sum";
 constexpr const char* kStaticTransparency = "static_transparency_sum";
+constexpr const char* kStaticMetallic = "static_metallic_sum";
+constexpr const char* kStaticRoughness = "static_roughness_sum";
 
 constexpr const char* kIndexToWorld =
     "index (i,j,k) is the voxel centred at vct_grid_origin + (ijk + 0.5) * vct_voxel_size (OpenVDB's "
@@ -405,11 +409,11 @@ struct VoxelFileGrids {
     openvdb::FloatGrid::Ptr opacity;
     openvdb::Int32Grid::Ptr count;
     openvdb::Vec3IGrid::Ptr albedoSum, normalSum, emissionSum;
-    openvdb::Int32Grid::Ptr transparencySum;
+    openvdb::Int32Grid::Ptr transparencySum, metallicSum, roughnessSum;
 
     openvdb::GridPtrVec all() const {
-        return {albedo, normal,    emission,  opacity,     radiance,
-                count,  albedoSum, normalSum, emissionSum, transparencySum};
+        return {albedo,    normal,    emission,    opacity,         radiance,    count,
+                albedoSum, normalSum, emissionSum, transparencySum, metallicSum, roughnessSum};
     }
 };
 
@@ -450,6 +454,12 @@ VoxelFileGrids makeVoxelFileGrids(const VoxelFileInfo& info) {
     g.transparencySum = makeGrid<openvdb::Int32Grid>(
         kStaticTransparency,
         "static geometry: sum of (1 - alpha) x 1023 of alpha-blended samples over static_count (0: opaque)",
+        info, transform);
+    g.metallicSum = makeGrid<openvdb::Int32Grid>(
+        kStaticMetallic, "static geometry: sum of metallic x 1023 over static_count samples", info,
+        transform);
+    g.roughnessSum = makeGrid<openvdb::Int32Grid>(
+        kStaticRoughness, "static geometry: sum of perceptual roughness x 1023 over static_count samples",
         info, transform);
     g.opacity->setGridClass(openvdb::GRID_FOG_VOLUME);
     g.normal->setVectorType(openvdb::VEC_COVARIANT);
@@ -496,6 +506,8 @@ void fillStaticGrids(const std::filesystem::path& path, const VoxelFile& data, V
     auto nr = g.normalSum->getAccessor();
     auto e = g.emissionSum->getAccessor();
     auto t = g.transparencySum->getAccessor();
+    auto m = g.metallicSum->getAccessor();
+    auto ro = g.roughnessSum->getAccessor();
     for (const StaticAccumVoxel& v : data.staticAccum) {
         if (!inGrid(v.ijk, n)) throw voxelOutsideGrid(path, v.ijk, n);
         const openvdb::Coord ijk = coord(v.ijk);
@@ -504,6 +516,8 @@ void fillStaticGrids(const std::filesystem::path& path, const VoxelFile& data, V
         e.setValueOn(ijk, vec3i(&v.accum[6]));
         c.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[9]));
         t.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[10]));
+        m.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[VCT_VOXEL_ACCUM_METALLIC]));
+        ro.setValueOn(ijk, std::bit_cast<int32_t>(v.accum[VCT_VOXEL_ACCUM_ROUGHNESS]));
     }
 }
 
@@ -610,6 +624,10 @@ std::string accumProblem(const StaticAccumVoxel& v) {
         return "static_count " + std::to_string(int32_t(v.accum[9])) + ", expected 1.." +
                std::to_string(kMaxSamplesPerVoxel);
     if (uint64_t(v.accum[10]) > kUnitScale * count) return "transparency sum above 1023 x static_count";
+    if (uint64_t(v.accum[VCT_VOXEL_ACCUM_METALLIC]) > kUnitScale * count)
+        return "metallic sum above 1023 x static_count";
+    if (uint64_t(v.accum[VCT_VOXEL_ACCUM_ROUGHNESS]) > kUnitScale * count)
+        return "roughness sum above 1023 x static_count";
     for (int c = 0; c < 3; ++c) {
         if (uint64_t(v.accum[size_t(c)]) > kUnitScale * count) return "albedo sum above 1023 x static_count";
         if (uint64_t(std::abs(int64_t(std::bit_cast<int32_t>(v.accum[size_t(3 + c)])))) > kUnitScale * count)
@@ -638,6 +656,20 @@ VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
         auto transparencySum = hasTransparency
                                    ? readGrid<openvdb::Int32Grid>(file, kStaticTransparency, n, path)
                                    : openvdb::Int32Grid::create(0);
+        // Files written before the voxels held a material for their specular lobes have no metallic and
+        // roughness sums: refused by name (reading them as some default would change the light silently).
+        for (const char* name : {kStaticMetallic, kStaticRoughness}) {
+            bool has = false;
+            for (const openvdb::GridBase::Ptr& grid : *file.grids)
+                has = has || (grid && grid->getName() == name);
+            if (!has)
+                throw Error("voxel file " + quoted(path) + " has no " + name +
+                            " grid (written by an older vct): write it again with vct voxelize");
+        }
+        auto metallicSum = readGrid<openvdb::Int32Grid>(file, kStaticMetallic, n, path);
+        auto roughnessSum = readGrid<openvdb::Int32Grid>(file, kStaticRoughness, n, path);
+        auto m = metallicSum->getConstAccessor();
+        auto ro = roughnessSum->getConstAccessor();
         auto t = transparencySum->getConstAccessor();
         auto c = count->getConstAccessor();
         auto a = albedoSum->getConstAccessor();
@@ -652,6 +684,8 @@ VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
             fromVec3i(e.getValue(x), &v.accum[6]);
             v.accum[9] = std::bit_cast<uint32_t>(c.getValue(x));
             v.accum[10] = std::bit_cast<uint32_t>(t.getValue(x));
+            v.accum[VCT_VOXEL_ACCUM_METALLIC] = std::bit_cast<uint32_t>(m.getValue(x));
+            v.accum[VCT_VOXEL_ACCUM_ROUGHNESS] = std::bit_cast<uint32_t>(ro.getValue(x));
             if (std::string bad = accumProblem(v); !bad.empty()) {
                 std::ostringstream message;
                 message << "voxel file " << quoted(path) << ": voxel (" << ijk.x << ", " << ijk.y << ", "

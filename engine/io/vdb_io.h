@@ -14,6 +14,9 @@
 //   static_albedo_sum    Vec3i  } the static geometry's fixed-point accumulator (shaders/lib/voxel.glsl),
 //   static_normal_sum    Vec3i  } raw uint32 bits stored as int32: albedo × 1023, normal × 1023 (two's
 //   static_emission_sum  Vec3i  } complement), emission × 256; mean = sum / (scale × static_count)
+//   static_transparency_sum, static_metallic_sum, static_roughness_sum  Int32  the same for (1 − alpha) of
+//                        blended samples, metallic and perceptual roughness, × 1023 (older files without the
+//                        metallic and roughness sums are refused by name)
 // The static_* grids make `--voxel-cache` exact: they are what the voxelize pass would accumulate for the
 // static instances, so a cached run renders bit for bit the image of an uncached one. Moving instances
 // are voxelized every frame anyway and are not part of the cache.

@@ -4,6 +4,7 @@ namespace vct {
 
 InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid)
     : grid_(grid),
+      dfg_(context),
       // Binding numbers: shaders/inject.comp's.
       resources_("inject",
                  {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
@@ -17,7 +18,8 @@ InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid)
                   {6, Resource::image("radianceAtlas", grid.radianceAtlas()), Access::ReadWrite},
                   {7, Resource::image("bounce", grid.bounce()), Access::Read},
                   // Mip 0 when dense (the shader writes one of the two: VCT_SPEC_SPARSE_MIP0).
-                  {8, Resource::image("radianceMips", grid.radianceMips()).atLevel(0), Access::ReadWrite}}),
+                  {8, Resource::image("radianceMips", grid.radianceMips()).atLevel(0), Access::ReadWrite},
+                  {9, Resource::image("dfg", dfg_.image(), dfg_.sampler()), Access::Sampled}}),
       clear_("inject clear",
              {{kNoBinding, Resource::image("mip0", grid.mip0Image()), Access::TransferWrite}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "inject.comp", resources_.bindings(),

@@ -3,6 +3,7 @@
 // runs it again with the gathered light added (multiple bounces, §5.7).
 #pragma once
 
+#include "render/dfg_lut.h"
 #include "render/pass.h"
 #include "render/voxel_grid.h"
 #include "vk/pipeline.h"
@@ -20,6 +21,7 @@ class InjectPass : public Pass {
 
   private:
     VoxelGrid& grid_;
+    DfgLut dfg_;  // the specular lobes' directional albedo (docs/design.md §5.11)
     ResourceTable resources_;
     // Mip 0 of the radiance as the clear before the dispatch writes it (one image cannot be a transfer
     // destination and a storage image in one table).

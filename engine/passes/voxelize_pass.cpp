@@ -5,7 +5,7 @@ namespace vct {
 namespace {
 
 // Binding numbers: shaders/voxelize.comp's (the per-draw ones are written in voxelizeInstances).
-constexpr uint32_t kVertices = 3, kBaseColor = 5, kEmissive = 6, kAccumulator = 7;
+constexpr uint32_t kVertices = 3, kBaseColor = 5, kEmissive = 6, kAccumulator = 7, kMetallicRoughness = 8;
 
 // Binding numbers: shaders/voxel_resolve.comp's.
 ResourceTable resolveResources(VoxelGrid& grid) {
@@ -28,19 +28,20 @@ ResourceTable resolveResources(VoxelGrid& grid) {
 
 VoxelizePass::VoxelizePass(const vk::Context& context, VoxelGrid& grid)
     : grid_(grid),
-      voxelizeResources_("voxelize",
-                         {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-                          {1, Resource::scene(SceneBuffer::Instances), Access::Read},
-                          {2, Resource::scene(SceneBuffer::Materials), Access::Read},
-                          // Read as floats: the scene's static vertices, or the skin pass's deformed ones
-                          // (written per dispatch; the skin pass's barrier orders them).
-                          {kVertices, Resource::perDraw("vertices", true), Access::Read},
-                          {4, Resource::scene(SceneBuffer::Indices), Access::Read},
-                          // The material's textures, and the accumulator of the instances being voxelized.
-                          {kBaseColor, Resource::perDraw("baseColorTexture"), Access::Sampled},
-                          {kEmissive, Resource::perDraw("emissiveTexture"), Access::Sampled},
-                          {kAccumulator, Resource::perDraw("accumulator", true), Access::ReadWrite},
-                          {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read}}),
+      voxelizeResources_(
+          "voxelize", {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+                       {1, Resource::scene(SceneBuffer::Instances), Access::Read},
+                       {2, Resource::scene(SceneBuffer::Materials), Access::Read},
+                       // Read as floats: the scene's static vertices, or the skin pass's deformed ones
+                       // (written per dispatch; the skin pass's barrier orders them).
+                       {kVertices, Resource::perDraw("vertices", true), Access::Read},
+                       {4, Resource::scene(SceneBuffer::Indices), Access::Read},
+                       // The material's textures, and the accumulator of the instances being voxelized.
+                       {kBaseColor, Resource::perDraw("baseColorTexture"), Access::Sampled},
+                       {kEmissive, Resource::perDraw("emissiveTexture"), Access::Sampled},
+                       {kAccumulator, Resource::perDraw("accumulator", true), Access::ReadWrite},
+                       {kMetallicRoughness, Resource::perDraw("metallicRoughnessTexture"), Access::Sampled},
+                       {VCT_BINDING_BRICKS, Resource::buffer("bricks", grid.brickTable()), Access::Read}}),
       resolveResources_(resolveResources(grid)) {
     voxelize_ = vk::Pipeline::compute(context, name(), "voxelize.comp", voxelizeResources_.bindings(),
                                       sizeof(gpu::VoxelizePushConstants));
@@ -75,6 +76,8 @@ void VoxelizePass::voxelizeInstances(const FrameContext& frame, bool moving, con
                              gpuScene.textureSampler(material, Slot::BaseColor))
                     .sampled(kEmissive, gpuScene.textureView(material, Slot::Emissive),
                              gpuScene.textureSampler(material, Slot::Emissive))
+                    .sampled(kMetallicRoughness, gpuScene.textureView(material, Slot::MetallicRoughness),
+                             gpuScene.textureSampler(material, Slot::MetallicRoughness))
                     .storageBuffer(kAccumulator, accumulator.handle())
                     .storageBuffer(kVertices, vertices)
                     .push(frame.context, cmd, voxelize_);

@@ -224,7 +224,9 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
     u.flags = (settings_.gi ? VCT_FLAG_GI : 0u) | (settings_.toksvig ? VCT_FLAG_TOKSVIG : 0u) |
               (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) |
               (settings_.textureLod0 ? VCT_FLAG_TEXTURE_LOD0 : 0u) | (history ? VCT_FLAG_HISTORY : 0u) |
-              (targets_.blend ? VCT_FLAG_BLEND : 0u) | (settings_.coneRotation ? VCT_FLAG_CONE_ROTATION : 0u);
+              (targets_.blend ? VCT_FLAG_BLEND : 0u) |
+              (settings_.coneRotation ? VCT_FLAG_CONE_ROTATION : 0u) |
+              (settings_.voxelGlossy ? VCT_FLAG_VOXEL_GLOSSY : 0u);
 
     std::memcpy(uniforms.mapped(), &u, sizeof(u));
     uniforms_ = u;

@@ -43,6 +43,11 @@ const SettingSpec kTable[] = {
      .help = "turn each pixel's diffuse cones about its normal, differently every frame (docs/design.md sec. 5.5)",
      .value = OnOffValue{&S::coneRotation}, .apply = A::Live, .group = G::Gi, .demo = true, .json = true,
      .widget = W::Checkbox, .label = "turn the diffuse cones"},
+    {.name = "voxel-glossy", .valueName = "on|off",
+     .help = "voxels reflect the lights' specular lobes too (glossy-to-diffuse transport, docs/design.md sec. "
+             "5.11); off: Lambertian voxels of the diffuse albedo, as vct reference --secondary diffuse",
+     .value = OnOffValue{&S::voxelGlossy}, .apply = A::Rebuild, .group = G::Gi, .demo = true, .json = true,
+     .widget = W::Checkbox, .label = "glossy voxels"},
     {.name = "voxels", .valueName = "N",
      .help = "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
      .value = ChoiceValue{&S::voxelResolution, kVoxelResolutions, 0u}, .apply = A::Rebuild, .group = G::Gi,

@@ -16,4 +16,6 @@ using gpu::GpuLight;
 #include "lib/lights.glsl"
 #include "lib/toksvig.glsl"
 #include "lib/upsample_weights.glsl"
+#include "lib/voxel.glsl"
+#include "lib/voxel_specular.glsl"
 }  // namespace vct::glsl

@@ -35,6 +35,7 @@ using glm::vec4;
 #define VCT_FLAG_HISTORY 16u      // last frame's indirect light is a valid history (temporal on, no cut)
 #define VCT_FLAG_BLEND 32u  // the blend pass drew the transparent layer (composite puts it over the frame)
 #define VCT_FLAG_CONE_ROTATION 64u  // turn the diffuse cones per pixel and frame (lib/cone_trace.glsl)
+#define VCT_FLAG_VOXEL_GLOSSY 128u  // voxels reflect the lights' specular lobes (inject.comp; §5.11)
 
 // The trace scale s reaches the shaders one way: this specialization constant, in trace (s = 1 writes the
 // full-res targets, no guides) and upsample (the cell loops are unrolled for s) alike. The low-res images'
@@ -192,10 +193,13 @@ struct ResampleListHeader {
 // Whole-grid dispatches run one workgroup per allocated brick, in rows of this many (maxComputeWorkGroupCount).
 #define VCT_BRICK_DISPATCH_ROW 32768
 // uints per voxel: albedo rgb, normal xyz, emission rgb, count, then the transparency sum: Σ (1 − alpha) of
-// the samples of alphaMode BLEND surfaces (0 for opaque ones), from which the resolve takes the opacity.
-#define VCT_VOXEL_ACCUM_STRIDE 11
+// the samples of alphaMode BLEND surfaces (0 for opaque ones), from which the resolve takes the opacity; then the
+// metallic and perceptual roughness sums (× 1023 like albedo), from which inject shapes the voxel's specular lobe.
+#define VCT_VOXEL_ACCUM_STRIDE 13
 #define VCT_VOXEL_ACCUM_COUNT 9
 #define VCT_VOXEL_ACCUM_TRANSPARENCY 10
+#define VCT_VOXEL_ACCUM_METALLIC 11
+#define VCT_VOXEL_ACCUM_ROUGHNESS 12
 
 // voxel view (`vct render --view voxels`: the grid ray-marched at one mip, on demand after the frame)
 struct VoxelViewPushConstants {

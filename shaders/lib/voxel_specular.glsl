@@ -1,0 +1,80 @@
+// Glossy reflection in the voxels' six direction slabs (docs/design.md §5.11). Shared by GLSL and C++
+// (lib/cpp_glsl.h): pure functions, `f` literals. Expects lib/brdf.glsl, lib/toksvig.glsl and lib/voxel.glsl.
+//
+// A voxel lit by a punctual light sends its diffuse part to every side alike and its specular part into a lobe
+// about the mirror direction r = reflect(−l, n). The slabs hold radiance by the direction it leaves in, and a cone
+// reads them weighted by ω² per axis (voxelSlabWeights), so they can carry the lobe's broad shape: glossy
+// surfaces lighting others (glossy-to-diffuse transport), which a diffuse-only voxel cannot.
+//
+// The lobe is a von Mises-Fisher distribution (a normalised spherical Gaussian) about r of concentration λ, the
+// GGX lobe (as a spherical Gaussian of sharpness 2/α² about n in half-vector space) warped to the outgoing
+// directions: λ = 2/α² / (4 n·l) (Wang et al. 2009, "All-frequency rendering of dynamic, spatially-varying
+// reflectance"). Slab s (outgoing direction e) takes the share E[(ω·e)₊²] of the lobe: its own reading weight, so
+// the six shares sum to 1 and keep the lobe's mean direction within the slabs' resolution. The shares are then
+// scaled so that the light the slabs send through the surface, Σ_s value_s·slabExitance(n, s), is the specular
+// exitance E·(n·l)·ρ_s (ρ_s the directional albedo, F0·A + B from the split-sum table): what the voxel reflects reaches the other surfaces in total,
+// however blurred. (Keeping ∫ radiance dω instead sent 2.3x too much light from walls lit at grazing angles, whose
+// narrow grazing lobes the slabs spread towards their normals: measured on cornell against the path tracer.)
+#ifndef VCT_VOXEL_SPECULAR_GLSL
+#define VCT_VOXEL_SPECULAR_GLSL
+
+// Below this concentration the lobe counts as uniform (A(λ)/λ = 1/3 to 1e-7).
+const float VMF_UNIFORM_CONCENTRATION = 1e-3f;
+
+// Mean cosine A(λ) = coth λ − 1/λ of a vMF lobe about its axis (E[ω·r]); λ/3 near 0, 1 − 1/λ for large λ.
+VCT_INLINE float vmfMeanCosine(float lambda) {
+    if (lambda < VMF_UNIFORM_CONCENTRATION) return lambda / 3.0f;
+    // coth λ = (1 + e^−2λ)/(1 − e^−2λ): no overflow for large λ.
+    float e = exp(-2.0f * lambda);
+    return (1.0f + e) / (1.0f - e) - 1.0f / lambda;
+}
+
+// A(λ)/λ, the spread of the second moment: E[ωωᵀ] = (1 − 3A/λ)·r rᵀ + (A/λ)·I. 1/3 for a uniform lobe, → 0 for
+// a sharp one.
+VCT_INLINE float vmfSpread(float lambda) {
+    if (lambda < VMF_UNIFORM_CONCENTRATION) return 1.0f / 3.0f;
+    return min(vmfMeanCosine(lambda) / lambda, 1.0f / 3.0f);
+}
+
+// E[(ω·e)₊²] for a vMF lobe about unit r with spread vmfSpread(λ) and unit e: the axis part goes to the side r
+// points to, the isotropic part half to each side. The six axis directions' values sum to 1.
+VCT_INLINE float vmfSlabShare(vec3 r, float spread, vec3 e) {
+    float re = max(dot(r, e), 0.0f);
+    return (1.0f - 3.0f * spread) * re * re + 0.5f * spread;
+}
+
+// Concentration of the outgoing specular lobe of a GGX surface of roughness α lit at cosine NoL (warped
+// spherical Gaussian, above). α is clamped as for punctual lights (MIN_ALPHA_PUNCTUAL), NoL as n·v is.
+VCT_INLINE float specularLobeConcentration(float alpha, float NoL) {
+    float a = max(alpha, MIN_ALPHA_PUNCTUAL);
+    return 1.0f / (2.0f * a * a * max(NoL, MIN_N_DOT_V));
+}
+
+// The roughness of a voxel's lobe: its surfaces' mean perceptual roughness widened by the spread of their normals
+// (Toksvig, lib/toksvig.glsl) read from the averaged normal's length: a curved or bumpy surface within one voxel
+// reflects a wider lobe than any one of its points does.
+VCT_INLINE float voxelLobeRoughness(float perceptualRoughness, float normalLength) {
+    float a = alphaFromPerceptual(perceptualRoughness);
+    return sqrt(sqrt(toksvigAlpha2Exact(a * a, toksvigVariance(normalLength))));
+}
+
+// What a slab of unit radiance sends through the surface of unit normal n, ∫ (ω·e)₊²·(ω·n)₊ dω = π/8·(1 + n·e)²
+// (e its outgoing direction; integrated in closed form, tests/voxel_specular_test.cpp checks it numerically). The
+// six values sum to π, the exitance of unit radiance on every side.
+VCT_INLINE float slabExitance(vec3 n, int slab) {
+    float c = 1.0f - dot(n, voxelSlabDirection(slab));
+    return 0.125f * PI * c * c;
+}
+
+// The share of a lit voxel's specular lobe that slab `slab` carries, before normalisation: the lobe's reading
+// weight E[(ω·e)₊²] (vmfSlabShare) on the sides the voxel's surfaces face (voxelFacing, as for its diffuse light).
+// n is the voxel's unit normal turned towards the light, l the unit direction towards it, NoL = n·l > 0.
+VCT_INLINE float specularSlabShare(vec3 nbar, vec3 n, vec3 l, float NoL, float perceptualRoughness,
+                                   int slab) {
+    float lambda = specularLobeConcentration(alphaFromPerceptual(perceptualRoughness), NoL);
+    vec3 r = 2.0f * NoL * n - l;
+    vec3 e = -voxelSlabDirection(slab);
+    return vmfSlabShare(r, vmfSpread(lambda), e) * voxelFacing(nbar, e);
+}
+
+#endif  // VCT_VOXEL_SPECULAR_GLSL

@@ -1,0 +1,182 @@
+// CPU tests of shaders/lib/voxel_specular.glsl: the specular lobe a lit voxel puts into its six direction slabs
+// (docs/design.md §5.11). Integrals over the sphere in double, on a Fibonacci point set, with the float shader
+// functions evaluated at each point.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "render/shader_math.h"
+
+namespace {
+
+namespace g = vct::glsl;
+using glm::vec3;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// M points spread evenly over the unit sphere, each standing for 4π/M sr.
+std::vector<vec3> fibonacciSphere(int m) {
+    std::vector<vec3> points;
+    const double golden = kPi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < m; ++i) {
+        const double z = 1.0 - 2.0 * (i + 0.5) / m, r = std::sqrt(1.0 - z * z), phi = golden * i;
+        points.emplace_back(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+    }
+    return points;
+}
+
+// What the cones reconstruct from six slab values along unit ω: Σ_axis ω_a²·value of the slab facing ω (every
+// face kept, as voxelSlabWeights does for the faces that carry most of a lobe).
+double reconstruct(const double slabs[6], vec3 towards) {
+    double sum = 0.0;
+    for (int axis = 0; axis < 3; ++axis) {
+        // A cone sees radiance leaving towards −(its direction): travelling along −towards.
+        const int slab = g::voxelSlabFor(-towards, axis);
+        sum += double(towards[axis]) * towards[axis] * slabs[slab];
+    }
+    return sum;
+}
+
+const vec3 kNormals[] = {vec3(0, 1, 0), glm::normalize(vec3(0.3f, 0.9f, -0.2f)),
+                         glm::normalize(vec3(1, 1, 1)), vec3(0, 0, -1)};
+
+TEST(VoxelSpecular, SlabExitanceIsItsClosedForm) {
+    // ∫ (ω·e)₊²·(ω·n)₊ dω = π/8·(1 + n·e)², numerically (the slabs' reconstruction weight against the cosine).
+    const std::vector<vec3> points = fibonacciSphere(200000);
+    for (vec3 n : kNormals) {
+        double sum6 = 0.0;
+        for (int slab = 0; slab < g::VOXEL_SLAB_COUNT; ++slab) {
+            const vec3 e = -g::voxelSlabDirection(slab);
+            double integral = 0.0;
+            for (vec3 w : points) {
+                const double we = std::max(0.0, double(glm::dot(w, e))),
+                             wn = std::max(0.0, double(glm::dot(w, n)));
+                integral += we * we * wn;
+            }
+            integral *= 4.0 * kPi / double(points.size());
+            EXPECT_NEAR(g::slabExitance(n, slab), integral, 2e-4) << "slab " << slab;
+            sum6 += g::slabExitance(n, slab);
+        }
+        EXPECT_NEAR(sum6, kPi, 1e-5);  // unit radiance on every side: exitance π
+    }
+}
+
+TEST(VoxelSpecular, SlabSharesOfALobeSumToOneAndFollowItsAxis) {
+    for (float lambda : {0.0f, 1e-4f, 0.5f, 3.0f, 40.0f, 1e4f, 1e8f}) {
+        for (vec3 r : kNormals) {
+            const float spread = g::vmfSpread(lambda);
+            ASSERT_TRUE(std::isfinite(spread));
+            double sum = 0.0, towardsAxis = 0.0;
+            for (int slab = 0; slab < g::VOXEL_SLAB_COUNT; ++slab) {
+                const vec3 e = -g::voxelSlabDirection(slab);
+                const float share = g::vmfSlabShare(r, spread, e);
+                EXPECT_GE(share, 0.0f);
+                sum += share;
+                towardsAxis += share * std::max(0.0f, glm::dot(e, r));
+            }
+            EXPECT_NEAR(sum, 1.0, 1e-5) << "λ " << lambda;
+            if (lambda >= 40.0f) {
+                EXPECT_GT(towardsAxis, 0.5) << "a sharp lobe stays on its side";
+            }
+        }
+    }
+    // The spread against the vMF's exact second moment: E[(ω·r)²] = 1 − 2A/λ (numerically, λ = 3).
+    const float lambda = 3.0f;
+    const vec3 r(0, 0, 1);
+    double norm = 0.0, second = 0.0;
+    for (vec3 w : fibonacciSphere(200000)) {
+        const double p = std::exp(double(lambda) * (double(w.z) - 1.0));
+        norm += p;
+        second += p * double(w.z) * w.z;
+    }
+    EXPECT_NEAR(1.0 - 2.0 * g::vmfSpread(lambda), second / norm, 1e-4);
+    EXPECT_NEAR(g::vmfMeanCosine(lambda), 1.0 / std::tanh(3.0) - 1.0 / 3.0, 1e-6);
+}
+
+// The directional albedo F0·A + B inject.comp reads from the DFG table (here its integral).
+double albedo(float f0, float NoL, float roughness) {
+    const glm::vec2 dfg = g::integrateDFG(NoL, g::alphaFromPerceptual(roughness), 256);
+    return double(f0 * dfg.x + dfg.y);
+}
+
+// The lit voxel as inject.comp builds it: shares on the facing sides, scaled to the specular exitance.
+struct LitVoxel {
+    double slabs[6];
+    double exitance;  // what the reconstruction sends through the surface: ∫ L̂(ω)(ω·n)₊ dω
+};
+
+LitVoxel litVoxel(vec3 n, vec3 l, float roughness, vec3 f0, const std::vector<vec3>& points) {
+    const float NoL = std::max(glm::dot(n, l), g::MIN_N_DOT_V);
+    float shares[6];
+    float sum = 0.0f;
+    for (int slab = 0; slab < 6; ++slab) {
+        shares[slab] = g::specularSlabShare(n, n, l, NoL, roughness, slab);
+        sum += shares[slab] * g::slabExitance(n, slab);
+    }
+    const float scale = float(albedo(f0.x, NoL, roughness)) * NoL / sum;
+    LitVoxel v{};
+    for (int slab = 0; slab < 6; ++slab) v.slabs[slab] = double(scale * shares[slab]);
+    for (vec3 w : points) v.exitance += reconstruct(v.slabs, w) * std::max(0.0, double(glm::dot(w, n)));
+    v.exitance *= 4.0 * kPi / double(points.size());
+    return v;
+}
+
+TEST(VoxelSpecular, ReflectedLightIsTheSpecularExitanceAtEveryAngleAndRoughness) {
+    // Irradiance 1 at normal incidence: the slabs send E·(n·l)·ρ_s through the surface, no more (the lobe's
+    // own ∫ L dω, kept instead, sent 2.3x the light from grazing lobes: docs/design.md §5.11).
+    const std::vector<vec3> points = fibonacciSphere(20000);
+    for (vec3 n : kNormals) {
+        const vec3 t = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+        for (float cosine : {1.0f, 0.7f, 0.2f, 0.02f}) {
+            const vec3 l = cosine * n + std::sqrt(1.0f - cosine * cosine) * t;
+            for (float roughness : {0.0f, 0.05f, 0.35f, 1.0f}) {
+                const LitVoxel v = litVoxel(n, l, roughness, vec3(0.04f), points);
+                const double expected = albedo(0.04f, cosine, roughness) * cosine;
+                for (double s : v.slabs) EXPECT_TRUE(std::isfinite(s) && s >= 0.0);
+                EXPECT_NEAR(v.exitance, expected, 0.01 * expected + 1e-7)
+                    << "cos " << cosine << ", roughness " << roughness;
+                // Nothing leaves behind the surface (but float rounding of |n| = 1 in voxelFacing's blend).
+                double largest = 0.0;
+                for (double s : v.slabs) largest = std::max(largest, s);
+                for (int slab = 0; slab < 6; ++slab) {
+                    if (glm::dot(-g::voxelSlabDirection(slab), n) < -0.01f) {
+                        EXPECT_LE(v.slabs[slab], 1e-6 * largest);
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(VoxelSpecular, LightFromTheSideLeavesOnTheOtherSide) {
+    // A floor lit from −x at 45°: the mirror direction is +x up, so the +x slab gets more than the −x one
+    // (a sharp lobe nearly all of the sideways part), a rough lobe less so.
+    const std::vector<vec3> points = fibonacciSphere(2000);
+    const vec3 n(0, 1, 0), l = glm::normalize(vec3(-1, 1, 0));
+    const int plusX = 1, minusX = 0;  // slab 2a+1 travels along −axis a: it holds what leaves towards +a
+    const LitVoxel sharp = litVoxel(n, l, 0.1f, vec3(0.04f), points);
+    const LitVoxel rough = litVoxel(n, l, 0.9f, vec3(0.04f), points);
+    EXPECT_GT(sharp.slabs[plusX], 20.0 * sharp.slabs[minusX]);
+    EXPECT_GT(rough.slabs[plusX], rough.slabs[minusX]);
+    EXPECT_LT(rough.slabs[plusX] / rough.slabs[minusX], sharp.slabs[plusX] / sharp.slabs[minusX]);
+}
+
+TEST(VoxelSpecular, HardCasesStayFinite) {
+    // A mirror (α = 0) lit at grazing, a normal-length voxel that cancels, huge and zero concentrations.
+    for (float roughness : {0.0f, 1e-6f, 1.0f})
+        for (float NoL : {g::MIN_N_DOT_V, 1e-3f, 1.0f}) {
+            const vec3 n(0, 0, 1), l = glm::normalize(vec3(std::sqrt(1.0f - NoL * NoL), 0.0f, NoL));
+            for (int slab = 0; slab < 6; ++slab) {
+                const float share = g::specularSlabShare(n, n, l, NoL, roughness, slab);
+                EXPECT_TRUE(std::isfinite(share) && share >= 0.0f);
+            }
+            EXPECT_TRUE(std::isfinite(g::specularLobeConcentration(g::alphaFromPerceptual(roughness), NoL)));
+        }
+    for (float length : {0.0f, 1e-6f, 0.5f, 1.0f, 1.5f}) {
+        const float r = g::voxelLobeRoughness(0.3f, length);
+        EXPECT_TRUE(std::isfinite(r) && r >= 0.3f - 1e-6f && r <= 1.0f) << length;
+    }
+}
+
+}  // namespace
