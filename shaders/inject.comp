@@ -119,6 +119,10 @@ void main() {
     vec3 specular[VOXEL_SLAB_COUNT];
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] = vec3(0.0);
     const bool glossy = (frame.flags & VCT_FLAG_VOXEL_GLOSSY) != 0u;
+    // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light and its lobes alike.
+    float facing[VOXEL_SLAB_COUNT];
+    for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
+        facing[slab] = voxelFacing(nbar, -voxelSlabDirection(slab));
     const int lightCount = int(frame.lighting.lightCount);
     const int shadowLight = frame.lighting.shadowLight;
     for (int i = 0; i < lightCount; ++i) {
@@ -150,10 +154,11 @@ void main() {
             continue;
         }
         const float NoL = max(dot(towardsLightSide, l), MIN_N_DOT_V);
+        const vec4 lobe = specularLobe(towardsLightSide, l, NoL, perceptualRoughness);
         float shares[VOXEL_SLAB_COUNT];
         float exitance = 0.0;  // of the shares as radiance
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
-            shares[slab] = specularSlabShare(nbar, towardsLightSide, l, NoL, perceptualRoughness, slab);
+            shares[slab] = specularSlabShare(lobe, slab) * facing[slab];
             exitance += shares[slab] * slabExitance(towardsLightSide, slab);
         }
         if (exitance <= 1e-6) continue;  // the lobe points only where the surfaces do not face
@@ -163,9 +168,7 @@ void main() {
     }
     // Each slab sees the light that leaves towards the cones reading it, i.e. against its direction (the
     // specular shares have the facing in them already).
-    for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
-        const float facing = voxelFacing(nbar, -voxelSlabDirection(slab));
-        slabs[slab] = vec4((radiance * facing + specular[slab]) * albedoOpacity.a, albedoOpacity.a);
-    }
+    for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
+        slabs[slab] = vec4((radiance * facing[slab] + specular[slab]) * albedoOpacity.a, albedoOpacity.a);
     storeRadiance(k, brick, local, slabs);
 }

@@ -111,7 +111,8 @@ LitVoxel litVoxel(vec3 n, vec3 l, float roughness, vec3 f0, const std::vector<ve
     float shares[6];
     float sum = 0.0f;
     for (int slab = 0; slab < 6; ++slab) {
-        shares[slab] = g::specularSlabShare(n, n, l, NoL, roughness, slab);
+        shares[slab] = g::specularSlabShare(g::specularLobe(n, l, NoL, roughness), slab) *
+                       g::voxelFacing(n, -g::voxelSlabDirection(slab));
         sum += shares[slab] * g::slabExitance(n, slab);
     }
     const float scale = float(albedo(f0.x, NoL, roughness)) * NoL / sum;
@@ -168,7 +169,7 @@ TEST(VoxelSpecular, HardCasesStayFinite) {
         for (float NoL : {g::MIN_N_DOT_V, 1e-3f, 1.0f}) {
             const vec3 n(0, 0, 1), l = glm::normalize(vec3(std::sqrt(1.0f - NoL * NoL), 0.0f, NoL));
             for (int slab = 0; slab < 6; ++slab) {
-                const float share = g::specularSlabShare(n, n, l, NoL, roughness, slab);
+                const float share = g::specularSlabShare(g::specularLobe(n, l, NoL, roughness), slab);
                 EXPECT_TRUE(std::isfinite(share) && share >= 0.0f);
             }
             EXPECT_TRUE(std::isfinite(g::specularLobeConcentration(g::alphaFromPerceptual(roughness), NoL)));

@@ -66,15 +66,18 @@ VCT_INLINE float slabExitance(vec3 n, int slab) {
     return 0.125f * PI * c * c;
 }
 
-// The share of a lit voxel's specular lobe that slab `slab` carries, before normalisation: the lobe's reading
-// weight E[(ω·e)₊²] (vmfSlabShare) on the sides the voxel's surfaces face (voxelFacing, as for its diffuse light).
-// n is the voxel's unit normal turned towards the light, l the unit direction towards it, NoL = n·l > 0.
-VCT_INLINE float specularSlabShare(vec3 nbar, vec3 n, vec3 l, float NoL, float perceptualRoughness,
-                                   int slab) {
+// The specular lobe of a voxel lit from unit l: its axis r = reflect(−l, n) (xyz) and spread (w, vmfSpread). n is
+// the voxel's unit normal turned towards the light, NoL = n·l > 0.
+VCT_INLINE vec4 specularLobe(vec3 n, vec3 l, float NoL, float perceptualRoughness) {
     float lambda = specularLobeConcentration(alphaFromPerceptual(perceptualRoughness), NoL);
-    vec3 r = 2.0f * NoL * n - l;
-    vec3 e = -voxelSlabDirection(slab);
-    return vmfSlabShare(r, vmfSpread(lambda), e) * voxelFacing(nbar, e);
+    return vec4(2.0f * NoL * n - l, vmfSpread(lambda));
+}
+
+// The share of `lobe` that slab `slab` carries, before normalisation: its reading weight E[(ω·e)₊²]
+// (vmfSlabShare). inject.comp multiplies it by the slab's facing (voxelFacing, as for the diffuse light: nothing
+// leaves behind the voxel's surfaces) and scales the shares to the specular exitance with slabExitance.
+VCT_INLINE float specularSlabShare(vec4 lobe, int slab) {
+    return vmfSlabShare(vec3(lobe), lobe.w, -voxelSlabDirection(slab));
 }
 
 #endif  // VCT_VOXEL_SPECULAR_GLSL
