@@ -23,7 +23,8 @@ import shutil
 import sys
 
 KIND_LABELS = {"1": "one-bounce reference", "all": "all-bounce reference",
-               "diffuse": "one-bounce reference, diffuse secondary vertices"}
+               "diffuse": "one-bounce reference, diffuse secondary vertices, against vct's Lambertian voxels "
+                          "(--voxel-glossy off): the cone tracer's own error"}
 KIND_ORDER = ["1", "all", "diffuse"]
 RATIO_TICKS = [1 / 16, 1 / 8, 1 / 4, 0.5, 0.6, 0.7, 0.8, 0.9, 1, 1.1, 1.25, 1.5, 2, 3, 4, 8, 16]
 KIND_STYLES = {"1": "-", "all": "--", "diffuse": ":"}

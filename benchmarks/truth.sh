@@ -3,7 +3,8 @@
 # (one bounce; all bounces; one bounce with diffuse-only secondary vertices), rendered once at the frame vct
 # writes (its last); then vct at 32³/64³/128³ voxels × trace scale 1 and 4 after F frames (`vct render --aux`),
 # each measured with `vct compare --reference-dir` against every reference (ratios per surface, tone-mapped PSNR,
-# relMSE without the reference's noise, log2 ratio maps). benchmarks/plot_truth.py then writes truth.md,
+# relMSE without the reference's noise, log2 ratio maps); against the diffuse-secondary one, the same render with
+# --voxel-glossy off. benchmarks/plot_truth.py then writes truth.md,
 # truth_ratios.png and truth_error_vs_voxels.png and copies the ratio maps.
 # Writes benchmarks/results/<device>-truth/ (TRUTH_QUICK=1: <device>-truth-quick/; the directory is replaced).
 # Usage: benchmarks/truth.sh [SCENE...]   (build first; default scenes: cornell plane courtyard, and
@@ -126,10 +127,20 @@ for scene in "${scenes[@]}"; do
             "$vct" render --scene "$scene" --size "$size" --frames "$frames" --voxels "$v" --trace-scale "$t" \
                 "${exposure_flags[@]}" --aux --out "$image"
             [ -n "$slug" ] || slug="$(device_slug "$image/timings.json")"
+            # Against the reference without glossy-to-diffuse transport: vct's voxels without it too (Lambertian,
+            # docs/design.md §5.11), so that the cone tracer's error shows apart from the transport's.
+            lambertian="$image-lambertian"
+            if [[ " $references " == *" diffuse "* ]]; then
+                echo "== the same with --voxel-glossy off -> $lambertian"
+                "$vct" render --scene "$scene" --size "$size" --frames "$frames" --voxels "$v" --trace-scale "$t" \
+                    --voxel-glossy off "${exposure_flags[@]}" --aux --out "$lambertian"
+            fi
             for kind in $references; do
                 stem="truth-$name-v$v-s$t-vs-$kind"
                 json="$work/json/$stem.json"
-                "$vct" compare --reference-dir "$(reference_dir "$name" "$kind")" --image-dir "$image" \
+                measured="$image"
+                [ "$kind" = diffuse ] && measured="$lambertian"
+                "$vct" compare --reference-dir "$(reference_dir "$name" "$kind")" --image-dir "$measured" \
                     --json "$json" --maps "$work/maps/$stem" "${exposure_flags[@]}"
                 produced+=("$json")
                 seconds_file="$(reference_dir "$name" "$kind").seconds"

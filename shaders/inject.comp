@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// inject: direct light into the voxels. For each occupied voxel: Σ lights E·albedo/π·cos (the main light
+// inject: direct light into the voxels. For each occupied voxel: Σ lights E·(1 − F)·albedo/π·cos to every side
+// it faces and each light's specular lobe into the sides it leaves towards (lib/voxel_specular.glsl; the main light
 // shadow-mapped at the voxel centre, the others unshadowed) + emission, written premultiplied by opacity into
 // mip 0 of the radiance, the radiance atlas's six direction slabs (rgb = radiance × facing × opacity, a = opacity;
 // lib/voxel.glsl, lib/voxel_bricks.glsl), in the voxel's brick and in the aprons of the bricks below it. One
