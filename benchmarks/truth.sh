@@ -115,6 +115,7 @@ with open(path, "w") as f:
 EOF
 }
 
+render_help="$("$vct" render --help)"
 slug=""
 produced=()
 for scene in "${scenes[@]}"; do
@@ -129,8 +130,11 @@ for scene in "${scenes[@]}"; do
             [ -n "$slug" ] || slug="$(device_slug "$image/timings.json")"
             # Against the reference without glossy-to-diffuse transport: vct's voxels without it too (Lambertian,
             # docs/design.md §5.11), so that the cone tracer's error shows apart from the transport's.
+            # (A build from before --voxel-glossy, measured for a before/after table, has only Lambertian voxels.)
             lambertian="$image-lambertian"
-            if [[ " $references " == *" diffuse "* ]]; then
+            if [[ "$render_help" != *--voxel-glossy* ]]; then
+                lambertian="$image"
+            elif [[ " $references " == *" diffuse "* ]]; then
                 echo "== the same with --voxel-glossy off -> $lambertian"
                 "$vct" render --scene "$scene" --size "$size" --frames "$frames" --voxels "$v" --trace-scale "$t" \
                     --voxel-glossy off "${exposure_flags[@]}" --aux --out "$lambertian"
