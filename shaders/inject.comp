@@ -13,6 +13,7 @@
 #include "lib/lights.glsl"
 #include "lib/brdf.glsl"
 #include "lib/toksvig.glsl"
+#include "lib/cone.glsl"
 #include "lib/voxel_specular.glsl"
 
 layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
@@ -159,7 +160,7 @@ void main() {
         float shares[VOXEL_SLAB_COUNT];
         float exitance = 0.0;  // of the shares as radiance
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
-            shares[slab] = specularSlabShare(lobe, slab) * facing[slab];
+            shares[slab] = specularSlabShare(lobe, towardsLightSide, slab) * facing[slab];
             exitance += shares[slab] * slabExitance(towardsLightSide, slab);
         }
         if (exitance <= 1e-6) continue;  // the lobe points only where the surfaces do not face

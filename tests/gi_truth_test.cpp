@@ -160,7 +160,7 @@ TEST(VoxelGi, GlossyVoxelsCarryTheGlossyTransportAndLambertianOnesMatchTheTruthW
     // secondary vertices are Lambertian of that albedo: the cone tracer's own error, measured 0.89 (red wall) to
     // 1.18 (floor) at 320x180; the same voxels send the truth (glossy transport and all) too little light, the
     // metal sphere none. With the lobes (the default) the truth's extra light arrives: the whole image's indirect
-    // light rises by the transport's share (measured 1.18x; the truth's 1.19x), the whole image 1.06 of the truth.
+    // light rises by the transport's share (measured 1.16x; the truth's 1.19x), the whole image 1.04 of the truth.
     const fs::path diffuseReference = cornellReference("1", 7, "diffuse");
     const fs::path lambertianDir =
         renderVct("cornell_lambertian", "cornell", {"--voxels", "64", "--voxel-glossy", "off"}, 8);

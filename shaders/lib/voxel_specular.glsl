@@ -1,5 +1,6 @@
 // Glossy reflection in the voxels' six direction slabs (docs/design.md §5.11). Shared by GLSL and C++
-// (lib/cpp_glsl.h): pure functions, `f` literals. Expects lib/brdf.glsl, lib/toksvig.glsl and lib/voxel.glsl.
+// (lib/cpp_glsl.h): pure functions, `f` literals. Expects lib/brdf.glsl, lib/cone.glsl, lib/toksvig.glsl and
+// lib/voxel.glsl.
 //
 // A voxel lit by a punctual light sends its diffuse part to every side alike and its specular part into a lobe
 // about the mirror direction r = reflect(−l, n). The slabs hold radiance by the direction it leaves in, and a cone
@@ -18,22 +19,23 @@
 #ifndef VCT_VOXEL_SPECULAR_GLSL
 #define VCT_VOXEL_SPECULAR_GLSL
 
-// Below this concentration the lobe counts as uniform (A(λ)/λ = 1/3 to 1e-7).
-const float VMF_UNIFORM_CONCENTRATION = 1e-3f;
-
-// Mean cosine A(λ) = coth λ − 1/λ of a vMF lobe about its axis (E[ω·r]); λ/3 near 0, 1 − 1/λ for large λ.
-VCT_INLINE float vmfMeanCosine(float lambda) {
-    if (lambda < VMF_UNIFORM_CONCENTRATION) return lambda / 3.0f;
+// Mean cosine A(λ) = coth λ − 1/λ of a vMF lobe of concentration λ about its axis (E[ω·r]), from 1/λ: 1 − 1/λ for
+// a sharp lobe, λ/3 − λ³/45 + 2λ⁵/945 for a broad one.
+VCT_INLINE float vmfMeanCosine(float inverseLambda) {
+    if (inverseLambda < 1e-4f) return 1.0f - inverseLambda;  // coth λ = 1 to float precision
+    if (inverseLambda > 10.0f) {  // λ < 0.1: the series, where coth λ − 1/λ would cancel in float
+        float lambda = 1.0f / inverseLambda, l2 = lambda * lambda;
+        return lambda * (1.0f / 3.0f - l2 * (1.0f / 45.0f - l2 * (2.0f / 945.0f)));
+    }
     // coth λ = (1 + e^−2λ)/(1 − e^−2λ): no overflow for large λ.
-    float e = exp(-2.0f * lambda);
-    return (1.0f + e) / (1.0f - e) - 1.0f / lambda;
+    float e = exp(-2.0f / inverseLambda);
+    return (1.0f + e) / (1.0f - e) - inverseLambda;
 }
 
 // A(λ)/λ, the spread of the second moment: E[ωωᵀ] = (1 − 3A/λ)·r rᵀ + (A/λ)·I. 1/3 for a uniform lobe, → 0 for
 // a sharp one.
-VCT_INLINE float vmfSpread(float lambda) {
-    if (lambda < VMF_UNIFORM_CONCENTRATION) return 1.0f / 3.0f;
-    return min(vmfMeanCosine(lambda) / lambda, 1.0f / 3.0f);
+VCT_INLINE float vmfSpread(float inverseLambda) {
+    return clamp(vmfMeanCosine(inverseLambda) * inverseLambda, 0.0f, 1.0f / 3.0f);
 }
 
 // E[(ω·e)₊²] for a vMF lobe about unit r with spread vmfSpread(λ) and unit e: the axis part goes to the side r
@@ -41,13 +43,6 @@ VCT_INLINE float vmfSpread(float lambda) {
 VCT_INLINE float vmfSlabShare(vec3 r, float spread, vec3 e) {
     float re = max(dot(r, e), 0.0f);
     return (1.0f - 3.0f * spread) * re * re + 0.5f * spread;
-}
-
-// Concentration of the outgoing specular lobe of a GGX surface of roughness α lit at cosine NoL (warped
-// spherical Gaussian, above). α is clamped as for punctual lights (MIN_ALPHA_PUNCTUAL), NoL as n·v is.
-VCT_INLINE float specularLobeConcentration(float alpha, float NoL) {
-    float a = max(alpha, MIN_ALPHA_PUNCTUAL);
-    return 1.0f / (2.0f * a * a * max(NoL, MIN_N_DOT_V));
 }
 
 // The roughness of a voxel's lobe: its surfaces' mean perceptual roughness widened by the spread of their normals
@@ -66,18 +61,24 @@ VCT_INLINE float slabExitance(vec3 n, int slab) {
     return 0.125f * PI * c * c;
 }
 
-// The specular lobe of a voxel lit from unit l: its axis r = reflect(−l, n) (xyz) and spread (w, vmfSpread). n is
-// the voxel's unit normal turned towards the light, NoL = n·l > 0.
+// The specular lobe of a voxel lit from unit l: its axis r = reflect(−l, n) (xyz) and spread (w, vmfSpread), its
+// sharpness the warped GGX lobe's as the cones take it (lib/cone.glsl's specularLobeInverseSharpness, with the
+// light's n·l for the view's). n is the voxel's unit normal turned towards the light, NoL = n·l > 0.
 VCT_INLINE vec4 specularLobe(vec3 n, vec3 l, float NoL, float perceptualRoughness) {
-    float lambda = specularLobeConcentration(alphaFromPerceptual(perceptualRoughness), NoL);
-    return vec4(2.0f * NoL * n - l, vmfSpread(lambda));
+    float inverseLambda = specularLobeInverseSharpness(alphaFromPerceptual(perceptualRoughness), NoL);
+    return vec4(2.0f * NoL * n - l, vmfSpread(inverseLambda));
 }
 
 // The share of `lobe` that slab `slab` carries, before normalisation: its reading weight E[(ω·e)₊²]
-// (vmfSlabShare). inject.comp multiplies it by the slab's facing (voxelFacing, as for the diffuse light: nothing
-// leaves behind the voxel's surfaces) and scales the shares to the specular exitance with slabExitance.
-VCT_INLINE float specularSlabShare(vec4 lobe, int slab) {
-    return vmfSlabShare(vec3(lobe), lobe.w, -voxelSlabDirection(slab));
+// (vmfSlabShare), foreshortened by the surface's cosine towards the slab, (n·e)₊: a voxel's surface seen along e
+// shows (n·e) of its area, so a flat surface puts none of its lobe into the slabs along it. (The diffuse light
+// counts sideways as facing, voxelFacing, so that walls seen edge-on from afar are lit; the same for the lobes
+// let a lit metal plane light itself: `plane` received 1.77x its true indirect light, 0.27x with the cosine.)
+// inject.comp also multiplies it by voxelFacing and scales the shares to the specular exitance with
+// slabExitance.
+VCT_INLINE float specularSlabShare(vec4 lobe, vec3 n, int slab) {
+    vec3 e = -voxelSlabDirection(slab);
+    return vmfSlabShare(vec3(lobe), lobe.w, e) * saturate(dot(n, e));
 }
 
 #endif  // VCT_VOXEL_SPECULAR_GLSL
