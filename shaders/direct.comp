@@ -11,6 +11,7 @@
 #include "lib/shadow_pcf.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
+layout(constant_id = VCT_DIRECT_SPEC_GI) const bool GI = true;  // --gi (VCT_FLAG_GI), as a constant: shared.h
 
 // Resources: bound by engine/passes/direct_pass.cpp (its resource table gives these binding numbers and is checked
 // against them when the pipeline is made).
@@ -62,7 +63,7 @@ void main() {
     // unoccluded but for the material's occlusion: its cosine-weighted mean radiance (what the six diffuse
     // cones read of an open sky) × the diffuse albedo, plus what the specular cone would read × F0. A uniform
     // environment L gives L·(albedo + F0), the constant ambient term this replaced.
-    if ((frame.flags & VCT_FLAG_GI) == 0u) {
+    if (!GI) {
         radiance +=
             environmentReflected(n, v, baseColorMetallic.rgb, baseColorMetallic.a, normalRoughness.w) *
             emissiveOcclusion.a;

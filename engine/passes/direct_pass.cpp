@@ -20,9 +20,10 @@ ResourceTable directResources(const EnvironmentSource& environment) {
 
 }  // namespace
 
-DirectPass::DirectPass(const vk::Context& context, const EnvironmentSource& environment)
+DirectPass::DirectPass(const vk::Context& context, const EnvironmentSource& environment, bool gi)
     : resources_(directResources(environment)) {
-    pipeline_ = vk::Pipeline::compute(context, name(), "direct.comp", resources_.bindings(), 0);
+    pipeline_ = vk::Pipeline::compute(context, name(), "direct.comp", resources_.bindings(), 0,
+                                      {gi ? 1u : 0u});  // VCT_DIRECT_SPEC_GI
 }
 
 void DirectPass::execute(const FrameContext& frame) {

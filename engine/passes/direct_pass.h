@@ -11,8 +11,8 @@ namespace vct {
 
 class DirectPass : public Pass {
   public:
-    // `environment`: the background, and the ambient light with GI off.
-    DirectPass(const vk::Context& context, const EnvironmentSource& environment);
+    // `environment`: the background, and the ambient light with GI off (`gi`: RenderSettings::gi).
+    DirectPass(const vk::Context& context, const EnvironmentSource& environment, bool gi);
     const char* name() const override { return "direct"; }
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     void execute(const FrameContext& frame) override;

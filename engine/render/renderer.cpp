@@ -84,7 +84,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     const bool vertexColors =
         std::any_of(primitives.begin(), primitives.end(), [](const Primitive& p) { return p.hasColors; });
     passes_.push_back(std::make_unique<GBufferPass>(context, vertexColors));
-    passes_.push_back(std::make_unique<DirectPass>(context, environment));
+    passes_.push_back(std::make_unique<DirectPass>(context, environment, settings.gi));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
         const VoxelSource voxels = VoxelSource::of(*voxelGrid_, environment);
