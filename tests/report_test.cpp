@@ -50,20 +50,35 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // the turns' noise, which trace scale 1's history (γ = 0.8: about 9 frames) and scale 4's (an own sample
     // every 16 frames) average differently: 31.07 dB diffuse, 42.49 dB specular, 32.13 dB final. That is not
     // the upsampling's error, so both run with the fixed cone set.
-    const fs::path reference = render("converge_s1", {"--trace-scale", "1", "--cone-rotation", "off"});
-    const fs::path upsampled = render("converge_s4", {"--cone-rotation", "off"});
-    const double diffuse = psnr(reference / "diffuse_indirect.exr", upsampled / "diffuse_indirect.exr");
-    const double specular = psnr(reference / "specular_indirect.exr", upsampled / "specular_indirect.exr");
-    const double display = vct::compareToneMapped(vct::readExr(reference / "final.exr"),
-                                                  vct::readExr(upsampled / "final.exr"), 1.0f)
-                               .psnr;
-    std::printf(
-        "static cornell, scale 4 vs 1 after 64 frames: diffuse %.2f dB, specular %.2f dB, final sRGB %.2f "
-        "dB\n",
-        diffuse, specular, display);
-    EXPECT_GE(diffuse, 38.5);
-    EXPECT_GE(specular, 38.5);
-    EXPECT_GE(display, 40.0);
+    // Glossy voxels (the default, docs/design.md §5.11) make the indirect signal sharper where glossy surfaces
+    // light others, and the history converges to it less closely: 38.25 dB diffuse, 40.47 dB specular, 39.34 dB
+    // final (Lambertian voxels, --voxel-glossy off: 39.68, 39.43, 40.95; the tree before them: 38.96, 39.37,
+    // 40.35). The upsampling is the same code in both; the margins above hold on the Lambertian signal, and the
+    // default's are its own measurement less 0.25 dB.
+    struct Case {
+        const char* glossy;
+        double diffuse, specular, display;  // lowest PSNRs allowed
+    };
+    for (const Case& c : {Case{"off", 38.5, 38.5, 40.0}, Case{"on", 38.0, 40.2, 39.1}}) {
+        const std::string suffix = std::string("_glossy_") + c.glossy;
+        const fs::path reference = render("converge_s1" + suffix, {"--trace-scale", "1", "--cone-rotation",
+                                                                   "off", "--voxel-glossy", c.glossy});
+        const fs::path upsampled =
+            render("converge_s4" + suffix, {"--cone-rotation", "off", "--voxel-glossy", c.glossy});
+        const double diffuse = psnr(reference / "diffuse_indirect.exr", upsampled / "diffuse_indirect.exr");
+        const double specular =
+            psnr(reference / "specular_indirect.exr", upsampled / "specular_indirect.exr");
+        const double display = vct::compareToneMapped(vct::readExr(reference / "final.exr"),
+                                                      vct::readExr(upsampled / "final.exr"), 1.0f)
+                                   .psnr;
+        std::printf(
+            "static cornell, glossy voxels %s, scale 4 vs 1 after 64 frames: diffuse %.2f dB, specular "
+            "%.2f dB, final sRGB %.2f dB\n",
+            c.glossy, diffuse, specular, display);
+        EXPECT_GE(diffuse, c.diffuse) << c.glossy;
+        EXPECT_GE(specular, c.specular) << c.glossy;
+        EXPECT_GE(display, c.display) << c.glossy;
+    }
 }
 
 TEST(Report, ToneMappedPsnrUsesPeakOneNotTheHdrPeak) {
