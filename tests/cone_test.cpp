@@ -64,15 +64,6 @@ TEST(Cone, FootprintMipAndStep) {
     EXPECT_GT(coneStep(v0), 0.0f);
 }
 
-TEST(Cone, GrazingReflectionConesStartFurtherAlong) {
-    EXPECT_FLOAT_EQ(specularConeGrazingStart(1.0f), 0.0f);
-    EXPECT_NEAR(specularConeGrazingStart(0.5f), 1.0f, 1e-6f);  // 60°: one voxel further
-    EXPECT_FLOAT_EQ(specularConeGrazingStart(0.1f), SPECULAR_GRAZING_START_MAX);
-    for (float NoXi : {0.0f, -0.5f, -1.0f, 1e-30f})
-        EXPECT_FLOAT_EQ(specularConeGrazingStart(NoXi), SPECULAR_GRAZING_START_MAX) << NoXi;
-    EXPECT_FLOAT_EQ(specularConeGrazingStart(std::nanf("")), SPECULAR_GRAZING_START_MAX);
-}
-
 TEST(Cone, OpacityCorrectionFollowsStepLength) {
     // Two half steps through the same medium compose to one full step.
     float half = correctOpacity(0.6f, 0.5f, 1.0f);

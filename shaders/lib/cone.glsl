@@ -42,13 +42,6 @@ const float CONE_START_OFFSET = 1.0f;
 const float CONE_START_DISTANCE = 1.0f;
 // Samples a cone takes beyond the grid's edge before it stops (cone_trace.glsl: why).
 const int CONE_STEPS_PAST_GRID = 2;
-// A reflection cone leaving its surface at a grazing angle runs within a voxel or two of the surface's own voxel
-// layer for a long way, and that layer occludes it (docs/design.md §5.6). So it starts further along itself, by
-// (1/(n·ξ) − 1) voxels, at most this many: its first sample is then as far above the surface as a cone along n's.
-// Measured at 64³ (one frame, against the path-traced truth): `plane` 0.27 → 0.38 of its true indirect light,
-// DamagedHelmet +0.28 dB, cornell +0.03 dB (gold sphere 0.93 → 0.95; 128³: 0.85 → 0.88); a cap of 7 changed
-// nothing more.
-const float SPECULAR_GRAZING_START_MAX = 3.0f;
 // coneSurfaceFootprint: how wide a footprint may be for its height above the surface the cone left.
 const float CONE_SURFACE_CLEARANCE = 0.5f;
 // Widest specular cone: half-angle 45°. Wider lobes are as blurry as the diffuse cones, and a wider cone
@@ -137,14 +130,6 @@ VCT_INLINE float specularLobeTanHalf(float alpha) {
 }
 VCT_INLINE float specularConeTanHalf(float alpha) {
     return min(specularLobeTanHalf(alpha), SPECULAR_CONE_MAX_TAN_HALF);
-}
-
-// How much further along itself, in voxels, a reflection cone leaving at cosine NoXi = n·ξ to its surface starts
-// (SPECULAR_GRAZING_START_MAX): 0 along n, 1 at 60°, at most the cap; the cap for NoXi ≤ 0 too.
-VCT_INLINE float specularConeGrazingStart(float NoXi) {
-    // Written as a comparison so that a NaN takes the cap, on the CPU as on the GPU.
-    return NoXi > 1e-3f ? min(1.0f / NoXi, 1.0f + SPECULAR_GRAZING_START_MAX) - 1.0f
-                        : SPECULAR_GRAZING_START_MAX;
 }
 
 // Inverse sharpness 1/λ of the GGX lobe as a spherical Gaussian G(ω) = exp(λ(ω·ξ − 1)) about the mirror

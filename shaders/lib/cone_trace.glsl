@@ -176,9 +176,7 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
     traceDiffuseCones(voxels, p, n, rotation, cones);
     const float alpha = alphaFromPerceptual(perceptualRoughness);
     const vec3 xi = specularConeDirection(n, v);
-    // From the same origin as the diffuse cones, moved along itself when it leaves at a grazing angle (lib/cone).
-    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET) +
-                        xi * (frame.voxels.voxelSize * specularConeGrazingStart(dot(n, xi)));
+    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
     vec3 specular = traceCone(voxels, p, n, origin, xi, specularConeTanHalf(alpha)).rgb;
     const float share = specularConeShare(alpha, dot(n, v));
     if (share < 1.0) {
