@@ -113,9 +113,12 @@ nlohmann::json compareWith(const fs::path& reference, const fs::path& image) {
 }
 
 // `secondary`: the reference's --secondary (full: the truth; diffuse: without glossy-to-diffuse transport).
-fs::path cornellReference(const std::string& bounces, int frame = 0, const std::string& secondary = "full") {
-    const fs::path dir = vct::test::freshOutputDir("gi_truth/cornell_reference_" + bounces + "_" + secondary +
-                                                   "_" + std::to_string(frame));
+// `owner` names the test: each test renders its own references (ctest runs tests in parallel, and a directory
+// two tests empty and fill at once is a race).
+fs::path cornellReference(const std::string& owner, const std::string& bounces, int frame = 0,
+                          const std::string& secondary = "full") {
+    const fs::path dir = vct::test::freshOutputDir("gi_truth/" + owner + "_cornell_reference_" + bounces +
+                                                   "_" + secondary + "_" + std::to_string(frame));
     const auto r = vct::test::runVct({"reference", "--scene", "cornell", "--size", "96x54", "--frame",
                                       std::to_string(frame), "--spp", "64", "--bounces", bounces,
                                       "--secondary", secondary, "--out", dir.string()});
@@ -129,7 +132,7 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
     // 1.18 (blue cube), the whole image within 3 % of 1. Turned per pixel and frame, averaged by the history:
     // 0.86 (red wall) to 1.15 (blue cube; one frame of turned cones: 1.28, a single turn per pixel on a cube of
     // a few dozen pixels), the whole image 1.00.
-    const fs::path reference = cornellReference("1", 7);
+    const fs::path reference = cornellReference("per_surface", "1", 7);
     for (const char* rotation : {"off", "on"}) {
         const nlohmann::json one =
             compareWith(reference, renderVct(std::string("cornell_b1_rotation_") + rotation, "cornell",
@@ -147,8 +150,9 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
 
     // All bounces against --bounces 8: measured 0.86 of the full GI's indirect light (the voxels carry diffuse
     // transport only; one bounce gives 0.36).
-    const nlohmann::json all = compareWith(
-        cornellReference("all"), renderVct("cornell_b8", "cornell", {"--voxels", "64", "--bounces", "8"}));
+    const nlohmann::json all =
+        compareWith(cornellReference("per_surface", "all"),
+                    renderVct("cornell_b8", "cornell", {"--voxels", "64", "--bounces", "8"}));
     const double allWhole = all["image"]["indirect"]["ratio"].get<double>();
     std::printf("8 bounces against all bounces: %.3f\n", allWhole);
     EXPECT_GE(allWhole, 0.8);
@@ -161,7 +165,7 @@ TEST(VoxelGi, GlossyVoxelsCarryTheGlossyTransportAndLambertianOnesMatchTheTruthW
     // 1.18 (floor) at 320x180; the same voxels send the truth (glossy transport and all) too little light, the
     // metal sphere none. With the lobes (the default) the truth's extra light arrives: the whole image's indirect
     // light rises by the transport's share (measured 1.16x; the truth's 1.19x), the whole image 1.04 of the truth.
-    const fs::path diffuseReference = cornellReference("1", 7, "diffuse");
+    const fs::path diffuseReference = cornellReference("glossy", "1", 7, "diffuse");
     const fs::path lambertianDir =
         renderVct("cornell_lambertian", "cornell", {"--voxels", "64", "--voxel-glossy", "off"}, 8);
     const nlohmann::json lambertian = compareWith(diffuseReference, lambertianDir);
@@ -173,7 +177,7 @@ TEST(VoxelGi, GlossyVoxelsCarryTheGlossyTransportAndLambertianOnesMatchTheTruthW
         EXPECT_LE(ratio, 1.25) << surface["name"];
     }
     // The glossy transport's share of the truth, from the two references' indirect light: what the lobes must add.
-    const fs::path truthReference = cornellReference("1", 7);
+    const fs::path truthReference = cornellReference("glossy", "1", 7);
     const nlohmann::json lambertianTruth = compareWith(truthReference, lambertianDir);
     const nlohmann::json glossy =
         compareWith(truthReference, renderVct("cornell_glossy", "cornell", {"--voxels", "64"}, 8));
