@@ -63,13 +63,12 @@ std::vector<DrawItem> blendedDrawsBackToFront(const GpuScene& gpuScene, const gl
 }
 
 BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
-                     const EnvironmentSource& environment, bool vertexColors)
-    : dfg_(context),
-      voxelStandIn_(voxelStandIn(context, voxels)),
+                     const EnvironmentSource& environment, DfgLut& dfg, bool vertexColors)
+    : voxelStandIn_(voxelStandIn(context, voxels)),
       brickStandIn_(
           voxels ? vk::Buffer()
                  : vk::Buffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal)),
-      resources_(blendResources(dfg_, voxelStandIn_, brickStandIn_, voxels, environment)) {
+      resources_(blendResources(dfg, voxelStandIn_, brickStandIn_, voxels, environment)) {
     vk::Pipeline::GraphicsDesc desc;
     desc.owner = name();
     desc.vertexShader = "gbuffer.vert";  // the same vertices and attributes as the opaque surfaces

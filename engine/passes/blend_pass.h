@@ -17,15 +17,15 @@ class BlendPass : public Pass {
   public:
     // `voxels`: the grid's radiance (null with GI off: the fragments read the environment's light instead).
     // `vertexColors`: whether any primitive of the scene has COLOR_0 (VCT_SPEC_VERTEX_COLORS).
+    // `dfg`: the split-sum table (the renderer's, shared with inject and composite).
     BlendPass(const vk::Context& context, const VoxelSource* voxels, const EnvironmentSource& environment,
-              bool vertexColors);
+              DfgLut& dfg, bool vertexColors);
     const char* name() const override { return "blend"; }
     // Depends on the scene, the camera and the voxel grid, which changes only with the scene.
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     void execute(const FrameContext& frame) override;
 
   private:
-    DfgLut dfg_;  // before resources_, which names its image
     // GI off: a 1×1×2 volume and a 16-byte brick table the pipeline declares and never reads.
     vk::Image voxelStandIn_;
     vk::Buffer brickStandIn_;

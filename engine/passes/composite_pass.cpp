@@ -2,9 +2,8 @@
 
 namespace vct {
 
-CompositePass::CompositePass(const vk::Context& context)
-    : dfg_(context),
-      // Binding numbers: shaders/composite.comp's.
+CompositePass::CompositePass(const vk::Context& context, DfgLut& dfg)
+    :  // Binding numbers: shaders/composite.comp's.
       resources_("composite",
                  {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
                   {1, Target::direct, Access::Read},
@@ -16,7 +15,7 @@ CompositePass::CompositePass(const vk::Context& context)
                   {7, Target::emissiveOcclusion, Access::Sampled},
                   // A 1×1 stand-in with GI off: one pipeline for both modes, the shader skips it.
                   {8, Target::indirect, Access::Read},
-                  {10, Resource::image("dfg", dfg_.image(), dfg_.sampler()), Access::Sampled},
+                  {10, Resource::image("dfg", dfg.image(), dfg.sampler()), Access::Sampled},
                   // The blend pass's layer (a 1×1 stand-in in a scene without blended surfaces, skipped).
                   {11, Target::transparent, Access::Sampled}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "composite.comp", resources_.bindings(), 0);

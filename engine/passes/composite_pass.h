@@ -12,12 +12,12 @@ namespace vct {
 
 class CompositePass : public Pass {
   public:
-    explicit CompositePass(const vk::Context& context);
+    // `dfg`: the split-sum table (the renderer's, shared with inject and blend).
+    CompositePass(const vk::Context& context, DfgLut& dfg);
     const char* name() const override { return "composite"; }
     void execute(const FrameContext& frame) override;
 
   private:
-    DfgLut dfg_;  // before resources_, which names its image
     ResourceTable resources_;
     vk::Pipeline pipeline_;
 };

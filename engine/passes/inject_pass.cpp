@@ -2,9 +2,8 @@
 
 namespace vct {
 
-InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid)
+InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg)
     : grid_(grid),
-      dfg_(context),
       // Binding numbers: shaders/inject.comp's.
       resources_("inject",
                  {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
@@ -19,7 +18,7 @@ InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid)
                   {7, Resource::image("bounce", grid.bounce()), Access::Read},
                   // Mip 0 when dense (the shader writes one of the two: VCT_SPEC_SPARSE_MIP0).
                   {8, Resource::image("radianceMips", grid.radianceMips()).atLevel(0), Access::ReadWrite},
-                  {9, Resource::image("dfg", dfg_.image(), dfg_.sampler()), Access::Sampled}}),
+                  {9, Resource::image("dfg", dfg.image(), dfg.sampler()), Access::Sampled}}),
       clear_("inject clear",
              {{kNoBinding, Resource::image("mip0", grid.mip0Image()), Access::TransferWrite}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "inject.comp", resources_.bindings(),

@@ -12,7 +12,8 @@ namespace vct {
 
 class InjectPass : public Pass {
   public:
-    InjectPass(const vk::Context& context, VoxelGrid& grid);
+    // `dfg`: the split-sum table, for the specular lobes' directional albedo (docs/design.md §5.11).
+    InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg);
     const char* name() const override { return "inject"; }
     void execute(const FrameContext& frame) override;
     // The direct light, plus with `addBounce` albedo × the light the voxels gathered (the bounce pass).
@@ -21,7 +22,6 @@ class InjectPass : public Pass {
 
   private:
     VoxelGrid& grid_;
-    DfgLut dfg_;  // the specular lobes' directional albedo (docs/design.md §5.11)
     ResourceTable resources_;
     // Mip 0 of the radiance as the clear before the dispatch writes it (one image cannot be a transfer
     // destination and a storage image in one table).

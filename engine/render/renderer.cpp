@@ -55,6 +55,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     environmentMap_ = std::make_shared<const EnvironmentMap>(sceneEnvironment(scene, settings_));
     gpuEnvironment_ = std::make_unique<GpuEnvironment>(context, *environmentMap_);
     const EnvironmentSource environment = gpuEnvironment_->source();
+    dfg_ = std::make_unique<DfgLut>(context);
     // The frame, in order (docs/design.md §2.1). Skinned and morphed instances are deformed before anything
     // draws them; a scene without any has no skin pass.
     if (gpuScene_.deform().active())
@@ -68,7 +69,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         // The static voxelization from a file (vct voxelize) instead of computing it; validated here.
         if (!settings.voxelCache.empty()) voxelGrid_->loadStaticCache(settings.voxelCache);
         passes_.push_back(std::make_unique<VoxelizePass>(context, *voxelGrid_));
-        auto inject = std::make_unique<InjectPass>(context, *voxelGrid_);
+        auto inject = std::make_unique<InjectPass>(context, *voxelGrid_, *dfg_);
         auto mips = std::make_unique<VoxelMipsPass>(context, *voxelGrid_);
         // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.7).
         std::unique_ptr<Pass> bounce;
@@ -100,10 +101,10 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     // over the frame (docs/design.md §2.6); a scene without any has no blend pass.
     if (gpuScene_.hasBlended()) {
         const VoxelSource voxels = voxelGrid_ ? VoxelSource::of(*voxelGrid_, environment) : VoxelSource{};
-        passes_.push_back(
-            std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment, vertexColors));
+        passes_.push_back(std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment,
+                                                      *dfg_, vertexColors));
     }
-    passes_.push_back(std::make_unique<CompositePass>(context));
+    passes_.push_back(std::make_unique<CompositePass>(context, *dfg_));
 
     for (FrameSlot& slot : slots_) {
         VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};

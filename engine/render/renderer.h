@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "render/camera.h"
+#include "render/dfg_lut.h"
 #include "render/environment.h"
 #include "render/frame_targets.h"
 #include "render/gpu_environment.h"
@@ -137,6 +138,9 @@ class Renderer {
     vk::GpuTimer timer_;
     std::shared_ptr<const EnvironmentMap> environmentMap_;
     std::unique_ptr<GpuEnvironment> gpuEnvironment_;  // before passes_: they bind it
+    // The split-sum DFG table (inject, blend and composite read it), made once per renderer: its integral costs
+    // ~45 ms of CPU. Before passes_: they bind it.
+    std::unique_ptr<DfgLut> dfg_;
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
     std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_
