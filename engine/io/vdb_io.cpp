@@ -343,12 +343,18 @@ struct MemoryArchive : openvdb::io::Archive {
     }
 };
 
+// The file's grid named `name` (the last, should a file repeat a name), or null.
+openvdb::GridBase::Ptr findGrid(const VoxelStream& file, const char* name) {
+    openvdb::GridBase::Ptr found;
+    for (const openvdb::GridBase::Ptr& grid : *file.grids)
+        if (grid && grid->getName() == name) found = grid;
+    return found;
+}
+
 template <typename GridT>
 typename GridT::Ptr readGrid(const VoxelStream& file, const char* name, uint32_t n,
                              const std::filesystem::path& path) {
-    openvdb::GridBase::Ptr base;
-    for (const openvdb::GridBase::Ptr& grid : *file.grids)
-        if (grid && grid->getName() == name) base = grid;
+    const openvdb::GridBase::Ptr base = findGrid(file, name);
     if (!base) throw Error("voxel file " + quoted(path) + " has no '" + name + "' grid");
     typename GridT::Ptr grid = openvdb::gridPtrCast<GridT>(base);
     if (!grid)
@@ -623,11 +629,12 @@ std::string accumProblem(const StaticAccumVoxel& v) {
     if (count == 0 || count > kMaxSamplesPerVoxel)
         return "static_count " + std::to_string(int32_t(v.accum[9])) + ", expected 1.." +
                std::to_string(kMaxSamplesPerVoxel);
-    if (uint64_t(v.accum[10]) > kUnitScale * count) return "transparency sum above 1023 x static_count";
-    if (uint64_t(v.accum[VCT_VOXEL_ACCUM_METALLIC]) > kUnitScale * count)
-        return "metallic sum above 1023 x static_count";
-    if (uint64_t(v.accum[VCT_VOXEL_ACCUM_ROUGHNESS]) > kUnitScale * count)
-        return "roughness sum above 1023 x static_count";
+    // The single-word sums of unit values (× 1023 each sample).
+    for (auto [word, name] : {std::pair{VCT_VOXEL_ACCUM_TRANSPARENCY, "transparency"},
+                              {VCT_VOXEL_ACCUM_METALLIC, "metallic"},
+                              {VCT_VOXEL_ACCUM_ROUGHNESS, "roughness"}})
+        if (uint64_t(v.accum[size_t(word)]) > kUnitScale * count)
+            return std::string(name) + " sum above 1023 x static_count";
     for (int c = 0; c < 3; ++c) {
         if (uint64_t(v.accum[size_t(c)]) > kUnitScale * count) return "albedo sum above 1023 x static_count";
         if (uint64_t(std::abs(int64_t(std::bit_cast<int32_t>(v.accum[size_t(3 + c)])))) > kUnitScale * count)
@@ -650,19 +657,13 @@ VoxelFile readVoxels(const std::filesystem::path& path, bool frame) {
         auto normalSum = readGrid<openvdb::Vec3IGrid>(file, kStaticNormal, n, path);
         auto emissionSum = readGrid<openvdb::Vec3IGrid>(file, kStaticEmission, n, path);
         // Files written before blended surfaces were voxelized by their alpha have no transparency: opaque.
-        bool hasTransparency = false;
-        for (const openvdb::GridBase::Ptr& grid : *file.grids)
-            hasTransparency = hasTransparency || (grid && grid->getName() == kStaticTransparency);
-        auto transparencySum = hasTransparency
+        auto transparencySum = findGrid(file, kStaticTransparency)
                                    ? readGrid<openvdb::Int32Grid>(file, kStaticTransparency, n, path)
                                    : openvdb::Int32Grid::create(0);
         // Files written before the voxels held a material for their specular lobes have no metallic and
         // roughness sums: refused by name (reading them as some default would change the light silently).
         for (const char* name : {kStaticMetallic, kStaticRoughness}) {
-            bool has = false;
-            for (const openvdb::GridBase::Ptr& grid : *file.grids)
-                has = has || (grid && grid->getName() == name);
-            if (!has)
+            if (!findGrid(file, name))
                 throw Error("voxel file " + quoted(path) + " has no " + name +
                             " grid (written by an older vct): write it again with vct voxelize");
         }
