@@ -107,8 +107,9 @@ def markdown(scenes):
                 lines += ["Reference: " + ", ".join(f"{k} {json.dumps(v)}" for k, v in sorted(ref.items())), ""]
             lines += ["| voxels | scale | indirect | diffuse | specular | direct | PSNR final | PSNR indirect | "
                       "PSNR diffuse | PSNR specular | relMSE final | relMSE indirect | noise (indirect) | "
-                      "vct ms/frame |",
-                      "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+                      "ref. PSNR indirect | PSNR indirect without ref. noise | vct ms/frame |",
+                      "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+                      " ---: | ---: | ---: |"]
             for run in runs:
                 d, cfg = run["data"], run["config"]
                 image, errors = d["image"], d["errors"]
@@ -119,6 +120,8 @@ def markdown(scenes):
                                                                                 "specular"))
                     + f" | {num(errors['final']['rel_mse'], '{:.3g}')} | {num(errors['indirect']['rel_mse'], '{:.3g}')}"
                     + f" | {num(errors['indirect']['rel_mse_noise'], '{:.2g}')}"
+                    + f" | {num(errors['indirect'].get('psnr_srgb_reference'), '{:.2f}')}"
+                    + f" | {num(errors['indirect'].get('psnr_srgb_without_reference_noise'), '{:.2f}')}"
                     + f" | {num(cfg.get('frame_median_ms'), '{:.1f}')} |")
             lines += ["", "Per surface, indirect / diffuse / specular ratio (reference noise on the sums in the "
                       "third column):", ""]

@@ -16,6 +16,8 @@
 #   TRUTH_WORK   where renders go (default: a fresh temporary directory); references already there with the same
 #                settings are reused, so a run can be resumed
 #   TRUTH_QUICK=1   64x36, 8 spp, 8 frames: a smoke test of the script, not for claims
+#   TRUTH_NOISE_SEED  when set, a second reference of each kind with this seed (another than TRUTH_SEED's, default
+#                1), passed to compare as --second-reference-dir: the reference's own noise in the sRGB PSNRs
 #   TRUTH_TAG    appended to the results directory's name (e.g. t0 for TRUTH_FRAMES=1: the static pose at t = 0)
 #   VCT          the program [build/vct]
 set -euo pipefail
@@ -59,6 +61,9 @@ exposure_flags=()
 reference_flags=("${exposure_flags[@]}")
 [ -n "${TRUTH_SEED:-}" ] && reference_flags+=(--seed "$TRUTH_SEED")
 [ -n "${TRUTH_THREADS:-}" ] && reference_flags+=(--threads "$TRUTH_THREADS")
+# The second references: the same flags with the other seed.
+noise_reference_flags=("${exposure_flags[@]}" --seed "${TRUTH_NOISE_SEED:-}")
+[ -n "${TRUTH_THREADS:-}" ] && noise_reference_flags+=(--threads "$TRUTH_THREADS")
 
 # scene_name SCENE: a built-in name as it is, a file by its base name ("DamagedHelmet").
 scene_name() { basename "${1%.*}"; }
@@ -76,12 +81,17 @@ reference_label() {
     case "$1" in 1) echo one-bounce ;; all) echo all-bounces ;; diffuse) echo one-bounce-diffuse-secondary ;; esac
 }
 
-# render_reference SCENE NAME KIND: vct reference, unless TRUTH_WORK already holds it with the same settings.
+# render_reference SCENE NAME KIND: vct reference, unless TRUTH_WORK already holds it with the same settings; with
+# TRUTH_NOISE_SEED the second one too (same settings, that seed) into DIR-noise.
 render_reference() {
     local flags=(--bounces 1)
     case "$3" in all) flags=(--bounces all) ;; diffuse) flags=(--bounces 1 --secondary diffuse) ;; esac
     cached_reference "$(reference_dir "$2" "$3")" --scene "$1" --size "$size" --spp "$spp" --frame "$frame" \
         "${flags[@]}" "${reference_flags[@]}"
+    if [ -n "${TRUTH_NOISE_SEED:-}" ]; then
+        cached_reference "$(reference_dir "$2" "$3")-noise" --scene "$1" --size "$size" --spp "$spp" \
+            --frame "$frame" "${flags[@]}" "${noise_reference_flags[@]}"
+    fi
 }
 
 # annotate JSON KEY=VALUE...: records the configuration (and vct's timings) in a compare JSON as "config".
@@ -144,8 +154,11 @@ for scene in "${scenes[@]}"; do
                 json="$work/json/$stem.json"
                 measured="$image"
                 [ "$kind" = diffuse ] && measured="$lambertian"
+                noise_flags=()
+                [ -n "${TRUTH_NOISE_SEED:-}" ] &&
+                    noise_flags=(--second-reference-dir "$(reference_dir "$name" "$kind")-noise")
                 "$vct" compare --reference-dir "$(reference_dir "$name" "$kind")" --image-dir "$measured" \
-                    --json "$json" --maps "$work/maps/$stem" "${exposure_flags[@]}"
+                    --json "$json" --maps "$work/maps/$stem" "${exposure_flags[@]}" "${noise_flags[@]}"
                 produced+=("$json")
                 seconds_file="$(reference_dir "$name" "$kind").seconds"
                 reference_seconds=null

@@ -97,29 +97,39 @@ ImageRgba32f displayImage(const LightBuffers& buffers, Light light, float exposu
     return toneMappedSrgb(linear, exposure);
 }
 
+// mean (T(a) − T(b))² over the non-background pixels and RGB of two images tone-mapped for display.
+double srgbMseOver(const std::vector<int>& ids, const ImageRgba32f& shownA, const ImageRgba32f& shownB) {
+    double sum = 0.0;
+    size_t samples = 0;
+    for (size_t i = 0; i < ids.size(); ++i) {
+        if (ids[i] == kBackgroundSurface) continue;
+        const glm::dvec3 d = rgb(shownA, i) - rgb(shownB, i);
+        sum += glm::dot(d, d);
+        samples += 3;
+    }
+    return samples > 0 ? sum / double(samples) : 0.0;
+}
+
 TruthError measure(const TruthReference& reference, const LightBuffers& vct, Light light,
                    const std::vector<int>& ids, float exposure) {
     const ImageRgba32f shownReference = displayImage(reference.mean, light, exposure);
     const ImageRgba32f shownVct = displayImage(vct, light, exposure);
     TruthError error;
-    double srgbSum = 0.0, relSum = 0.0, noiseSum = 0.0;
+    double relSum = 0.0, noiseSum = 0.0;
     for (size_t i = 0; i < ids.size(); ++i) {
         if (ids[i] == kBackgroundSurface) continue;
         const glm::dvec3 r = value(reference.mean, light, i), v = value(vct, light, i);
         const glm::dvec3 var = variance(reference.variance, light, i);
-        const glm::dvec3 shownR = rgb(shownReference, i), shownV = rgb(shownVct, i);
         for (int c = 0; c < 3; ++c) {
             const double d = v[c] - r[c], denominator = r[c] * r[c] + kTruthRelMseEpsilon;
             relSum += (d * d - var[c]) / denominator;
             noiseSum += var[c] / denominator;
-            const double s = shownV[c] - shownR[c];
-            srgbSum += s * s;
         }
         error.samples += 3;
     }
     if (error.samples > 0) {
         const double n = double(error.samples);
-        error.srgbMse = srgbSum / n;
+        error.srgbMse = srgbMseOver(ids, shownVct, shownReference);
         error.relMse = relSum / n;
         error.relNoise = noiseSum / n;
     }
@@ -163,6 +173,9 @@ nlohmann::json errorJson(const TruthError& error) {
     auto number = [&](double v) { return optionalJson(any ? std::optional<double>(v) : std::nullopt); };
     return {{"psnr_srgb", optionalJson(error.srgbPsnr())},
             {"mse_srgb", number(error.srgbMse)},
+            {"mse_srgb_reference_noise", optionalJson(any ? error.srgbReferenceNoise : std::nullopt)},
+            {"psnr_srgb_reference", optionalJson(error.referencePsnr())},
+            {"psnr_srgb_without_reference_noise", optionalJson(error.srgbPsnrWithoutReferenceNoise())},
             {"rel_mse", number(error.relMse)},
             {"rel_mse_noise", number(error.relNoise)},
             {"rel_mse_raw", number(error.relMse + error.relNoise)}};
@@ -249,6 +262,18 @@ std::optional<double> TruthError::srgbPsnr() const {
     return 10.0 * std::log10(1.0 / srgbMse);
 }
 
+std::optional<double> TruthError::referencePsnr() const {
+    if (samples == 0 || !srgbReferenceNoise || !(*srgbReferenceNoise > 0.0)) return std::nullopt;
+    return 10.0 * std::log10(1.0 / *srgbReferenceNoise);
+}
+
+std::optional<double> TruthError::srgbPsnrWithoutReferenceNoise() const {
+    if (samples == 0 || !srgbReferenceNoise) return std::nullopt;
+    const double mse = srgbMse - *srgbReferenceNoise;
+    if (!(mse > 0.0)) return std::nullopt;
+    return 10.0 * std::log10(1.0 / mse);
+}
+
 std::optional<std::string> nonFiniteProblem(const ImageRgba32f& image) {
     return channelProblem(image, false);
 }
@@ -302,6 +327,32 @@ TruthComparison compareWithTruth(const TruthReference& reference, const LightBuf
     result.diffuseError = measure(reference, vct, Light::Diffuse, ids, exposure);
     result.specularError = measure(reference, vct, Light::Specular, ids, exposure);
     return result;
+}
+
+void addReferenceNoise(TruthComparison& comparison, const TruthReference& reference,
+                       const LightBuffers& second, double referenceSpp, double secondSpp) {
+    if (!(referenceSpp > 0.0) || !(secondSpp > 0.0) || !std::isfinite(referenceSpp + secondSpp))
+        throw Error("reference noise: samples per pixel " + numberText(float(referenceSpp)) + " and " +
+                    numberText(float(secondSpp)) + ", not both positive");
+    const uint32_t w = reference.mean.finalImage.width, h = reference.mean.finalImage.height;
+    const std::pair<const ImageRgba32f*, const char*> images[] = {
+        {&second.finalImage, "second reference final"},
+        {&second.direct, "second reference direct"},
+        {&second.diffuse, "second reference diffuse"},
+        {&second.specular, "second reference specular"}};
+    for (const auto& [image, what] : images) checkSize(*image, what, w, h);
+    const std::vector<int> ids = surfaceIds(reference.surfaceId);
+    const double share = secondSpp / (referenceSpp + secondSpp);
+    const std::pair<TruthError*, Light> errors[] = {{&comparison.finalError, Light::Final},
+                                                    {&comparison.indirectError, Light::Indirect},
+                                                    {&comparison.diffuseError, Light::Diffuse},
+                                                    {&comparison.specularError, Light::Specular}};
+    for (const auto& [error, light] : errors) {
+        if (error->samples == 0) continue;
+        error->srgbReferenceNoise =
+            share * srgbMseOver(ids, displayImage(reference.mean, light, comparison.exposure),
+                                displayImage(second, light, comparison.exposure));
+    }
 }
 
 std::vector<float> log2RatioMap(const TruthReference& reference, const LightBuffers& vct, Light light) {
@@ -410,6 +461,28 @@ std::string formatTruthTable(const TruthComparison& c) {
         "the reference's noise subtracted; ref.noise: mean var r / (r^2 + eps))\n",
         double(c.exposure), kTruthRelMseEpsilon);
     text += line;
+    if (!c.finalError.srgbReferenceNoise) return text;
+    auto dbText = [](const std::optional<double>& db, const char* none) {
+        char t[32];
+        if (db)
+            std::snprintf(t, sizeof(t), "%.2f dB", *db);
+        else
+            std::snprintf(t, sizeof(t), "%s", none);
+        return std::string(t);
+    };
+    std::snprintf(line, sizeof(line), "\n%-10s %16s %16s %26s\n", "light", "ref. noise MSE", "ref. PSNR",
+                  "PSNR without ref. noise");
+    text += line;
+    for (const auto& [name, error] : errors) {
+        if (error->samples == 0 || !error->srgbReferenceNoise) continue;
+        std::snprintf(line, sizeof(line), "%-10s %16.4g %16s %26s\n", name, *error->srgbReferenceNoise,
+                      dbText(error->referencePsnr(), "inf").c_str(),
+                      dbText(error->srgbPsnrWithoutReferenceNoise(), "within the noise").c_str());
+        text += line;
+    }
+    text +=
+        "(from a second reference of the same frame with other samples: its sRGB MSE against the reference, "
+        "shared by their spp, is the reference's own noise, which the sRGB MSE above includes)\n";
     return text;
 }
 

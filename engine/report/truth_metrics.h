@@ -75,6 +75,14 @@ struct TruthError {
     double relNoise = 0.0;  // mean var_r / (r² + ε): the part subtracted
     // 10·log10(1 / srgbMse); nothing when srgbMse is 0 (identical images: +∞) or there is no sample.
     std::optional<double> srgbPsnr() const;
+    // The reference's own noise in srgbMse (addReferenceNoise): E[(T(v) − T(r))²] = (T(v) − E T(r))² + Var T(r),
+    // and Var T(r) is measured against a second, independent reference. Nothing without one.
+    std::optional<double> srgbReferenceNoise;
+    // 10·log10(1 / srgbReferenceNoise): the reference's own PSNR against the truth it estimates.
+    std::optional<double> referencePsnr() const;
+    // 10·log10(1 / (srgbMse − srgbReferenceNoise)): vct's PSNR against the noise-free truth, estimated. Nothing
+    // without a second reference, or when vct is within the reference's noise (the difference is ≤ 0).
+    std::optional<double> srgbPsnrWithoutReferenceNoise() const;
 };
 
 struct TruthComparison {
@@ -110,6 +118,18 @@ std::vector<int> surfaceIds(const ImageRgba32f& surfaceIdImage);
 //             2 Cov(F, D) and Cov(F, D) = Var D + Cov(I, D) ≥ 0 unless the reference's indirect estimate
 //             is strongly anti-correlated with its direct one (independent ones: over by 2 var_D).
 TruthComparison compareWithTruth(const TruthReference& reference, const LightBuffers& vct, float exposure);
+
+// The reference's own noise in each sRGB MSE of `comparison`, from `second`: another path-traced estimate of the
+// same frame with independent samples (`vct reference --seed`), of `secondSpp` samples per pixel against the
+// reference's `referenceSpp`. With per-pixel variances σ²/spp of the two means (in sRGB, per pixel),
+//   E[(T(r) − T(r₂))²] = Var T(r) + Var T(r₂) = Var T(r)·(1 + spp/spp₂),
+// so Var T(r) = mean (T(r) − T(r₂))² · spp₂/(spp + spp₂) over the same pixels: srgbReferenceNoise. This, not the
+// per-pixel variances the reference writes (two halves of its samples: unbiased but themselves noisy, and
+// linear), is what the sRGB MSE holds of the reference's noise: cornell's 1024-spp references of two seeds
+// differ by 22.0 dB of indirect sRGB PSNR (docs/truth_compare.md). Throws vct::Error when `second` is not the
+// reference's size or a sample count is not positive.
+void addReferenceNoise(TruthComparison& comparison, const TruthReference& reference,
+                       const LightBuffers& second, double referenceSpp, double secondSpp);
 
 // log2((max(lum_vct, 0) + ε) / (max(lum_ref, 0) + ε)) per pixel (ε = 1e-4, unclamped), 0 on the background;
 // width × height values, top row first. Light::Final and Light::Direct work too.

@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 // The flags of each mode; giving one of the other mode's is a usage error.
 const char* const kFileFlags[] = {"reference", "image", "peak", "tonemap", "error-map", "error-scale"};
-const char* const kDirFlags[] = {"reference-dir", "image-dir", "json", "maps"};
+const char* const kDirFlags[] = {"reference-dir", "image-dir", "json", "maps", "second-reference-dir"};
 
 // NaN or Inf in an input is a bad input: one line naming the file (it used to end in exit 1, silently).
 void requireFinite(const ImageRgba32f& image, const std::string& path) {
@@ -121,6 +121,34 @@ ReferenceInfo readReferenceJson(const fs::path& path) {
     return info;
 }
 
+// The samples per pixel of a reference and of a second one that estimates its noise (addReferenceNoise), after
+// checking that the two are estimates of the same image with independent samples: the same scene, size, frame,
+// bounces, secondary transport and camera path, and different seeds (the same seed repeats the same samples).
+std::pair<double, double> independentSampleCounts(const ReferenceInfo& first, const fs::path& firstDir,
+                                                  const ReferenceInfo& second, const fs::path& secondDir) {
+    const std::string where = (secondDir / "reference.json").string() + ": ";
+    for (const char* key : {"scene", "size", "frame", "bounces", "secondary", "camera_path"}) {
+        const bool inFirst = first.settings.contains(key), inSecond = second.settings.contains(key);
+        if (inFirst != inSecond || (inFirst && first.settings[key] != second.settings[key]))
+            throw Error(where + "\"" + key + "\" is " + (inSecond ? second.settings[key].dump() : "missing") +
+                        ", but " + (firstDir / "reference.json").string() + " has " +
+                        (inFirst ? first.settings[key].dump() : "none") + ": not the same image");
+    }
+    auto spp = [&](const ReferenceInfo& info, const fs::path& dir) {
+        const nlohmann::json* value = info.settings.contains("spp") ? &info.settings["spp"] : nullptr;
+        if (!value || !value->is_number() || !(value->get<double>() > 0.0) || !(value->get<double>() < 1e12))
+            throw Error((dir / "reference.json").string() +
+                        ": no positive \"spp\" (needed to share the noise)");
+        return value->get<double>();
+    };
+    const double firstSpp = spp(first, firstDir), secondSpp = spp(second, secondDir);
+    if (!first.settings.contains("seed") || !second.settings.contains("seed") ||
+        first.settings["seed"] == second.settings["seed"])
+        throw Error(where + "the same \"seed\" as " + (firstDir / "reference.json").string() +
+                    " (or none): the same samples, not an independent estimate of the noise");
+    return {firstSpp, secondSpp};
+}
+
 LightBuffers loadLight(const fs::path& dir, const std::string& suffix, const ImageProblem& problem,
                        const ImageRgba32f* sizeOf, const fs::path& sizePath) {
     LightBuffers light;
@@ -139,11 +167,14 @@ LightBuffers loadLight(const fs::path& dir, const std::string& suffix, const Ima
 
 int compareDirectories(const ParsedArgs& args) {
     const fs::path referenceDir = args.get("reference-dir"), imageDir = args.get("image-dir");
+    const std::optional<fs::path> secondDir = args.has("second-reference-dir")
+                                                  ? std::optional<fs::path>(args.get("second-reference-dir"))
+                                                  : std::nullopt;
     const fs::path jsonPath = args.has("json") ? fs::path(args.get("json")) : imageDir / "truth.json";
     std::optional<float> exposure;
     if (args.has("exposure")) exposure = args.getFloat("exposure", 1e-6f, 1e6f);
     if (args.has("maps")) prepareOutputDirectory(args.get("maps"), "--maps");
-    for (const fs::path& dir : {referenceDir, imageDir}) {
+    for (const fs::path& dir : {referenceDir, imageDir, secondDir.value_or(referenceDir)}) {
         std::error_code error;
         if (!fs::is_directory(dir, error))
             throw Error(dir.string() + ": " +
@@ -166,7 +197,16 @@ int compareDirectories(const ParsedArgs& args) {
         loadLight(imageDir, "", nonFiniteProblem, &reference.mean.finalImage, referenceFinal);
 
     const float usedExposure = exposure.value_or(info.exposure.value_or(1.0f));
-    const TruthComparison comparison = compareWithTruth(reference, vct, usedExposure);
+    TruthComparison comparison = compareWithTruth(reference, vct, usedExposure);
+    if (secondDir) {
+        const ReferenceInfo second = readReferenceJson(*secondDir / "reference.json");
+        const auto [referenceSpp, secondSpp] =
+            independentSampleCounts(info, referenceDir, second, *secondDir);
+        addReferenceNoise(
+            comparison, reference,
+            loadLight(*secondDir, "", nonFiniteProblem, &reference.mean.finalImage, referenceFinal),
+            referenceSpp, secondSpp);
+    }
     std::printf("%s against the reference %s\n%s", imageDir.c_str(), referenceDir.c_str(),
                 formatTruthTable(comparison).c_str());
 
@@ -174,6 +214,7 @@ int compareDirectories(const ParsedArgs& args) {
     json["reference_dir"] = referenceDir.string();
     json["image_dir"] = imageDir.string();
     json["reference"] = info.settings;
+    if (secondDir) json["second_reference_dir"] = secondDir->string();
     if (args.has("maps")) {
         const fs::path mapsDir = args.get("maps");
         const std::vector<int> ids = surfaceIds(reference.surfaceId);
@@ -219,6 +260,11 @@ int runCompareCommand(int argc, char** argv, int first) {
          {"error-scale", "X", "error shown as white in --error-map", "0.05"},
          {"reference-dir", "DIR", "ground-truth directory written by vct reference --out", ""},
          {"image-dir", "DIR", "vct render --aux --out directory to measure against --reference-dir", ""},
+         {"second-reference-dir", "DIR",
+          "another vct reference of the same frame with another --seed: measures the reference's own noise "
+          "in "
+          "the sRGB PSNRs and prints them without it",
+          ""},
          {"json", "FILE", "where --reference-dir writes its metrics (default IMAGE-DIR/truth.json)", ""},
          {"maps", "DIR",
           "with --reference-dir: write log2 ratio maps (log2_{indirect,diffuse,specular}.png/.exr)", ""}});
