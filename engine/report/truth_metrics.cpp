@@ -329,11 +329,9 @@ TruthComparison compareWithTruth(const TruthReference& reference, const LightBuf
     return result;
 }
 
-void addReferenceNoise(TruthComparison& comparison, const TruthReference& reference,
-                       const LightBuffers& second, double referenceSpp, double secondSpp) {
-    if (!(referenceSpp > 0.0) || !(secondSpp > 0.0) || !std::isfinite(referenceSpp + secondSpp))
-        throw Error("reference noise: samples per pixel " + numberText(float(referenceSpp)) + " and " +
-                    numberText(float(secondSpp)) + ", not both positive");
+void addReferenceNoise(TruthComparison& comparison, const TruthReference& reference, const LightBuffers& vct,
+                       const LightBuffers& second) {
+    checkSizes(reference, vct);
     const uint32_t w = reference.mean.finalImage.width, h = reference.mean.finalImage.height;
     const std::pair<const ImageRgba32f*, const char*> images[] = {
         {&second.finalImage, "second reference final"},
@@ -342,16 +340,21 @@ void addReferenceNoise(TruthComparison& comparison, const TruthReference& refere
         {&second.specular, "second reference specular"}};
     for (const auto& [image, what] : images) checkSize(*image, what, w, h);
     const std::vector<int> ids = surfaceIds(reference.surfaceId);
-    const double share = secondSpp / (referenceSpp + secondSpp);
     const std::pair<TruthError*, Light> errors[] = {{&comparison.finalError, Light::Final},
                                                     {&comparison.indirectError, Light::Indirect},
                                                     {&comparison.diffuseError, Light::Diffuse},
                                                     {&comparison.specularError, Light::Specular}};
     for (const auto& [error, light] : errors) {
         if (error->samples == 0) continue;
-        error->srgbReferenceNoise =
-            share * srgbMseOver(ids, displayImage(reference.mean, light, comparison.exposure),
-                                displayImage(second, light, comparison.exposure));
+        const ImageRgba32f shownV = displayImage(vct, light, comparison.exposure),
+                           shownR = displayImage(reference.mean, light, comparison.exposure),
+                           shownR2 = displayImage(second, light, comparison.exposure);
+        double cross = 0.0;  // Σ d·d₂
+        for (size_t i = 0; i < ids.size(); ++i) {
+            if (ids[i] == kBackgroundSurface) continue;
+            cross += glm::dot(rgb(shownV, i) - rgb(shownR, i), rgb(shownV, i) - rgb(shownR2, i));
+        }
+        error->srgbReferenceNoise = error->srgbMse - cross / double(error->samples);
     }
 }
 
@@ -481,8 +484,8 @@ std::string formatTruthTable(const TruthComparison& c) {
         text += line;
     }
     text +=
-        "(from a second reference of the same frame with other samples: its sRGB MSE against the reference, "
-        "shared by their spp, is the reference's own noise, which the sRGB MSE above includes)\n";
+        "(from a second reference of the same frame with other samples: mean (T(v) - T(r))(T(v) - T(r2)) is "
+        "the error without the reference's noise; the sRGB MSE above includes that noise)\n";
     return text;
 }
 

@@ -119,17 +119,19 @@ std::vector<int> surfaceIds(const ImageRgba32f& surfaceIdImage);
 //             is strongly anti-correlated with its direct one (independent ones: over by 2 var_D).
 TruthComparison compareWithTruth(const TruthReference& reference, const LightBuffers& vct, float exposure);
 
-// The reference's own noise in each sRGB MSE of `comparison`, from `second`: another path-traced estimate of the
-// same frame with independent samples (`vct reference --seed`), of `secondSpp` samples per pixel against the
-// reference's `referenceSpp`. With per-pixel variances σ²/spp of the two means (in sRGB, per pixel),
-//   E[(T(r) − T(r₂))²] = Var T(r) + Var T(r₂) = Var T(r)·(1 + spp/spp₂),
-// so Var T(r) = mean (T(r) − T(r₂))² · spp₂/(spp + spp₂) over the same pixels: srgbReferenceNoise. This, not the
-// per-pixel variances the reference writes (two halves of its samples: unbiased but themselves noisy, and
-// linear), is what the sRGB MSE holds of the reference's noise: cornell's 1024-spp references of two seeds
-// differ by 22.0 dB of indirect sRGB PSNR (docs/truth_compare.md). Throws vct::Error when `second` is not the
-// reference's size or a sample count is not positive.
-void addReferenceNoise(TruthComparison& comparison, const TruthReference& reference,
-                       const LightBuffers& second, double referenceSpp, double secondSpp);
+// The reference's own noise in each sRGB MSE of `comparison` (vct `vct` against `reference`), from `second`:
+// another path-traced estimate of the same frame with independent samples (`vct reference --seed`, any spp).
+// With d = T(v) − T(r) and d₂ = T(v) − T(r₂) per pixel and channel, independent noise in r and r₂ and
+// E T(r) = E T(r₂) = μ:
+//   E[d·d₂] = (T(v) − μ)²  (vct's own error, the noise cancels),   E[d² − d·d₂] = Var T(r),
+// so srgbReferenceNoise = mean (d² − d·d₂) over the same pixels and srgbPsnrWithoutReferenceNoise is
+// 10 log10(1 / mean d·d₂). No assumption on how the noise scales with spp (cornell's 1024- and 4096-spp
+// references differ by 20 % more than 1/spp predicts: the noise is heavy-tailed). This, not the per-pixel
+// variances the reference writes (two halves of its samples, linear), is what the sRGB MSE holds of the
+// reference's noise: cornell's 1024-spp references of two seeds differ by 22.0 dB of indirect sRGB PSNR
+// (docs/truth_compare.md). Throws vct::Error when `second` or `vct` is not the reference's size.
+void addReferenceNoise(TruthComparison& comparison, const TruthReference& reference, const LightBuffers& vct,
+                       const LightBuffers& second);
 
 // log2((max(lum_vct, 0) + ε) / (max(lum_ref, 0) + ε)) per pixel (ε = 1e-4, unclamped), 0 on the background;
 // width × height values, top row first. Light::Final and Light::Direct work too.

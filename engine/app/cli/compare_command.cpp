@@ -121,11 +121,11 @@ ReferenceInfo readReferenceJson(const fs::path& path) {
     return info;
 }
 
-// The samples per pixel of a reference and of a second one that estimates its noise (addReferenceNoise), after
-// checking that the two are estimates of the same image with independent samples: the same scene, size, frame,
-// bounces, secondary transport and camera path, and different seeds (the same seed repeats the same samples).
-std::pair<double, double> independentSampleCounts(const ReferenceInfo& first, const fs::path& firstDir,
-                                                  const ReferenceInfo& second, const fs::path& secondDir) {
+// Checks that a second reference (for addReferenceNoise) estimates the same image as the first with independent
+// samples: the same scene, size, frame, bounces, secondary transport and camera path, and another seed (the same
+// seed repeats the same samples). Throws naming the second reference.json.
+void requireIndependentEstimate(const ReferenceInfo& first, const fs::path& firstDir,
+                                const ReferenceInfo& second, const fs::path& secondDir) {
     const std::string where = (secondDir / "reference.json").string() + ": ";
     for (const char* key : {"scene", "size", "frame", "bounces", "secondary", "camera_path"}) {
         const bool inFirst = first.settings.contains(key), inSecond = second.settings.contains(key);
@@ -134,19 +134,10 @@ std::pair<double, double> independentSampleCounts(const ReferenceInfo& first, co
                         ", but " + (firstDir / "reference.json").string() + " has " +
                         (inFirst ? first.settings[key].dump() : "none") + ": not the same image");
     }
-    auto spp = [&](const ReferenceInfo& info, const fs::path& dir) {
-        const nlohmann::json* value = info.settings.contains("spp") ? &info.settings["spp"] : nullptr;
-        if (!value || !value->is_number() || !(value->get<double>() > 0.0) || !(value->get<double>() < 1e12))
-            throw Error((dir / "reference.json").string() +
-                        ": no positive \"spp\" (needed to share the noise)");
-        return value->get<double>();
-    };
-    const double firstSpp = spp(first, firstDir), secondSpp = spp(second, secondDir);
     if (!first.settings.contains("seed") || !second.settings.contains("seed") ||
         first.settings["seed"] == second.settings["seed"])
         throw Error(where + "the same \"seed\" as " + (firstDir / "reference.json").string() +
                     " (or none): the same samples, not an independent estimate of the noise");
-    return {firstSpp, secondSpp};
 }
 
 LightBuffers loadLight(const fs::path& dir, const std::string& suffix, const ImageProblem& problem,
@@ -200,12 +191,10 @@ int compareDirectories(const ParsedArgs& args) {
     TruthComparison comparison = compareWithTruth(reference, vct, usedExposure);
     if (secondDir) {
         const ReferenceInfo second = readReferenceJson(*secondDir / "reference.json");
-        const auto [referenceSpp, secondSpp] =
-            independentSampleCounts(info, referenceDir, second, *secondDir);
+        requireIndependentEstimate(info, referenceDir, second, *secondDir);
         addReferenceNoise(
-            comparison, reference,
-            loadLight(*secondDir, "", nonFiniteProblem, &reference.mean.finalImage, referenceFinal),
-            referenceSpp, secondSpp);
+            comparison, reference, vct,
+            loadLight(*secondDir, "", nonFiniteProblem, &reference.mean.finalImage, referenceFinal));
     }
     std::printf("%s against the reference %s\n%s", imageDir.c_str(), referenceDir.c_str(),
                 formatTruthTable(comparison).c_str());
