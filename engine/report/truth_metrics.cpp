@@ -479,7 +479,7 @@ std::string formatTruthTable(const TruthComparison& c) {
     for (const auto& [name, error] : errors) {
         if (error->samples == 0 || !error->srgbReferenceNoise) continue;
         std::snprintf(line, sizeof(line), "%-10s %16.4g %16s %26s\n", name, *error->srgbReferenceNoise,
-                      dbText(error->referencePsnr(), "inf").c_str(),
+                      dbText(error->referencePsnr(), "-").c_str(),
                       dbText(error->srgbPsnrWithoutReferenceNoise(), "within the noise").c_str());
         text += line;
     }

@@ -250,9 +250,8 @@ int runCompareCommand(int argc, char** argv, int first) {
          {"reference-dir", "DIR", "ground-truth directory written by vct reference --out", ""},
          {"image-dir", "DIR", "vct render --aux --out directory to measure against --reference-dir", ""},
          {"second-reference-dir", "DIR",
-          "another vct reference of the same frame with another --seed: measures the reference's own noise "
-          "in "
-          "the sRGB PSNRs and prints them without it",
+          "a second vct reference of the frame (another --seed): prints the PSNRs without the reference's "
+          "noise",
           ""},
          {"json", "FILE", "where --reference-dir writes its metrics (default IMAGE-DIR/truth.json)", ""},
          {"maps", "DIR",
