@@ -97,21 +97,24 @@ ImageRgba32f displayImage(const LightBuffers& buffers, Light light, float exposu
     return toneMappedSrgb(linear, exposure);
 }
 
-// mean (T(a) − T(b))² over the non-background pixels and RGB of two images tone-mapped for display.
-double srgbMseOver(const std::vector<int>& ids, const ImageRgba32f& shownA, const ImageRgba32f& shownB) {
+// mean (T(v) − T(a))·(T(v) − T(b)) over the non-background pixels and RGB of images tone-mapped for display:
+// the sRGB MSE of v against a when b is a, and with b a second reference vct's error without the noise
+// (compareWithTruth).
+double srgbCrossOver(const std::vector<int>& ids, const ImageRgba32f& shownV, const ImageRgba32f& shownA,
+                     const ImageRgba32f& shownB) {
     double sum = 0.0;
     size_t samples = 0;
     for (size_t i = 0; i < ids.size(); ++i) {
         if (ids[i] == kBackgroundSurface) continue;
-        const glm::dvec3 d = rgb(shownA, i) - rgb(shownB, i);
-        sum += glm::dot(d, d);
+        const glm::dvec3 v = rgb(shownV, i);
+        sum += glm::dot(v - rgb(shownA, i), v - rgb(shownB, i));
         samples += 3;
     }
     return samples > 0 ? sum / double(samples) : 0.0;
 }
 
-TruthError measure(const TruthReference& reference, const LightBuffers& vct, Light light,
-                   const std::vector<int>& ids, float exposure) {
+TruthError measure(const TruthReference& reference, const LightBuffers& vct, const LightBuffers* second,
+                   Light light, const std::vector<int>& ids, float exposure) {
     const ImageRgba32f shownReference = displayImage(reference.mean, light, exposure);
     const ImageRgba32f shownVct = displayImage(vct, light, exposure);
     TruthError error;
@@ -129,7 +132,10 @@ TruthError measure(const TruthReference& reference, const LightBuffers& vct, Lig
     }
     if (error.samples > 0) {
         const double n = double(error.samples);
-        error.srgbMse = srgbMseOver(ids, shownVct, shownReference);
+        error.srgbMse = srgbCrossOver(ids, shownVct, shownReference, shownReference);
+        if (second)
+            error.srgbReferenceNoise = error.srgbMse - srgbCrossOver(ids, shownVct, shownReference,
+                                                                     displayImage(*second, light, exposure));
         error.relMse = relSum / n;
         error.relNoise = noiseSum / n;
     }
@@ -300,9 +306,18 @@ std::vector<int> surfaceIds(const ImageRgba32f& surfaceIdImage) {
     return ids;
 }
 
-TruthComparison compareWithTruth(const TruthReference& reference, const LightBuffers& vct, float exposure) {
+TruthComparison compareWithTruth(const TruthReference& reference, const LightBuffers& vct, float exposure,
+                                 const LightBuffers* second) {
     checkSizes(reference, vct);
     const uint32_t w = reference.mean.finalImage.width, h = reference.mean.finalImage.height;
+    if (second) {
+        const std::pair<const ImageRgba32f*, const char*> images[] = {
+            {&second->finalImage, "second reference final"},
+            {&second->direct, "second reference direct"},
+            {&second->diffuse, "second reference diffuse"},
+            {&second->specular, "second reference specular"}};
+        for (const auto& [image, what] : images) checkSize(*image, what, w, h);
+    }
     TruthComparison result;
     result.width = w;
     result.height = h;
@@ -322,40 +337,11 @@ TruthComparison compareWithTruth(const TruthReference& reference, const LightBuf
         result.surfaces.push_back(
             {id, named != reference.names.end() ? named->second : "surface " + std::to_string(id), sums});
     }
-    result.finalError = measure(reference, vct, Light::Final, ids, exposure);
-    result.indirectError = measure(reference, vct, Light::Indirect, ids, exposure);
-    result.diffuseError = measure(reference, vct, Light::Diffuse, ids, exposure);
-    result.specularError = measure(reference, vct, Light::Specular, ids, exposure);
+    result.finalError = measure(reference, vct, second, Light::Final, ids, exposure);
+    result.indirectError = measure(reference, vct, second, Light::Indirect, ids, exposure);
+    result.diffuseError = measure(reference, vct, second, Light::Diffuse, ids, exposure);
+    result.specularError = measure(reference, vct, second, Light::Specular, ids, exposure);
     return result;
-}
-
-void addReferenceNoise(TruthComparison& comparison, const TruthReference& reference, const LightBuffers& vct,
-                       const LightBuffers& second) {
-    checkSizes(reference, vct);
-    const uint32_t w = reference.mean.finalImage.width, h = reference.mean.finalImage.height;
-    const std::pair<const ImageRgba32f*, const char*> images[] = {
-        {&second.finalImage, "second reference final"},
-        {&second.direct, "second reference direct"},
-        {&second.diffuse, "second reference diffuse"},
-        {&second.specular, "second reference specular"}};
-    for (const auto& [image, what] : images) checkSize(*image, what, w, h);
-    const std::vector<int> ids = surfaceIds(reference.surfaceId);
-    const std::pair<TruthError*, Light> errors[] = {{&comparison.finalError, Light::Final},
-                                                    {&comparison.indirectError, Light::Indirect},
-                                                    {&comparison.diffuseError, Light::Diffuse},
-                                                    {&comparison.specularError, Light::Specular}};
-    for (const auto& [error, light] : errors) {
-        if (error->samples == 0) continue;
-        const ImageRgba32f shownV = displayImage(vct, light, comparison.exposure),
-                           shownR = displayImage(reference.mean, light, comparison.exposure),
-                           shownR2 = displayImage(second, light, comparison.exposure);
-        double cross = 0.0;  // Σ d·d₂
-        for (size_t i = 0; i < ids.size(); ++i) {
-            if (ids[i] == kBackgroundSurface) continue;
-            cross += glm::dot(rgb(shownV, i) - rgb(shownR, i), rgb(shownV, i) - rgb(shownR2, i));
-        }
-        error->srgbReferenceNoise = error->srgbMse - cross / double(error->samples);
-    }
 }
 
 std::vector<float> log2RatioMap(const TruthReference& reference, const LightBuffers& vct, Light light) {

@@ -75,7 +75,7 @@ struct TruthError {
     double relNoise = 0.0;  // mean var_r / (r² + ε): the part subtracted
     // 10·log10(1 / srgbMse); nothing when srgbMse is 0 (identical images: +∞) or there is no sample.
     std::optional<double> srgbPsnr() const;
-    // The reference's own noise in srgbMse (addReferenceNoise): E[(T(v) − T(r))²] = (T(v) − E T(r))² + Var T(r),
+    // The reference's own noise in srgbMse (compareWithTruth with a second reference): E[(T(v) − T(r))²] = (T(v) − E T(r))² + Var T(r),
     // and Var T(r) is measured against a second, independent reference. Nothing without one.
     std::optional<double> srgbReferenceNoise;
     // 10·log10(1 / srgbReferenceNoise): the reference's own PSNR against the truth it estimates.
@@ -117,21 +117,18 @@ std::vector<int> surfaceIds(const ImageRgba32f& surfaceIdImage);
 //             image I = F − D is taken as var_F + var_D, an upper bound: Var(F − D) = Var F + Var D −
 //             2 Cov(F, D) and Cov(F, D) = Var D + Cov(I, D) ≥ 0 unless the reference's indirect estimate
 //             is strongly anti-correlated with its direct one (independent ones: over by 2 var_D).
-TruthComparison compareWithTruth(const TruthReference& reference, const LightBuffers& vct, float exposure);
-
-// The reference's own noise in each sRGB MSE of `comparison` (vct `vct` against `reference`), from `second`:
-// another path-traced estimate of the same frame with independent samples (`vct reference --seed`, any spp).
-// With d = T(v) − T(r) and d₂ = T(v) − T(r₂) per pixel and channel, independent noise in r and r₂ and
-// E T(r) = E T(r₂) = μ:
-//   E[d·d₂] = (T(v) − μ)²  (vct's own error, the noise cancels),   E[d² − d·d₂] = Var T(r),
-// so srgbReferenceNoise = mean (d² − d·d₂) over the same pixels and srgbPsnrWithoutReferenceNoise is
-// 10 log10(1 / mean d·d₂). No assumption on how the noise scales with spp (cornell's 1024- and 4096-spp
-// references differ by 20 % more than 1/spp predicts: the noise is heavy-tailed). This, not the per-pixel
-// variances the reference writes (two halves of its samples, linear), is what the sRGB MSE holds of the
-// reference's noise: cornell's 1024-spp references of two seeds differ by 22.0 dB of indirect sRGB PSNR
-// (docs/truth_compare.md). Throws vct::Error when `second` or `vct` is not the reference's size.
-void addReferenceNoise(TruthComparison& comparison, const TruthReference& reference, const LightBuffers& vct,
-                       const LightBuffers& second);
+//  With `second`, another path-traced estimate of the same frame with independent samples (`vct reference
+//  --seed`, any spp), also the reference's own noise in each sRGB MSE. With d = T(v) − T(r) and
+//  d₂ = T(v) − T(r₂) per pixel and channel, independent noise in r and r₂ and E T(r) = E T(r₂) = μ:
+//    E[d·d₂] = (T(v) − μ)²  (vct's own error, the noise cancels),   E[d² − d·d₂] = Var T(r),
+//  so srgbReferenceNoise = mean (d² − d·d₂) over the same pixels and srgbPsnrWithoutReferenceNoise is
+//  10 log10(1 / mean d·d₂). No assumption on how the noise scales with spp (cornell's 1024- and 4096-spp
+//  references differ by 20 % more than 1/spp predicts: the noise is heavy-tailed). This, not the per-pixel
+//  variances the reference writes (two halves of its samples, linear), is what the sRGB MSE holds of the
+//  reference's noise: cornell's 1024-spp references of two seeds differ by 22.0 dB of indirect sRGB PSNR
+//  (docs/truth_compare.md). `second` of another size throws too ("second reference final is …").
+TruthComparison compareWithTruth(const TruthReference& reference, const LightBuffers& vct, float exposure,
+                                 const LightBuffers* second = nullptr);
 
 // log2((max(lum_vct, 0) + ε) / (max(lum_ref, 0) + ε)) per pixel (ε = 1e-4, unclamped), 0 on the background;
 // width × height values, top row first. Light::Final and Light::Direct work too.

@@ -121,7 +121,7 @@ ReferenceInfo readReferenceJson(const fs::path& path) {
     return info;
 }
 
-// Checks that a second reference (for addReferenceNoise) estimates the same image as the first with independent
+// Checks that a second reference (compareWithTruth's `second`) estimates the same image as the first with independent
 // samples: the same scene, size, frame, bounces, secondary transport and camera path, and another seed (the same
 // seed repeats the same samples). Throws naming the second reference.json.
 void requireIndependentEstimate(const ReferenceInfo& first, const fs::path& firstDir,
@@ -188,14 +188,14 @@ int compareDirectories(const ParsedArgs& args) {
         loadLight(imageDir, "", nonFiniteProblem, &reference.mean.finalImage, referenceFinal);
 
     const float usedExposure = exposure.value_or(info.exposure.value_or(1.0f));
-    TruthComparison comparison = compareWithTruth(reference, vct, usedExposure);
+    std::optional<LightBuffers> second;
     if (secondDir) {
-        const ReferenceInfo second = readReferenceJson(*secondDir / "reference.json");
-        requireIndependentEstimate(info, referenceDir, second, *secondDir);
-        addReferenceNoise(
-            comparison, reference, vct,
-            loadLight(*secondDir, "", nonFiniteProblem, &reference.mean.finalImage, referenceFinal));
+        requireIndependentEstimate(info, referenceDir, readReferenceJson(*secondDir / "reference.json"),
+                                   *secondDir);
+        second = loadLight(*secondDir, "", nonFiniteProblem, &reference.mean.finalImage, referenceFinal);
     }
+    const TruthComparison comparison =
+        compareWithTruth(reference, vct, usedExposure, second ? &*second : nullptr);
     std::printf("%s against the reference %s\n%s", imageDir.c_str(), referenceDir.c_str(),
                 formatTruthTable(comparison).c_str());
 
