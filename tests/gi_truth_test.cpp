@@ -49,20 +49,27 @@ fs::path renderVct(const std::string& name, const std::string& scene, std::vecto
     return dir;
 }
 
-// Writes `scene` with a camera at `position` turned by `yaw` about y as a .glb in a directory of its own
-// (ctest runs the tests in parallel, and a shared directory would be emptied under another test).
-std::string sceneFile(const std::string& name, vct::Scene scene, glm::vec3 position, float yaw) {
-    scene.cameras.push_back(vct::Camera{"inside", 1.2f, 0.01f, 10.0f, 0.0f});
+// Writes `scene` with a camera at `position` turned by `rotation` (vertical field of view `yfov` radians) as a
+// .glb in a directory of its own (ctest runs the tests in parallel, and a shared directory would be emptied
+// under another test).
+std::string sceneFile(const std::string& name, vct::Scene scene, glm::vec3 position, glm::quat rotation,
+                      float yfov) {
+    scene.cameras.push_back(vct::Camera{"inside", yfov, 0.01f, 10.0f, 0.0f});
     vct::Node camera;
     camera.name = "inside";
     camera.camera = 0;
     camera.translation = position;
-    camera.rotation = glm::angleAxis(yaw, glm::vec3(0, 1, 0));
+    camera.rotation = rotation;
     scene.nodes.push_back(camera);
     scene.roots.push_back(int(scene.nodes.size() - 1));
     const fs::path path = vct::test::freshOutputDir("gi_truth/scene_" + name) / (name + ".glb");
     vct::writeGlb(scene, path);
     return path.string();
+}
+
+// The same, turned by `yaw` about y, with a 1.2 rad field of view.
+std::string sceneFile(const std::string& name, vct::Scene scene, glm::vec3 position, float yaw) {
+    return sceneFile(name, std::move(scene), position, glm::angleAxis(yaw, glm::vec3(0, 1, 0)), 1.2f);
 }
 
 // A closed emissive room (albedo ρ, emission L_e = 1) with a camera inside.
@@ -101,6 +108,60 @@ TEST(VoxelGi, FurnaceBouncesFollowTheGeometricSeriesAndNeverRunAway) {
         EXPECT_NEAR(diffuse, exact, 0.06 * exact) << bounces;
         EXPECT_LT(diffuse, 2.0 * one) << "runs away";
     }
+}
+
+// The closed black cube [−1, 1]³ with some faces emitting radiance 1, seen from its centre with a narrow view
+// (0.6 rad) that holds only the face `floor` (y = −1) or the back wall (z = −1). `othersEmit`: that face is black
+// and every other face emits, so it gathers exactly 1 (its whole hemisphere is emissive wall); else only that
+// face emits, and it gathers exactly 0 (a plane cannot light itself).
+std::string boxFaceFile(const std::string& name, bool floor, bool othersEmit) {
+    vct::Scene scene = emptyScene(name, diffuseMaterial(0.0f, 0.0f));
+    scene.materials.push_back(diffuseMaterial(0.0f, 1.0f));
+    addClosedBox(scene, glm::vec3(-1.0f), glm::vec3(1.0f), 0);
+    for (vct::Primitive& primitive : scene.primitives) {
+        const bool isFace = floor ? primitive.bounds.max.y < -0.99f : primitive.bounds.max.z < -0.99f;
+        primitive.material = isFace != othersEmit ? 1 : 0;
+    }
+    // Off-centre by a few cm, so that the face is not seen symmetric about a voxel boundary.
+    return floor ? sceneFile(name, scene, {0.05f, 0.0f, 0.03f},
+                             glm::angleAxis(-1.5707963f, glm::vec3(1, 0, 0)), 0.6f)
+                 : sceneFile(name, scene, {0.05f, 0.03f, 0.5f}, glm::quat(1, 0, 0, 0), 0.6f);
+}
+
+TEST(VoxelGi, HowMuchASurfaceShadowsAndLightsItselfInAClosedBox) {
+    // docs/design.md §5.6: how much of its own voxel layer a cone leaving a surface sees. A black face under
+    // five emissive ones should gather 1; an emissive face under five black ones, 0. Measured (96x54, one frame,
+    // every pixel traced), floor / back wall:
+    //   gathers 1:  32³ 0.970 / 0.973, 64³ 0.934 / 0.938, 128³ 0.843 / 0.872
+    //   gathers 0:  32³ 0.010 / 0.009, 64³ 0.014 / 0.014, 128³ 0.039 / 0.028
+    // The shortfall is the face's own (black, opaque) voxels read through the coarse mips by its side cones:
+    // with CONE_SURFACE_CLEARANCE 0.25 instead of 0.5 it is 1.000 / 0.000 at 32³ and 64³ (0.986 / 0.008 at 128³),
+    // but cornell against the path tracer then loses 3.7 dB (design §5.6). It grows as voxels get finer: the
+    // trend issue 18 asks to reverse. The bounds are the measured values plus a margin of 0.02.
+    struct Expected {
+        const char* voxels;
+        double gathered, selfLit;
+    };
+    const Expected expected[] = {{"32", 0.95, 0.03}, {"64", 0.91, 0.035}, {"128", 0.82, 0.06}};
+    for (bool floor : {true, false})
+        for (bool othersEmit : {true, false}) {
+            const std::string name =
+                std::string(floor ? "box_floor" : "box_wall") + (othersEmit ? "_lit" : "_self");
+            const std::string file = boxFaceFile(name, floor, othersEmit);
+            for (const Expected& e : expected) {
+                const fs::path dir = renderVct(name + "_" + e.voxels, file, {"--voxels", e.voxels});
+                const double diffuse = meanLuminance(vct::readExr(dir / "diffuse_indirect.exr"));
+                std::printf("%s at %s^3: diffuse indirect %.4f (exact %d)\n", name.c_str(), e.voxels, diffuse,
+                            othersEmit ? 1 : 0);
+                if (othersEmit) {
+                    EXPECT_GE(diffuse, e.gathered) << name << " " << e.voxels;
+                    EXPECT_LE(diffuse, 1.0 + 1e-3) << name << " " << e.voxels;
+                } else {
+                    EXPECT_LE(diffuse, e.selfLit) << name << " " << e.voxels;
+                    EXPECT_GE(diffuse, 0.0) << name << " " << e.voxels;
+                }
+            }
+        }
 }
 
 // vct compare --json of `image` against `reference`: the report's JSON.
