@@ -134,10 +134,11 @@ TEST(VoxelGi, HowMuchASurfaceShadowsAndLightsItselfInAClosedBox) {
     // every pixel traced), floor / back wall:
     //   gathers 1:  32³ 0.970 / 0.973, 64³ 0.934 / 0.938, 128³ 0.843 / 0.872
     //   gathers 0:  32³ 0.010 / 0.009, 64³ 0.014 / 0.014, 128³ 0.039 / 0.028
-    // The shortfall is the face's own (black, opaque) voxels read through the coarse mips by its side cones:
-    // with CONE_SURFACE_CLEARANCE 0.25 instead of 0.5 it is 1.000 / 0.000 at 32³ and 64³ (0.986 / 0.008 at 128³),
-    // but cornell against the path tracer then loses 3.7 dB (design §5.6). It grows as voxels get finer: the
-    // trend issue 18 asks to reverse. The bounds are the measured values plus a margin of 0.02.
+    // The shortfall is the face's own (black, opaque) voxels, read through the coarse mips by its central and
+    // its side cones about equally; the self-lighting is the side cones' alone (their sideways slabs). With
+    // CONE_SURFACE_CLEARANCE 0.25 instead of 0.5 both are 1.000 / 0.000 at 32³ and 64³ (0.986 / 0.008 at
+    // 128³), but cornell against the path tracer then loses 3.7 dB (design §5.6). The shortfall grows as voxels
+    // get finer: the trend issue 18 asks to reverse. The bounds are the measured values plus about 0.02.
     struct Expected {
         const char* voxels;
         double gathered, selfLit;
