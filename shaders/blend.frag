@@ -78,8 +78,8 @@ void main() {
     if ((frame.flags & VCT_FLAG_GI) != 0u) {
         // composite's re-modulation of the demodulated cone-traced light, traced at this fragment.
         if (frame.voxels.voxelSize > 0.0) {
-            // The fixed cone set (rotation 0): a blended fragment has no history to average turned cones.
-            const IndirectSample s = traceSurface(voxels, p, n, v, roughness, 0.0);
+            // The fixed cone set: a blended fragment has no history to average jittered cones.
+            const IndirectSample s = traceSurface(voxels, p, n, v, roughness, FIXED_CONE_SET);
             const float NoV = max(dot(n, v), MIN_N_DOT_V);
             const vec2 dfg = textureLod(dfgTable, vec2(NoV, saturate(roughness)), 0.0).rg;
             const vec3 albedo = diffuseAlbedo(color, surface.metallic);

@@ -160,7 +160,7 @@ void main() {
         float shares[VOXEL_SLAB_COUNT];
         float exitance = 0.0;  // of the shares as radiance
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
-            shares[slab] = specularSlabShare(lobe, towardsLightSide, slab) * facing[slab];
+            shares[slab] = specularSlabShare(lobe, slab) * facing[slab];
             exitance += shares[slab] * slabExitance(towardsLightSide, slab);
         }
         if (exitance <= 1e-6) continue;  // the lobe points only where the surfaces do not face

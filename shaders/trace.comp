@@ -51,9 +51,9 @@ layout(set = 0, binding = 13) uniform usampler2D indirectHistory;
 // was: the texel nearest to the position reprojected with the motion vector, weighted by its accumulated weight
 // A and by the upsample's plane and lobe weights against last frame's G-buffer there (a disocclusion or a
 // changed lobe loses it), decayed by γ. O = (s + γ·h·H)/(1 + γ·h), A' = min(1 + γ·h, A_max in own samples).
-// With a static camera the samples of successive frames, their cone sets turned differently
-// (coneSetRotation), average: the figure the upsample's history reaches at trace scale > 1. Only with the
-// turned cones: a fixed set traces the same value every frame.
+// With a static camera the samples of successive frames, their cone sets jittered differently
+// (coneSetOf), average: the figure the upsample's history reaches at trace scale > 1. Only with the
+// jittered cones: a fixed set traces the same value every frame.
 uvec4 accumulateHistory(ivec2 pixel, vec2 uv, Guide here, IndirectSample s) {
     vec4 diffuse = vec4(s.diffuse, 1.0);
     vec4 specular = vec4(s.specular, 1.0);
@@ -113,7 +113,7 @@ void main() {
     IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
     if (frame.voxels.voxelSize > 0.0)
         s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition - g.p, g.n), normalRoughness.w,
-                         coneSetRotation(pixel, frame.upsample.frameIndex));
+                         coneSetOf(pixel, frame.upsample.frameIndex));
     if (FULL_RESOLUTION) {
         // Weight 1: one fresh sample, added to the history as the upsample adds a pixel-own sample
         // (docs/design.md §6.5, the same reprojection, validation, decay γ and cap in own samples).

@@ -64,6 +64,77 @@ TEST(Cone, FootprintMipAndStep) {
     EXPECT_GT(coneStep(v0), 0.0f);
 }
 
+// The jittered cone set (docs/design.md §5.5): averaged over its random number, each cone's direction samples its
+// tile of the hemisphere by the cosine, so the weighted cones give the cosine-weighted mean of any radiance
+// (here functions of the angle θ from n: the azimuth is covered by the set's turn). The fixed set reads
+// each tile at its centre: 0.625 for L = cos θ, where the truth is 2/3.
+TEST(Cone, JitteredDiffuseConesAverageToTheCosineWeightedMean) {
+    const glm::vec3 n = glm::normalize(glm::vec3(0.3f, 0.9f, -0.2f));
+    struct Case {
+        const char* name;
+        double (*radiance)(double cosTheta);
+        double exact;  // (1/π) ∫ L cos θ dω
+    };
+    const Case cases[] = {{"uniform", [](double) { return 1.0; }, 1.0},
+                          {"cos", [](double c) { return c; }, 2.0 / 3.0},
+                          {"within 45°", [](double c) { return c > std::sqrt(0.5) ? 1.0 : 0.0; }, 0.5},
+                          {"near the horizon", [](double c) { return c < 0.2 ? 1.0 : 0.0; }, 0.04}};
+    const int samples = 4096;
+    for (const Case& c : cases) {
+        double sum = 0.0;
+        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+            for (int k = 0; k < samples; ++k) {
+                const float u = (float(k) + 0.5f) / float(samples);
+                const glm::vec3 d = coneDirectionAt(n, jitteredDiffuseConeSin2Theta(i, u), 1.3f * float(i));
+                const float cosTheta = glm::dot(d, n);
+                ASSERT_NEAR(glm::length(d), 1.0f, 1e-5f);
+                // Inside its tile: the central cone within 30° of n, the side cones between 30° and the horizon.
+                if (i == 0) {
+                    ASSERT_GE(cosTheta, 0.866f - 1e-5f);
+                } else {
+                    ASSERT_LE(cosTheta, 0.866f + 1e-5f);
+                    ASSERT_GE(cosTheta, -1e-5f);
+                }
+                sum += diffuseConeWeight(i) * c.radiance(cosTheta) / samples;
+            }
+        EXPECT_NEAR(sum, c.exact, 2e-3) << c.name;
+    }
+}
+
+// The jittered specular cone draws its direction from the lobe inside the aperture: half of the lobe's share
+// inside the cone lies within the median angle, every sample is inside the cone, and the limits (a mirror, a
+// uniform lobe, u → 1) are finite.
+TEST(Cone, JitteredSpecularConeSamplesTheLobeInsideTheAperture) {
+    for (float invLambda : {0.0f, 1e-5f, 0.01f, 0.2f, 2.0f, 1e4f, 1e30f})
+        for (float tanHalf : {0.05f, 0.5f, 1.0f}) {
+            const float cosCone = 1.0f / std::sqrt(1.0f + tanHalf * tanHalf);
+            float previous = 2.0f;
+            for (float u : {0.0f, 0.25f, 0.5f, 0.75f, 0.999999f}) {
+                const float c = sgConeSampleCosine(invLambda, tanHalf, u);
+                ASSERT_TRUE(std::isfinite(c)) << invLambda << " " << tanHalf << " " << u;
+                EXPECT_GE(c, cosCone - 1e-6f);
+                EXPECT_LE(c, 1.0f);
+                EXPECT_LE(c, previous + 1e-7f);  // wider with u
+                previous = c;
+            }
+            if (invLambda == 0.0f) {
+                EXPECT_EQ(sgConeSampleCosine(invLambda, tanHalf, 0.5f), 1.0f);
+            }
+            // The lobe's share within the median angle is half its share in the cone (in double).
+            if (invLambda > 0.0f) {
+                const double lambda = 1.0 / double(invLambda);
+                const double median = sgConeSampleCosine(invLambda, tanHalf, 0.5f);
+                const auto share = [&](double cosTheta) {
+                    const double x = lambda * (1.0 - cosTheta);
+                    return x < 1e-9 ? 1.0 - cosTheta : -std::expm1(-x);  // ∝ (1 − e^{−λ(1 − cos θ)})
+                };
+                if (share(cosCone) > 1e-12) {
+                    EXPECT_NEAR(share(median) / share(cosCone), 0.5, 2e-3) << invLambda << " " << tanHalf;
+                }
+            }
+        }
+}
+
 TEST(Cone, OpacityCorrectionFollowsStepLength) {
     // Two half steps through the same medium compose to one full step.
     float half = correctOpacity(0.6f, 0.5f, 1.0f);

@@ -120,7 +120,7 @@ LitVoxel litVoxel(vec3 n, vec3 l, float roughness, vec3 f0, const std::vector<ve
     float shares[6];
     float sum = 0.0f;
     for (int slab = 0; slab < 6; ++slab) {
-        shares[slab] = g::specularSlabShare(g::specularLobe(n, l, NoL, roughness), n, slab) *
+        shares[slab] = g::specularSlabShare(g::specularLobe(n, l, NoL, roughness), slab) *
                        g::voxelFacing(n, -g::voxelSlabDirection(slab));
         sum += shares[slab] * g::slabExitance(n, slab);
     }
@@ -159,9 +159,10 @@ TEST(VoxelSpecular, ReflectedLightIsTheSpecularExitanceAtEveryAngleAndRoughness)
     }
 }
 
-TEST(VoxelSpecular, TheLobeLeavesTowardsTheMirrorDirectionAndNeverAlongAFlatSurface) {
+TEST(VoxelSpecular, TheLobeLeavesTowardsTheMirrorDirectionAlsoAlongTheSurface) {
     const std::vector<vec3> points = fibonacciSphere(2000);
-    const int plusX = 1, plusY = 3;  // slab 2a+1 travels along −axis a: it holds what leaves towards +a
+    const int plusX = 1, minusY = 2,
+              plusY = 3;  // slab 2a+1 travels along −axis a: it holds what leaves towards +a
     // A surface at 45° (normal (1, 1, 0)/√2) lit from straight above mirrors the light towards +x: a sharp lobe
     // puts far more into the +x slab than into +y, a rough one less so. Both slabs face the surface alike.
     const vec3 n = glm::normalize(vec3(1, 1, 0)), l(0, 1, 0);
@@ -170,18 +171,15 @@ TEST(VoxelSpecular, TheLobeLeavesTowardsTheMirrorDirectionAndNeverAlongAFlatSurf
     EXPECT_GT(sharp.slabs[plusX], 20.0 * sharp.slabs[plusY]);
     EXPECT_GT(rough.slabs[plusX], rough.slabs[plusY]);
     EXPECT_LT(rough.slabs[plusX] / rough.slabs[plusY], sharp.slabs[plusX] / sharp.slabs[plusY]);
-    // A flat floor lit from the side at any angle sends its lobe up only: the slabs along it would let the floor
-    // light itself (a neighbour's grazing cones read them).
-    for (float cosine : {0.9f, 0.5f, 0.1f}) {
-        const vec3 side = vec3(-std::sqrt(1.0f - cosine * cosine), cosine, 0.0f);
-        const LitVoxel floor = litVoxel(vec3(0, 1, 0), side, 0.3f, vec3(0.04f), points);
-        for (int slab = 0; slab < 6; ++slab) {
-            if (slab != plusY) {
-                EXPECT_EQ(floor.slabs[slab], 0.0) << "slab " << slab << ", cos " << cosine;
-            }
-        }
-        EXPECT_GT(floor.slabs[plusY], 0.0);
-    }
+    // A sphere's flank (normal +x) lit from above at a grazing angle (n·l = 0.2) mirrors the light downwards,
+    // along its surface: the slab of what leaves towards −y carries the lobe, not the one along the normal
+    // (with the (n·e)₊ foreshortening of before round 6 it got nothing: the flank lit the walls, not the floor).
+    // Measured 25× (the lobe's axis (0.2, −0.98, 0) read by ω²); asserted 10×.
+    const vec3 flankLight = glm::normalize(vec3(0.2f, 0.98f, 0.0f));
+    const LitVoxel flank = litVoxel(vec3(1, 0, 0), flankLight, 0.1f, vec3(0.04f), points);
+    EXPECT_GT(flank.slabs[minusY], 10.0 * flank.slabs[plusX]);
+    // Nothing leaves behind the surface (the −x side).
+    EXPECT_LE(flank.slabs[0], 1e-6 * flank.slabs[minusY]);
 }
 
 TEST(VoxelSpecular, HardCasesStayFinite) {
@@ -193,7 +191,7 @@ TEST(VoxelSpecular, HardCasesStayFinite) {
             EXPECT_TRUE(std::isfinite(lobe.x) && std::isfinite(lobe.y) && std::isfinite(lobe.z));
             EXPECT_TRUE(lobe.w >= 0.0f && lobe.w <= 1.0f / 3.0f);
             for (int slab = 0; slab < 6; ++slab) {
-                const float share = g::specularSlabShare(lobe, n, slab);
+                const float share = g::specularSlabShare(lobe, slab);
                 EXPECT_TRUE(std::isfinite(share) && share >= 0.0f);
             }
         }

@@ -226,7 +226,9 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
               (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) |
               (settings_.textureLod0 ? VCT_FLAG_TEXTURE_LOD0 : 0u) | (history ? VCT_FLAG_HISTORY : 0u) |
               (targets_.blend ? VCT_FLAG_BLEND : 0u) |
-              (settings_.coneRotation ? VCT_FLAG_CONE_ROTATION : 0u) |
+              // Jittered cones are turned too (their turn is one of the jitter's dimensions).
+              (settings_.coneRotation || settings_.coneJitter ? VCT_FLAG_CONE_ROTATION : 0u) |
+              (settings_.coneJitter ? VCT_FLAG_CONE_JITTER : 0u) |
               (settings_.voxelGlossy ? VCT_FLAG_VOXEL_GLOSSY : 0u);
 
     std::memcpy(uniforms.mapped(), &u, sizeof(u));

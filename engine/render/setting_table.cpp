@@ -43,6 +43,13 @@ const SettingSpec kTable[] = {
      .help = "turn each pixel's diffuse cones about its normal, differently every frame (docs/design.md sec. 5.5)",
      .value = OnOffValue{&S::coneRotation}, .apply = A::Live, .group = G::Gi, .demo = true, .json = true,
      .widget = W::Checkbox, .label = "turn the diffuse cones"},
+    {.name = "cone-jitter", .valueName = "on|off",
+     .help = "jitter each pixel's cones within what they stand for, differently every frame (turn and elevation of "
+             "the diffuse cones, the specular cone within its lobe), with narrow footprints that keep the surface's "
+             "own voxels out; closest to the path-traced truth once the history has averaged it (trace scale 1), "
+             "noisier than turned cones at trace scale 4 (docs/design.md sec. 5.5)",
+     .value = OnOffValue{&S::coneJitter}, .apply = A::Live, .group = G::Gi, .demo = true, .json = true,
+     .widget = W::Checkbox, .label = "jitter the cones"},
     {.name = "voxel-glossy", .valueName = "on|off",
      .help = "voxels reflect the lights' specular lobes too (glossy-to-diffuse transport, docs/design.md sec. "
              "5.11); off: Lambertian voxels of the diffuse albedo, as vct reference --secondary diffuse",

@@ -66,6 +66,7 @@ struct RenderSettings {
     // every 16 frames there, so a still view keeps some turn noise, and the upsampling's error against the
     // every-pixel trace (itself then a history) is no longer the figure the report measures.
     bool coneRotation = false;
+    bool coneJitter = false;
     // Voxels reflect the lights in their specular lobes as well (glossy-to-diffuse transport, docs/design.md
     // §5.11); off: Lambertian voxels of the diffuse albedo, what `vct reference --secondary diffuse` renders, so
     // that the cone tracer's error can be measured apart from the glossy transport's.

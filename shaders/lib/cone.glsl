@@ -40,10 +40,26 @@ const float CONE_MAX_OPACITY = 0.95f;
 // Starting 2 voxels out along n would cut the self-occlusion to −3.5 % but put the origin inside such occluders.
 const float CONE_START_OFFSET = 1.0f;
 const float CONE_START_DISTANCE = 1.0f;
+// The jittered cone set (`--cone-rotation on`, cone_trace.glsl's ConeSet, docs/design.md §5.5) starts 1.5 voxels
+// out along n: its cones leave at any elevation down to the horizon, and the first sample (one voxel along the
+// cone) of a grazing one must still be 1.5 voxels above the surface, where a mip-0 trilinear read no longer
+// reaches the voxel layer holding the surface (its centres are within half a voxel of it). At 1 the closed box of
+// VoxelGi.HowMuchASurfaceShadowsAndLightsItselfInAClosedBox read 0.948 / 0.936 at 32³ / 128³ (exact 1), at 1.5
+// 0.998 / 0.985.
+const float CONE_START_OFFSET_JITTERED = 1.5f;
 // Samples a cone takes beyond the grid's edge before it stops (cone_trace.glsl: why).
 const int CONE_STEPS_PAST_GRID = 2;
 // coneSurfaceFootprint: how wide a footprint may be for its height above the surface the cone left.
+// The fixed cone set: 0.5. A sample at height h then reads mip levels up to a texel of 2·0.5h = h, and a trilinear
+// read there reaches 1.5 texels below it, into the surface's own voxel layer: the surface shadows (and, through
+// its sideways slabs, lights) its own cones, more as voxels get finer (the closed box: 0.970 / 0.934 / 0.843 of
+// the exact 1 at 32³ / 64³ / 128³). Narrower, the fixed set's cones become thin rays at six fixed directions
+// (blotchy: cornell −3.7 dB at 0.25), so it keeps this compromise.
 const float CONE_SURFACE_CLEARANCE = 0.5f;
+// The jittered set: 0.25, the coarser level's texel ≤ h/2, so the trilinear read stays ≥ h/4 above the surface
+// and out of its layer (the box: 1.000 at 32³ and 64³). Its narrower cones sample a random place of their
+// tile of the hemisphere every frame, and the history integrates the tile (docs/design.md §5.5).
+const float CONE_SURFACE_CLEARANCE_JITTERED = 0.25f;
 // Widest specular cone: half-angle 45°. Wider lobes are as blurry as the diffuse cones, and a wider cone
 // would reach coarse mips within a voxel or two (leaking through walls).
 const float SPECULAR_CONE_MAX_TAN_HALF = 1.0f;
@@ -58,8 +74,8 @@ VCT_INLINE float coneDiameter(float tanHalfAngle, float t, float voxelSize) {
 // the surface it leaves (its edge runs along the tangent plane), and there the surface's own voxels, lit and
 // opaque, would light or shadow it: a lit floor lighting itself, a wall shadowing its own side cones. Sampling a
 // finer mip until the cone has risen clear of the surface keeps them out.
-VCT_INLINE float coneSurfaceFootprint(float diameter, float height, float voxelSize) {
-    return max(voxelSize, min(diameter, CONE_SURFACE_CLEARANCE * height));
+VCT_INLINE float coneSurfaceFootprint(float diameter, float height, float voxelSize, float clearance) {
+    return max(voxelSize, min(diameter, clearance * height));
 }
 
 // Mip whose voxels match the footprint: log2(d / v0) ≥ 0 (fractional: trilinear between mips).
@@ -111,6 +127,20 @@ VCT_INLINE vec3 diffuseConeDirection(vec3 n, int i) {
     const float sin60 = 0.866025404f;
     const float cos60 = 0.5f;
     return cos60 * n + sin60 * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));
+}
+
+// The jittered cone set (docs/design.md §5.5): cone i at a random place of its tile of the hemisphere, the
+// central cone's cap θ ≤ 30° or the side cones' band 30° ≤ θ < 90°, distributed by cos θ within it. With
+// sin²θ uniform over the tile's range the density is ∝ cos θ·sin θ dθ, the cosine-weighted solid angle: so the
+// mean over u of the radiance along the jittered direction is the tile's cosine-weighted mean radiance, which
+// the fixed cone (weight diffuseConeWeight) stands for. u in [0, 1).
+VCT_INLINE float jitteredDiffuseConeSin2Theta(int i, float u) {
+    return i == 0 ? 0.25f * u : 0.25f + 0.75f * u;
+}
+// The direction at polar angle θ (given as sin²θ) from unit n and azimuth φ in n's tangent frame. Unit length.
+VCT_INLINE vec3 coneDirectionAt(vec3 n, float sin2Theta, float phi) {
+    const float s2 = clamp(sin2Theta, 0.0f, 1.0f);
+    return sqrt(1.0f - s2) * n + sqrt(s2) * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));
 }
 
 // Cosine weights, normalised to sum to 1. The central 30° cone holds exactly ∫cos dω = π·sin²30° = π/4 of the
@@ -171,6 +201,21 @@ VCT_INLINE float specularConeShare(float alpha, float nov) {
 VCT_INLINE float sgDiffuseConeWeight(vec3 xi, float invLambda, vec3 n, vec3 omega) {
     const float exponent = (dot(omega, xi) - 1.0f) / max(invLambda, 1e-6f);
     return exp(max(exponent, -80.0f)) * max(dot(n, omega), 0.0f);
+}
+
+// cos θ of a direction drawn from an SG lobe of inverse sharpness 1/λ about its axis, truncated to the cone of
+// half-angle atan(tanHalfAngle): the jittered specular cone (docs/design.md §5.5) samples the part of the lobe the
+// cone stands for, by the lobe's own distribution. Inverting the SG's share inside angle θ,
+// (1 − e^{−λ(1 − cos θ)}) / (1 − e^{−λ(1 − cos θ_c)}) = u, gives cos θ = 1 + ln(1 − u·(1 − e^{−λ(1 − cos θ_c)}))/λ.
+// u in [0, 1). A mirror (1/λ → 0) gives 1; a uniform lobe (1/λ → ∞) cos θ = 1 − u·(1 − cos θ_c), the limit of the
+// same formula, taken explicitly where the exponential form would cancel in float.
+VCT_INLINE float sgConeSampleCosine(float invLambda, float tanHalfAngle, float u) {
+    const float oneMinusCos = 1.0f - inversesqrt(1.0f + tanHalfAngle * tanHalfAngle);
+    if (invLambda <= 1e-6f) return 1.0f;
+    const float lambda = 1.0f / invLambda;
+    if (lambda * oneMinusCos < 1e-3f) return 1.0f - u * oneMinusCos;
+    const float cosTheta = 1.0f + log(1.0f - u * (1.0f - exp(-lambda * oneMinusCos))) / lambda;
+    return clamp(cosTheta, 1.0f - oneMinusCos, 1.0f);
 }
 
 // Mirror direction of unit v about unit n, reflect(−v, n) = 2(n·v)n − v, with n·v clamped to ≥ 0: back-facing

@@ -67,8 +67,9 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
 // Light that leaves the grid unoccluded sees the environment (docs/design.md §5.9): the map read along the cone
 // at the mip whose texels are as wide as the cone, times what the cone left unoccluded (the background shows
 // the same map, so the two agree).
-// The cone leaves the surface at p with unit normal n (coneSurfaceFootprint keeps that surface out of it).
-vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle) {
+// The cone leaves the surface at p with unit normal n (coneSurfaceFootprint, with `clearance`, keeps that
+// surface out of it).
+vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle, float clearance) {
     const vec3 gridOrigin = frame.voxels.origin;
     const float v0 = frame.voxels.voxelSize;
     const float gridSize = float(frame.voxels.resolution) * v0;
@@ -82,7 +83,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
-        const float d = coneSurfaceFootprint(coneD, dot(x - p, n), v0);
+        const float d = coneSurfaceFootprint(coneD, dot(x - p, n), v0, clearance);
         const vec3 uvw = (x - gridOrigin) / gridSize;
         // The axis leaves the grid: the grid is padded around the scene bounds, so nothing lies beyond, but
         // the footprint still covers the grid's outermost texels. A cone meeting a wall obliquely sees it
@@ -116,37 +117,80 @@ struct IndirectSample {
     vec3 specular;
 };
 
-// Diffuse cone i (lib/cone.glsl's diffuseConeDirection) with the five side cones turned by `rotation` radians
-// about n (the central cone is n itself). Rotations of 0 and multiples of 2π/5 give the same set.
-vec3 rotatedDiffuseConeDirection(vec3 n, int i, float rotation) {
-    if (i == 0) return n;
-    const float phi = float(i - 1) * (2.0 * PI / 5.0) + rotation;
-    const float sin60 = 0.866025404;
-    const float cos60 = 0.5;
-    return cos60 * n + sin60 * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));
+// A pixel's cone set in one frame (docs/design.md §5.5). Fixed (`--cone-rotation off`, and the voxel gathers
+// of §5.7): the six diffuse cones of lib/cone.glsl at their tiles' centres, one specular cone along the lobe's
+// axis, footprints of CONE_SURFACE_CLEARANCE. Turned (`--cone-rotation on`): the same with the five side cones
+// turned about n by `rotation` (their set's 2π/5 symmetry), different at every pixel and frame. Jittered
+// (`--cone-jitter on`): every cone at a random place of what it stands for, so that the history integrates it:
+//   - the side cones turned as above, each at its own elevation in the band 30°–90° (u.x + golden-ratio steps
+//     per cone, lib/cone.glsl's jitteredDiffuseConeSin2Theta);
+//   - the central cone anywhere in its 30° cap (u.x for θ, u.y for the azimuth);
+//   - the specular cone drawn from the lobe inside its aperture (u.zw, sgConeSampleCosine);
+// with narrow footprints (CONE_SURFACE_CLEARANCE_JITTERED) that keep the surface's own voxels out of every
+// sample; fixed, such narrow cones would be thin rays at six directions, jittered they sample their whole tile
+// over frames.
+struct ConeSet {
+    bool jittered;
+    float rotation;  // radians, [0, 2π/5); 0 for the fixed set
+    vec4 u;          // uniform numbers in [0, 1) (jittered only)
+};
+
+const ConeSet FIXED_CONE_SET = ConeSet(false, 0.0, vec4(0.0));
+
+// Interleaved gradient noise of a pixel (Jimenez 2014): in [0, 1), neighbours far apart.
+float interleavedGradientNoise(vec2 pixel) {
+    return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
 }
 
-// The turn of a pixel's diffuse cone set about its normal in frame k (docs/design.md §5.5): 2π/5 · frac(g + k·φ⁻¹),
-// g the interleaved gradient noise of the pixel (Jimenez 2014), φ⁻¹ the golden ratio's inverse (the R1
-// sequence: successive frames fill [0, 1) evenly). Fixed cone directions seen from a whole floor cross the
-// same walls and mip texels together, which leaves low-frequency blotches of the six-cone pattern; turned per
-// pixel and frame, that error becomes noise that neighbouring pixels and the history average out.
-// 0 with --cone-rotation off.
-float coneSetRotation(ivec2 pixel, uint frameIndex) {
-    if ((frame.flags & VCT_FLAG_CONE_ROTATION) == 0u) return 0.0;
-    const float ign = fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715))));
+// Pixel `pixel`'s cone set in frame k. Each number is frac(g(pixel + offset) + k·α): the pixel's interleaved
+// gradient noise, shifted per dimension, plus a low-discrepancy step per frame (the golden ratio φ⁻¹ for the
+// turn, the R-sequence steps 1/g^d of the plastic-like number g = 1.1673 for the others), so that successive
+// frames fill [0, 1) evenly in each. The renderer sets VCT_FLAG_CONE_ROTATION for jittered sets too.
+ConeSet coneSetOf(ivec2 pixel, uint frameIndex) {
+    if ((frame.flags & VCT_FLAG_CONE_ROTATION) == 0u) return FIXED_CONE_SET;
+    const vec2 xy = vec2(pixel);
     const float r1 = float((frameIndex * 2654435769u) >> 8u) * (1.0 / 16777216.0);
-    return (2.0 * PI / 5.0) * fract(ign + r1);
+    const float rotation = (2.0 * PI / 5.0) * fract(interleavedGradientNoise(xy) + r1);
+    if ((frame.flags & VCT_FLAG_CONE_JITTER) == 0u) return ConeSet(false, rotation, vec4(0.0));
+    const vec4 steps =
+        fract(float(frameIndex % 65536u) * vec4(0.8566748839, 0.7338918566, 0.6287067210, 0.5385972572));
+    const vec4 u = fract(vec4(interleavedGradientNoise(xy + vec2(17.0, 5.0)),
+                              interleavedGradientNoise(xy + vec2(3.0, 29.0)),
+                              interleavedGradientNoise(xy + vec2(41.0, 11.0)),
+                              interleavedGradientNoise(xy + vec2(7.0, 37.0))) +
+                         steps);
+    return ConeSet(true, rotation, u);
 }
 
-// The incoming radiance of each of the 6 diffuse cones from surface point p with unit normal n, the side cones
-// turned by `rotation` about n.
-void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, float rotation,
-                       out vec3 radiance[DIFFUSE_CONE_COUNT]) {
-    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
+// Diffuse cone i of `set` for unit normal n.
+vec3 diffuseConeDirectionOf(vec3 n, int i, ConeSet set) {
+    if (!set.jittered) {
+        if (i == 0) return n;
+        const float phi = float(i - 1) * (2.0 * PI / 5.0) + set.rotation;
+        return 0.5 * n +
+               0.866025404 * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));  // 60° from n
+    }
+    const float golden = 0.618034;
+    if (i == 0) return coneDirectionAt(n, jitteredDiffuseConeSin2Theta(0, set.u.x), 2.0 * PI * set.u.y);
+    return coneDirectionAt(n, jitteredDiffuseConeSin2Theta(i, fract(set.u.x + float(i) * golden)),
+                           float(i - 1) * (2.0 * PI / 5.0) + set.rotation);
+}
+
+// Where `set`'s cones leave p (unit normal n): CONE_START_OFFSET voxels out along n, 1.5 for the jittered set
+// (lib/cone.glsl: why), and how wide their footprints may be.
+vec3 coneOrigin(vec3 p, vec3 n, ConeSet set) {
+    return p + n * (frame.voxels.voxelSize * (set.jittered ? CONE_START_OFFSET_JITTERED : CONE_START_OFFSET));
+}
+float coneClearance(ConeSet set) {
+    return set.jittered ? CONE_SURFACE_CLEARANCE_JITTERED : CONE_SURFACE_CLEARANCE;
+}
+
+// The incoming radiance of each of the 6 diffuse cones of `set` from surface point p with unit normal n.
+void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set, out vec3 radiance[DIFFUSE_CONE_COUNT]) {
+    const vec3 origin = coneOrigin(p, n, set);
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        radiance[i] = traceCone(voxels, p, n, origin, rotatedDiffuseConeDirection(n, i, rotation),
-                                DIFFUSE_CONE_TAN_HALF)
+        radiance[i] = traceCone(voxels, p, n, origin, diffuseConeDirectionOf(n, i, set),
+                                DIFFUSE_CONE_TAN_HALF, coneClearance(set))
                           .rgb;
 }
 
@@ -160,7 +204,7 @@ vec3 diffuseFromCones(const vec3 radiance[DIFFUSE_CONE_COUNT]) {
 // The 6 diffuse cones from surface point p with unit normal n: cosine-weighted mean incoming radiance.
 vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
     vec3 radiance[DIFFUSE_CONE_COUNT];
-    traceDiffuseCones(voxels, p, n, 0.0, radiance);
+    traceDiffuseCones(voxels, p, n, FIXED_CONE_SET, radiance);
     return diffuseFromCones(radiance);
 }
 
@@ -171,21 +215,29 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 // walls (α = 0.81) it reflected the dark front wall and ceiling where the path-traced truth also sees the
 // lit floor.
 IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness,
-                            float rotation) {
+                            ConeSet set) {
     vec3 cones[DIFFUSE_CONE_COUNT];
-    traceDiffuseCones(voxels, p, n, rotation, cones);
+    traceDiffuseCones(voxels, p, n, set, cones);
     const float alpha = alphaFromPerceptual(perceptualRoughness);
     const vec3 xi = specularConeDirection(n, v);
-    const vec3 origin = p + n * (frame.voxels.voxelSize * CONE_START_OFFSET);
-    vec3 specular = traceCone(voxels, p, n, origin, xi, specularConeTanHalf(alpha)).rgb;
+    const float tanHalf = specularConeTanHalf(alpha);
+    const float invLambda = specularLobeInverseSharpness(alpha, dot(n, v));
+    vec3 direction = xi;
+    if (set.jittered) {
+        // A direction of the lobe inside the cone; one that would leave below the surface (a grazing lobe's
+        // lower edge) keeps the axis.
+        const float cosTheta = sgConeSampleCosine(invLambda, tanHalf, set.u.z);
+        const vec3 w = coneDirectionAt(xi, 1.0 - cosTheta * cosTheta, 2.0 * PI * set.u.w);
+        direction = dot(w, n) > 0.02 ? w : xi;
+    }
+    vec3 specular =
+        traceCone(voxels, p, n, coneOrigin(p, n, set), direction, tanHalf, coneClearance(set)).rgb;
     const float share = specularConeShare(alpha, dot(n, v));
     if (share < 1.0) {
-        const float invLambda = specularLobeInverseSharpness(alpha, dot(n, v));
         vec3 lobe = vec3(0.0);
         float lobeWeight = 0.0;
         for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
-            const float w =
-                sgDiffuseConeWeight(xi, invLambda, n, rotatedDiffuseConeDirection(n, i, rotation));
+            const float w = sgDiffuseConeWeight(xi, invLambda, n, diffuseConeDirectionOf(n, i, set));
             lobe += w * cones[i];
             lobeWeight += w;
         }
@@ -205,7 +257,7 @@ IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D no
     if (isDegeneratePosition(p)) return IndirectSample(vec3(0.0), vec3(0.0));
     const vec3 n = gbufferNormal(normalRoughness);
     return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition - p, n), normalRoughness.w,
-                        coneSetRotation(pixel, frame.upsample.frameIndex));
+                        coneSetOf(pixel, frame.upsample.frameIndex));
 }
 
 #endif  // VCT_CONE_TRACE_GLSL

@@ -36,6 +36,8 @@ using glm::vec4;
 #define VCT_FLAG_BLEND 32u  // the blend pass drew the transparent layer (composite puts it over the frame)
 #define VCT_FLAG_CONE_ROTATION 64u  // turn the diffuse cones per pixel and frame (lib/cone_trace.glsl)
 #define VCT_FLAG_VOXEL_GLOSSY 128u  // voxels reflect the lights' specular lobes (inject.comp; §5.11)
+#define VCT_FLAG_CONE_JITTER \
+    256u  // jitter every cone within its tile, narrow footprints (lib/cone_trace.glsl)
 
 // The trace scale s reaches the shaders one way: this specialization constant, in trace (s = 1 writes the
 // full-res targets, no guides) and upsample (the cell loops are unrolled for s) alike. The low-res images'
