@@ -19,6 +19,7 @@
 #   TRUTH_NOISE_SEED  when set, a second reference of each kind with this seed (another than TRUTH_SEED's, default
 #                1), passed to compare as --second-reference-dir: the reference's own noise in the sRGB PSNRs
 #   TRUTH_TAG    appended to the results directory's name (e.g. t0 for TRUTH_FRAMES=1: the static pose at t = 0)
+#   TRUTH_RENDER_FLAGS  extra `vct render` flags for every vct image (e.g. "--cone-jitter on"; split on spaces)
 #   VCT          the program [build/vct]
 set -euo pipefail
 # Scene arguments that are files are made absolute before common.sh changes to the repository root.
@@ -58,6 +59,8 @@ fi
 
 exposure_flags=()
 [ -n "${TRUTH_EXPOSURE:-}" ] && exposure_flags=(--exposure "$TRUTH_EXPOSURE")
+# shellcheck disable=SC2206  # split on purpose: several flags in one variable
+render_flags=(${TRUTH_RENDER_FLAGS:-})
 reference_flags=("${exposure_flags[@]}")
 [ -n "${TRUTH_SEED:-}" ] && reference_flags+=(--seed "$TRUTH_SEED")
 [ -n "${TRUTH_THREADS:-}" ] && reference_flags+=(--threads "$TRUTH_THREADS")
@@ -134,9 +137,9 @@ for scene in "${scenes[@]}"; do
     for v in $voxels; do
         for t in $scales; do
             image="$work/vct-$name-v$v-s$t"
-            echo "== vct render --scene $scene --voxels $v --trace-scale $t ($size, $frames frames) -> $image"
+            echo "== vct render --scene $scene --voxels $v --trace-scale $t ${TRUTH_RENDER_FLAGS:+$TRUTH_RENDER_FLAGS }($size, $frames frames) -> $image"
             "$vct" render --scene "$scene" --size "$size" --frames "$frames" --voxels "$v" --trace-scale "$t" \
-                "${exposure_flags[@]}" --aux --out "$image"
+                "${exposure_flags[@]}" "${render_flags[@]}" --aux --out "$image"
             [ -n "$slug" ] || slug="$(device_slug "$image/timings.json")"
             # Against the reference without glossy-to-diffuse transport: vct's voxels without it too (Lambertian,
             # docs/design.md §5.11), so that the cone tracer's error shows apart from the transport's.
@@ -147,7 +150,7 @@ for scene in "${scenes[@]}"; do
             elif [[ " $references " == *" diffuse "* ]]; then
                 echo "== the same with --voxel-glossy off -> $lambertian"
                 "$vct" render --scene "$scene" --size "$size" --frames "$frames" --voxels "$v" --trace-scale "$t" \
-                    --voxel-glossy off "${exposure_flags[@]}" --aux --out "$lambertian"
+                    --voxel-glossy off "${exposure_flags[@]}" "${render_flags[@]}" --aux --out "$lambertian"
             fi
             for kind in $references; do
                 stem="truth-$name-v$v-s$t-vs-$kind"
@@ -166,7 +169,7 @@ for scene in "${scenes[@]}"; do
                 annotate "$json" "scene=$name" "scene_path=$scene" "voxels=$v" "trace_scale=$t" \
                     "reference_kind=$kind" "reference_label=$(reference_label "$kind")" "size=$size" \
                     "spp=$spp" "frames=$frames" "frame=$frame" \
-                    "reference_seconds=$reference_seconds"
+                    "reference_seconds=$reference_seconds" "render_flags=${TRUTH_RENDER_FLAGS:-}"
             done
         done
     done
