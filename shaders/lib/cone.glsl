@@ -120,14 +120,17 @@ VCT_INLINE vec3 coneBitangent(vec3 n) {
     return vec3(b, s + n.y * n.y * a, -n.y);
 }
 
-// Diffuse cone i (0..5): 0 along n, 1..5 at 60° from n, 72° apart in azimuth. Unit length for unit n.
-VCT_INLINE vec3 diffuseConeDirection(vec3 n, int i) {
+// Diffuse cone i (0..5): 0 along n, 1..5 at 60° from n, 72° apart in azimuth, the side cones turned by
+// `rotation` radians about n (the turned cone set, docs/design.md §5.5; rotations of 0 and multiples of 2π/5
+// give the same set). Unit length for unit n.
+VCT_INLINE vec3 turnedDiffuseConeDirection(vec3 n, int i, float rotation) {
     if (i == 0) return n;
-    float phi = float(i - 1) * (2.0f * PI / 5.0f);
+    float phi = float(i - 1) * (2.0f * PI / 5.0f) + rotation;
     const float sin60 = 0.866025404f;
     const float cos60 = 0.5f;
     return cos60 * n + sin60 * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));
 }
+VCT_INLINE vec3 diffuseConeDirection(vec3 n, int i) { return turnedDiffuseConeDirection(n, i, 0.0f); }
 
 // The jittered cone set (docs/design.md §5.5): cone i at a random place of its tile of the hemisphere, the
 // central cone's cap θ ≤ 30° or the side cones' band 30° ≤ θ < 90°, distributed by cos θ within it. With

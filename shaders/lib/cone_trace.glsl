@@ -164,12 +164,7 @@ ConeSet coneSetOf(ivec2 pixel, uint frameIndex) {
 
 // Diffuse cone i of `set` for unit normal n.
 vec3 diffuseConeDirectionOf(vec3 n, int i, ConeSet set) {
-    if (!set.jittered) {
-        if (i == 0) return n;
-        const float phi = float(i - 1) * (2.0 * PI / 5.0) + set.rotation;
-        return 0.5 * n +
-               0.866025404 * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));  // 60° from n
-    }
+    if (!set.jittered) return turnedDiffuseConeDirection(n, i, set.rotation);
     const float golden = 0.618034;
     if (i == 0) return coneDirectionAt(n, jitteredDiffuseConeSin2Theta(0, set.u.x), 2.0 * PI * set.u.y);
     return coneDirectionAt(n, jitteredDiffuseConeSin2Theta(i, fract(set.u.x + float(i) * golden)),
