@@ -147,12 +147,12 @@ TEST(VoxelGi, HowMuchASurfaceShadowsAndLightsItselfInAClosedBox) {
     };
     const Expected fixedSet[] = {{"32", 0.95, 0.03}, {"64", 0.91, 0.035}, {"128", 0.82, 0.06}};
     const Expected jitteredSet[] = {{"32", 0.98, 0.01}, {"64", 0.98, 0.01}, {"128", 0.96, 0.03}};
-    for (bool jittered : {false, true})
-        for (bool floor : {true, false})
-            for (bool othersEmit : {true, false}) {
-                const std::string name =
-                    std::string(floor ? "box_floor" : "box_wall") + (othersEmit ? "_lit" : "_self");
-                const std::string file = boxFaceFile(name + (jittered ? "_jittered" : ""), floor, othersEmit);
+    for (bool floor : {true, false})
+        for (bool othersEmit : {true, false}) {
+            const std::string name =
+                std::string(floor ? "box_floor" : "box_wall") + (othersEmit ? "_lit" : "_self");
+            const std::string file = boxFaceFile(name, floor, othersEmit);
+            for (bool jittered : {false, true})
                 for (const Expected& e : jittered ? jitteredSet : fixedSet) {
                     const std::string run = name + (jittered ? "_jittered_" : "_fixed_") + e.voxels;
                     const fs::path dir = renderVct(
@@ -168,7 +168,7 @@ TEST(VoxelGi, HowMuchASurfaceShadowsAndLightsItselfInAClosedBox) {
                         EXPECT_GE(diffuse, 0.0) << run;
                     }
                 }
-            }
+        }
 }
 
 // vct compare --json of `image` against `reference`: the report's JSON.

@@ -40,7 +40,7 @@ const float CONE_MAX_OPACITY = 0.95f;
 // Starting 2 voxels out along n would cut the self-occlusion to −3.5 % but put the origin inside such occluders.
 const float CONE_START_OFFSET = 1.0f;
 const float CONE_START_DISTANCE = 1.0f;
-// The jittered cone set (`--cone-rotation on`, cone_trace.glsl's ConeSet, docs/design.md §5.5) starts 1.5 voxels
+// The jittered cone set (`--cone-jitter on`, cone_trace.glsl's ConeSet, docs/design.md §5.5) starts 1.5 voxels
 // out along n: its cones leave at any elevation down to the horizon, and the first sample (one voxel along the
 // cone) of a grazing one must still be 1.5 voxels above the surface, where a mip-0 trilinear read no longer
 // reaches the voxel layer holding the surface (its centres are within half a voxel of it). At 1 the closed box of
@@ -123,9 +123,13 @@ VCT_INLINE vec3 coneBitangent(vec3 n) {
 // Diffuse cone i (0..5): 0 along n, 1..5 at 60° from n, 72° apart in azimuth, the side cones turned by
 // `rotation` radians about n (the turned cone set, docs/design.md §5.5; rotations of 0 and multiples of 2π/5
 // give the same set). Unit length for unit n.
+// Azimuth of side cone i (1..5) in n's tangent frame, the set turned by `rotation`.
+VCT_INLINE float diffuseConeAzimuth(int i, float rotation) {
+    return float(i - 1) * (2.0f * PI / 5.0f) + rotation;
+}
 VCT_INLINE vec3 turnedDiffuseConeDirection(vec3 n, int i, float rotation) {
     if (i == 0) return n;
-    float phi = float(i - 1) * (2.0f * PI / 5.0f) + rotation;
+    float phi = diffuseConeAzimuth(i, rotation);
     const float sin60 = 0.866025404f;
     const float cos60 = 0.5f;
     return cos60 * n + sin60 * (cos(phi) * coneTangent(n) + sin(phi) * coneBitangent(n));

@@ -168,7 +168,7 @@ vec3 diffuseConeDirectionOf(vec3 n, int i, ConeSet set) {
     const float golden = 0.618034;
     if (i == 0) return coneDirectionAt(n, jitteredDiffuseConeSin2Theta(0, set.u.x), 2.0 * PI * set.u.y);
     return coneDirectionAt(n, jitteredDiffuseConeSin2Theta(i, fract(set.u.x + float(i) * golden)),
-                           float(i - 1) * (2.0 * PI / 5.0) + set.rotation);
+                           diffuseConeAzimuth(i, set.rotation));
 }
 
 // Where `set`'s cones leave p (unit normal n): CONE_START_OFFSET voxels out along n, 1.5 for the jittered set
@@ -180,13 +180,20 @@ float coneClearance(ConeSet set) {
     return set.jittered ? CONE_SURFACE_CLEARANCE_JITTERED : CONE_SURFACE_CLEARANCE;
 }
 
-// The incoming radiance of each of the 6 diffuse cones of `set` from surface point p with unit normal n.
-void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set, out vec3 radiance[DIFFUSE_CONE_COUNT]) {
+// The directions of the 6 diffuse cones of `set` for unit normal n (traceSurface weighs the specular lobe at
+// the same directions it traced).
+void diffuseConeDirectionsOf(vec3 n, ConeSet set, out vec3 directions[DIFFUSE_CONE_COUNT]) {
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) directions[i] = diffuseConeDirectionOf(n, i, set);
+}
+
+// The incoming radiance along each of the 6 diffuse cone `directions` of `set` from surface point p with unit
+// normal n.
+void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
+                       const vec3 directions[DIFFUSE_CONE_COUNT], out vec3 radiance[DIFFUSE_CONE_COUNT]) {
     const vec3 origin = coneOrigin(p, n, set);
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        radiance[i] = traceCone(voxels, p, n, origin, diffuseConeDirectionOf(n, i, set),
-                                DIFFUSE_CONE_TAN_HALF, coneClearance(set))
-                          .rgb;
+        radiance[i] =
+            traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, coneClearance(set)).rgb;
 }
 
 // Their cosine-weighted mean.
@@ -198,8 +205,10 @@ vec3 diffuseFromCones(const vec3 radiance[DIFFUSE_CONE_COUNT]) {
 
 // The 6 diffuse cones from surface point p with unit normal n: cosine-weighted mean incoming radiance.
 vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
+    vec3 directions[DIFFUSE_CONE_COUNT];
+    diffuseConeDirectionsOf(n, FIXED_CONE_SET, directions);
     vec3 radiance[DIFFUSE_CONE_COUNT];
-    traceDiffuseCones(voxels, p, n, FIXED_CONE_SET, radiance);
+    traceDiffuseCones(voxels, p, n, FIXED_CONE_SET, directions, radiance);
     return diffuseFromCones(radiance);
 }
 
@@ -211,8 +220,10 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 // lit floor.
 IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness,
                             ConeSet set) {
+    vec3 directions[DIFFUSE_CONE_COUNT];
+    diffuseConeDirectionsOf(n, set, directions);
     vec3 cones[DIFFUSE_CONE_COUNT];
-    traceDiffuseCones(voxels, p, n, set, cones);
+    traceDiffuseCones(voxels, p, n, set, directions, cones);
     const float alpha = alphaFromPerceptual(perceptualRoughness);
     const vec3 xi = specularConeDirection(n, v);
     const float tanHalf = specularConeTanHalf(alpha);
@@ -232,7 +243,7 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
         vec3 lobe = vec3(0.0);
         float lobeWeight = 0.0;
         for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
-            const float w = sgDiffuseConeWeight(xi, invLambda, n, diffuseConeDirectionOf(n, i, set));
+            const float w = sgDiffuseConeWeight(xi, invLambda, n, directions[i]);
             lobe += w * cones[i];
             lobeWeight += w;
         }
