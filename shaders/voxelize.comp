@@ -1,9 +1,20 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// voxelize: one invocation per triangle of one instance × primitive (lavapipe has no conservative raster).
-// Loops over the voxels of the triangle's voxel-space bounding box, keeps those the triangle overlaps
-// (separating axis test) and adds the material at the triangle point closest to the voxel centre to the
-// voxel's fixed-point accumulator with atomics. The resolve (voxel_resolve.comp) turns sums into averages.
+// voxelize: a workgroup per VCT_VOXEL_GROUP_SIZE triangles of one instance × primitive (lavapipe has no
+// conservative raster). Each triangle's voxels are walked column by column along its dominant axis: for every
+// column of its bounding box projected onto the other two axes, only the (at most four) voxels its plane can
+// cross there; those the triangle overlaps (separating axis test) add the material at the triangle point closest
+// to the voxel centre to the voxel's fixed-point accumulator with atomics. The resolve (voxel_resolve.comp)
+// turns sums into averages.
+//
+// The workgroup shares the columns of its triangles among its invocations (docs/design.md §5.1), so that no
+// triangle is one invocation's work:
+// - lavapipe ends every loop of an invocation after 65 535 iterations in all (llvmpipe's
+//   LP_MAX_TGSI_LOOP_ITERATIONS), without a word: one invocation walking a large triangle's bounding box left
+//   out 15 % of cornell's occupied voxels at 128³ and 74 % at 256³;
+// - on a GPU such an invocation is latency-bound while the rest of the chip idles: the moving cube's tilted faces
+//   at 128³ cost an NVIDIA H200 as much as re-voxelizing the whole scene (0.78 of 0.81 ms).
+// Integer atomics add in any order, so how the columns are dealt out changes nothing in the grid.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
@@ -65,78 +76,155 @@ float lodForVoxel(sampler2D tex, vec2 uvA, vec2 uvB, vec2 uvC, float worldArea2)
     return log2(max(texelsPerUnit * frame.voxels.voxelSize, 1.0));
 }
 
-void main() {
-    const uint triangle = gl_GlobalInvocationID.x;
-    if (triangle >= push.draw.w) return;
+// A vector's components in the order (d, u, v) of dominant axis d, u = (d+1)%3, v = (d+2)%3, and back. Selects,
+// not a variable component index: lavapipe computed wrong voxels with indices that differ between invocations.
+vec3 alongAxis(vec3 a, int d) { return d == 0 ? a.xyz : (d == 1 ? a.yzx : a.zxy); }
+ivec3 alongAxis(ivec3 a, int d) { return d == 0 ? a.xyz : (d == 1 ? a.yzx : a.zxy); }
+ivec3 fromAxis(ivec3 a, int d) { return d == 0 ? a.xyz : (d == 1 ? a.zxy : a.yzx); }
+
+// A triangle prepared for the walk (by the invocation that loaded it; read by whichever walks its columns).
+struct TriangleSetup {
+    vec3 p[3];  // voxel units
+    vec3 normal[3];
+    vec2 uv[3];
+    vec4 color[3];
+    vec3 lods;      // base colour, emissive, metallic-roughness
+    ivec4 columns;  // dominant axis d, first column along u = (d+1)%3 and v = (d+2)%3, columns along u
+    ivec3 extent;   // columns along v, the bounding box along d (first, last)
+};
+shared TriangleSetup triangles[VCT_VOXEL_GROUP_SIZE];
+// Exclusive prefix sums of the triangles' column counts; [VCT_VOXEL_GROUP_SIZE] is the workgroup's total.
+shared uint firstColumn[VCT_VOXEL_GROUP_SIZE + 1];
+
+// Loads triangle `triangle` of the draw and prepares its walk; 0 columns when it is past the draw's end or
+// entirely outside the grid.
+uint prepareTriangle(uint triangle, out TriangleSetup t) {
+    t.columns = ivec4(0);
+    t.extent = ivec3(0);
+    if (triangle >= push.draw.w) return 0u;
     const GpuInstance instance = instances[push.draw.x];
-    const GpuMaterial material = materials[push.draw.y];
     const int vertexOffset = int(push.params.x);
     uint vi[3];
     for (int k = 0; k < 3; ++k) vi[k] = uint(int(indices[push.draw.z + triangle * 3 + k]) + vertexOffset);
 
     const vec4 grid = vec4(frame.voxels.origin, frame.voxels.voxelSize);
     const int n = int(frame.voxels.resolution);
-    vec3 p[3], worldP[3], nrm[3];
-    vec2 uv[3];
-    vec4 color[3] = {vec4(1.0), vec4(1.0), vec4(1.0)};
+    vec3 worldP[3];
     const bool colored = push.params.y != 0u;  // COLOR_0 multiplies the base colour (as in gbuffer.frag)
     for (int k = 0; k < 3; ++k) {
-        worldP[k] = (instance.world * vec4(vertexPosition(vi[k]), 1.0)).xyz;
-        p[k] = voxelFromWorld(worldP[k], grid);  // voxel units: the overlap test is well conditioned there
-        nrm[k] = mat3(instance.normalMatrix) * vertexNormal(vi[k]);
-        uv[k] = vertexUv(vi[k]);
-        if (colored) color[k] = vertexColor(vi[k]);
+        // precise: no fused multiply-adds, so a vertex gets the same voxel coordinate on every device (a wall on a
+        // voxel face stays there, lib/voxel.glsl's VOXEL_OVERLAP_HALF_SIZE).
+        precise vec3 world = (instance.world * vec4(vertexPosition(vi[k]), 1.0)).xyz;
+        precise vec3 voxel = (world - grid.xyz) / grid.w;  // voxelFromWorld
+        worldP[k] = world;
+        t.p[k] = voxel;  // voxel units: the overlap test is well conditioned there
+        t.normal[k] = mat3(instance.normalMatrix) * vertexNormal(vi[k]);
+        t.uv[k] = vertexUv(vi[k]);
+        t.color[k] = colored ? vertexColor(vi[k]) : vec4(1.0);
     }
-    const ivec3 lo = max(ivec3(floor(min(p[0], min(p[1], p[2])))), ivec3(0));
-    const ivec3 hi = min(ivec3(floor(max(p[0], max(p[1], p[2])))), ivec3(n - 1));
-    if (any(greaterThan(lo, hi))) return;  // entirely outside the grid
+    const ivec3 lo = max(ivec3(floor(min(t.p[0], min(t.p[1], t.p[2])))), ivec3(0));
+    const ivec3 hi = min(ivec3(floor(max(t.p[0], max(t.p[1], t.p[2])))), ivec3(n - 1));
+    if (any(greaterThan(lo, hi))) return 0u;  // entirely outside the grid
 
     const float worldArea2 = length(cross(worldP[1] - worldP[0], worldP[2] - worldP[0]));
-    const float baseLod = lodForVoxel(baseColorTexture, uv[0], uv[1], uv[2], worldArea2);
-    const float emissiveLod = lodForVoxel(emissiveTexture, uv[0], uv[1], uv[2], worldArea2);
-    const float metallicRoughnessLod = lodForVoxel(metallicRoughnessTexture, uv[0], uv[1], uv[2], worldArea2);
-    const vec3 faceNormal = cross(p[1] - p[0], p[2] - p[0]);
+    t.lods = vec3(lodForVoxel(baseColorTexture, t.uv[0], t.uv[1], t.uv[2], worldArea2),
+                  lodForVoxel(emissiveTexture, t.uv[0], t.uv[1], t.uv[2], worldArea2),
+                  lodForVoxel(metallicRoughnessTexture, t.uv[0], t.uv[1], t.uv[2], worldArea2));
+    // The dominant axis of the face normal: along it a column holds few voxels the plane can cross.
+    const vec3 a = abs(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+    const int d = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    const ivec3 first = alongAxis(lo, d), last = alongAxis(hi, d);
+    t.columns = ivec4(d, first.y, first.z, last.y - first.y + 1);
+    t.extent = ivec3(last.z - first.z + 1, first.x, last.x);
+    return uint(t.columns.w * t.extent.x);
+}
+
+// The voxels along the dominant axis d (first, last) whose centres can pass the plane test of the separating
+// axis test in column (cu, cv) (voxel centres): |m·(c − p0)| ≤ ½(|m_x| + |m_y| + |m_z|) for the face normal m
+// puts the centre within r = ½Σ|m| / |m_d| ≤ 1.5 of the plane's crossing c_d* along d, so at most four voxels;
+// a quarter voxel of slack covers the rounding of either side. Clamped to the bounding box; a degenerate
+// triangle (m_d = 0: not finite) keeps the box's whole extent, as the walk it replaces did.
+ivec2 columnRange(TriangleSetup t, float cu, float cv) {
+    const int d = t.columns.x;
+    const vec3 m = alongAxis(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]), d);
+    const vec3 p0 = alongAxis(t.p[0], d);
+    const float crossing = p0.x - (m.y * (cu - p0.y) + m.z * (cv - p0.z)) / m.x;
+    const float reach = 0.5 * (abs(m.x) + abs(m.y) + abs(m.z)) / abs(m.x);
+    const float first = ceil(crossing - reach - 0.75), last = floor(crossing + reach - 0.25);
+    // NaN and ±inf fail both comparisons' finite bounds: the whole extent.
+    const bool finite = abs(first) < 1e6 && abs(last) < 1e6;
+    return finite ? ivec2(max(int(first), t.extent.y), min(int(last), t.extent.z)) : t.extent.yz;
+}
+
+// Adds triangle t's material at voxel (x, y, z) to the accumulator if the triangle overlaps the voxel.
+void voxelizeVoxel(TriangleSetup t, ivec3 voxel, GpuMaterial material) {
+    const vec3 center = vec3(voxel) + 0.5;
+    if (!triangleBoxOverlap(center, vec3(VOXEL_OVERLAP_HALF_SIZE), t.p[0], t.p[1], t.p[2])) return;
     const bool mask = material.flags.x == VCT_ALPHA_MASK;
     // A blended surface covers its voxels by its alpha (the resolve's opacity); opaque ones add nothing here.
     const bool blend = material.flags.x == VCT_ALPHA_BLEND;
+    const vec3 bary = closestPointBarycentric(center, t.p[0], t.p[1], t.p[2]);
+    const vec2 texcoord = bary.x * t.uv[0] + bary.y * t.uv[1] + bary.z * t.uv[2];
+    vec4 base = material.baseColorFactor * fetchTexel(baseColorTexture, texcoord, t.lods.x);
+    if (push.params.y != 0u) base *= bary.x * t.color[0] + bary.y * t.color[1] + bary.z * t.color[2];
+    if (mask && base.a < material.metallicRoughnessCutoffAo.z) return;  // cut-out
+    const vec3 emission =
+        material.emissiveNormalScale.rgb * fetchTexel(emissiveTexture, texcoord, t.lods.y).rgb;
+    // As gbuffer.frag's surface (lib/surface.glsl): factor × texture, without the normal map's Toksvig
+    // roughness (the voxel's own normals widen its lobe in inject.comp).
+    const vec4 metallicRoughness = fetchTexel(metallicRoughnessTexture, texcoord, t.lods.z);
+    const float metallic = material.metallicRoughnessCutoffAo.x * metallicRoughness.b;
+    const float roughness = material.metallicRoughnessCutoffAo.y * metallicRoughness.g;
+    // Interpolated shading normal; the face normal when the vertex normals cancel out.
+    vec3 normal = bary.x * t.normal[0] + bary.y * t.normal[1] + bary.z * t.normal[2];
+    if (dot(normal, normal) < 1e-12) normal = cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+    normal *= inversesqrt(max(dot(normal, normal), 1e-30));
 
-    for (int z = lo.z; z <= hi.z; ++z)
-        for (int y = lo.y; y <= hi.y; ++y)
-            for (int x = lo.x; x <= hi.x; ++x) {
-                const vec3 center = vec3(x, y, z) + 0.5;
-                if (!triangleBoxOverlap(center, vec3(0.5), p[0], p[1], p[2])) continue;
-                const vec3 bary = closestPointBarycentric(center, p[0], p[1], p[2]);
-                const vec2 texcoord = bary.x * uv[0] + bary.y * uv[1] + bary.z * uv[2];
-                vec4 base = material.baseColorFactor * fetchTexel(baseColorTexture, texcoord, baseLod);
-                if (colored) base *= bary.x * color[0] + bary.y * color[1] + bary.z * color[2];
-                if (mask && base.a < material.metallicRoughnessCutoffAo.z) continue;  // cut-out
-                const vec3 emission =
-                    material.emissiveNormalScale.rgb * fetchTexel(emissiveTexture, texcoord, emissiveLod).rgb;
-                // As gbuffer.frag's surface (lib/surface.glsl): factor × texture, without the normal map's Toksvig
-                // roughness (the voxel's own normals widen its lobe in inject.comp).
-                const vec4 metallicRoughness =
-                    fetchTexel(metallicRoughnessTexture, texcoord, metallicRoughnessLod);
-                const float metallic = material.metallicRoughnessCutoffAo.x * metallicRoughness.b;
-                const float roughness = material.metallicRoughnessCutoffAo.y * metallicRoughness.g;
-                // Interpolated shading normal; the face normal when the vertex normals cancel out.
-                vec3 normal = bary.x * nrm[0] + bary.y * nrm[1] + bary.z * nrm[2];
-                if (dot(normal, normal) < 1e-12) normal = faceNormal;
-                normal *= inversesqrt(max(dot(normal, normal), 1e-30));
+    // Every voxel a triangle can reach has storage (render/voxel_bricks.h allocates the bricks its bounds
+    // overlap, with the same overlap test): the check only guards the buffer.
+    const uint k = brickIndex(voxelBrickOf(voxel));
+    if (k == VCT_BRICK_NONE) return;
+    const uint base_ = voxelAccumIndex(k, voxel % VOXEL_BRICK);
+    for (int c = 0; c < 3; ++c) {
+        atomicAdd(accum[base_ + c], voxelEncodeUnit(base.rgb[c]));
+        atomicAdd(accum[base_ + 3 + c], voxelEncodeSigned(normal[c]));
+        atomicAdd(accum[base_ + 6 + c], voxelEncodeEmission(emission[c]));
+    }
+    atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_COUNT], 1u);
+    atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_METALLIC], voxelEncodeUnit(metallic));
+    atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_ROUGHNESS], voxelEncodeUnit(roughness));
+    if (blend) atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_TRANSPARENCY], voxelEncodeUnit(1.0 - base.a));
+}
 
-                // Every voxel a triangle can reach has storage (render/voxel_bricks.h allocates the bricks
-                // its bounds overlap, with the same overlap test): the check only guards the buffer.
-                const uint k = brickIndex(voxelBrickOf(ivec3(x, y, z)));
-                if (k == VCT_BRICK_NONE) continue;
-                const uint base_ = voxelAccumIndex(k, ivec3(x, y, z) % VOXEL_BRICK);
-                for (int c = 0; c < 3; ++c) {
-                    atomicAdd(accum[base_ + c], voxelEncodeUnit(base.rgb[c]));
-                    atomicAdd(accum[base_ + 3 + c], voxelEncodeSigned(normal[c]));
-                    atomicAdd(accum[base_ + 6 + c], voxelEncodeEmission(emission[c]));
-                }
-                atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_COUNT], 1u);
-                atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_METALLIC], voxelEncodeUnit(metallic));
-                atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_ROUGHNESS], voxelEncodeUnit(roughness));
-                if (blend)
-                    atomicAdd(accum[base_ + VCT_VOXEL_ACCUM_TRANSPARENCY], voxelEncodeUnit(1.0 - base.a));
-            }
+void main() {
+    // 1. Every invocation prepares its triangle and publishes it with its column count.
+    const uint local = gl_LocalInvocationID.x;
+    TriangleSetup mine;
+    const uint columns = prepareTriangle(gl_GlobalInvocationID.x, mine);
+    triangles[local] = mine;
+    firstColumn[local + 1] = columns;
+    barrier();
+    if (local == 0u) {
+        firstColumn[0] = 0u;
+        for (uint i = 1u; i <= uint(VCT_VOXEL_GROUP_SIZE); ++i) firstColumn[i] += firstColumn[i - 1u];
+    }
+    barrier();
+
+    // 2. The workgroup's columns, dealt out in turn: column c belongs to the triangle whose range holds it.
+    const GpuMaterial material = materials[push.draw.y];
+    const uint total = firstColumn[VCT_VOXEL_GROUP_SIZE];
+    for (uint c = local; c < total; c += uint(VCT_VOXEL_GROUP_SIZE)) {
+        // The last triangle whose first column is ≤ c (binary search; empty triangles share their first column
+        // with the next and are skipped by taking the last).
+        uint owner = 0u;
+        for (uint step = uint(VCT_VOXEL_GROUP_SIZE) / 2u; step > 0u; step /= 2u)
+            if (firstColumn[owner + step] <= c) owner += step;
+        const TriangleSetup t = triangles[owner];
+        const uint column = c - firstColumn[owner];
+        const int cu = t.columns.y + int(column % uint(t.columns.w));
+        const int cv = t.columns.z + int(column / uint(t.columns.w));
+        const ivec2 range = columnRange(t, float(cu) + 0.5, float(cv) + 0.5);
+        for (int k = range.x; k <= range.y; ++k)
+            voxelizeVoxel(t, fromAxis(ivec3(k, cu, cv), t.columns.x), material);
+    }
 }

@@ -2,6 +2,7 @@
 // scale 4 against the same frame traced at every pixel (trace scale 1), computed by the same program.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -30,16 +31,39 @@ double mse(const fs::path& reference, const fs::path& image) {
     return vct::compareImages(vct::readExr(reference), vct::readExr(image)).mse;
 }
 
-// No NaN or Inf in any channel, and no black (zero-luminance) pixel: inside the closed cornell room every
-// surface sees lit walls, so its diffuse indirect light is positive (used for diffuse and final; a sharp
-// reflection may see only the unlit ceiling).
-void expectFiniteAndNotBlack(const fs::path& file, const std::string& what) {
+// No NaN or Inf in any channel, and no hole: no pixel the upsampling leaves black, or far darker than the same
+// frame traced at every pixel (`reference`, trace scale 1), where that trace has light. "Where it has light",
+// not "everywhere": the top of cornell's tall box, a few voxels under the unlit ceiling, gets almost no
+// indirect light at one bounce at 32³ (the path tracer: 0.006 at 320×180; the every-pixel trace 1e-4 on
+// lavapipe and exactly 0 in a few pixels on an NVIDIA H200, where this test first failed), so a black pixel
+// there is the trace's answer, not a hole. Used for diffuse and final.
+// Measured (160×90, 32³, lavapipe): the lit mask holds 14 271–14 313 of 14 400 pixels; the darkest pixel
+// against the trace (diffuse / final), without re-tracing: bilinear 0.119 / 0.234, normal 0.139 / 0.127, sg
+// 0.138 / 0.134, sg after a cut 0.378 / 0.081 (pixels beside the tall box's edge, whose samples lie on the box);
+// with it: sg 0.510 / 0.512, normal after a cut 0.378 / 0.271. Each case asserts about ⅔ of its minimum.
+constexpr float kLitLuminance = 0.005f;
+void expectFiniteAndNoHoles(const fs::path& file, const fs::path& reference, const std::string& what,
+                            double minRatio) {
     const vct::ImageRgba32f image = vct::readExr(file);
+    const vct::ImageRgba32f traced = vct::readExr(reference);
     EXPECT_EQ(vct::test::countNonFinite(image.pixels), 0u) << what;
-    size_t black = 0;
-    for (size_t i = 0; i < image.pixels.size(); i += 4)
-        black += luminance(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]) > 0.0f ? 0 : 1;
-    EXPECT_EQ(black, 0u) << what << ": black pixels";
+    ASSERT_EQ(image.pixels.size(), traced.pixels.size()) << what;
+    size_t lit = 0, black = 0;
+    double darkest = 1e30;
+    for (size_t i = 0; i < image.pixels.size(); i += 4) {
+        const float t = luminance(traced.pixels[i], traced.pixels[i + 1], traced.pixels[i + 2]);
+        if (!(t >= kLitLuminance)) continue;
+        ++lit;
+        const float u = luminance(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
+        black += u > 0.0f ? 0 : 1;
+        darkest = std::min(darkest, double(u) / double(t));
+    }
+    std::printf("%s: %zu lit pixels of %zu, darkest %.3fx the every-pixel trace\n", what.c_str(), lit,
+                image.pixels.size() / 4, darkest);
+    // The mask is most of the image (measured 99.1 %): the test cannot pass on an empty one.
+    EXPECT_GE(double(lit), 0.95 * double(image.pixels.size() / 4)) << what;
+    EXPECT_EQ(black, 0u) << what << ": black pixels where the every-pixel trace has light";
+    EXPECT_GE(darkest, minRatio) << what;
 }
 
 TEST(UpsampleGpu, StaticCameraConvergesTowardTraceScale1) {
@@ -59,30 +83,37 @@ TEST(UpsampleGpu, StaticCameraConvergesTowardTraceScale1) {
     EXPECT_LT(converged, 4e-4);
 }
 
-TEST(UpsampleGpu, FirstFrameAndCameraCutHaveNoNaNInfOrBlackPixels) {
+TEST(UpsampleGpu, FirstFrameAndCameraCutHaveNoNaNInfOrHoles) {
     // Every guide without re-tracing (the weights alone must never leave a hole) and sg with it; the first
-    // frame and the frame right after a camera cut have no history.
+    // frame and the frame right after a camera cut have no history. Each against the same frame traced at
+    // every pixel.
     struct Case {
         std::string name;
         std::vector<std::string> flags;
+        double minRatio;  // the darkest pixel against the every-pixel trace, ⅔ of the measured
     };
     const std::vector<Case> cases = {
-        {"first_bilinear", {"--frames", "1", "--weights", "bilinear", "--adaptive", "off"}},
-        {"first_normal", {"--frames", "1", "--weights", "normal", "--adaptive", "off"}},
-        {"first_sg", {"--frames", "1", "--weights", "sg", "--adaptive", "off"}},
-        {"first_sg_adaptive", {"--frames", "1", "--weights", "sg"}},
-        {"cut_sg", {"--frames", "5", "--camera-cut", "4", "--weights", "sg", "--adaptive", "off"}},
-        {"cut_normal_adaptive", {"--frames", "5", "--camera-cut", "4", "--weights", "normal"}}};
+        {"first_bilinear", {"--frames", "1", "--weights", "bilinear", "--adaptive", "off"}, 0.08},
+        {"first_normal", {"--frames", "1", "--weights", "normal", "--adaptive", "off"}, 0.08},
+        {"first_sg", {"--frames", "1", "--weights", "sg", "--adaptive", "off"}, 0.08},
+        {"first_sg_adaptive", {"--frames", "1", "--weights", "sg"}, 0.35},
+        {"cut_sg", {"--frames", "5", "--camera-cut", "4", "--weights", "sg", "--adaptive", "off"}, 0.05},
+        {"cut_normal_adaptive", {"--frames", "5", "--camera-cut", "4", "--weights", "normal"}, 0.18}};
+    const fs::path firstTraced = renderCornell("first_traced", {"--frames", "1", "--trace-scale", "1"});
+    const fs::path cutTraced =
+        renderCornell("cut_traced", {"--frames", "5", "--camera-cut", "4", "--trace-scale", "1"});
     for (const Case& c : cases) {
         std::vector<std::string> flags = c.flags;
         flags.insert(flags.end(), {"--trace-scale", "4"});
         const fs::path dir = renderCornell(c.name, flags);
-        expectFiniteAndNotBlack(dir / "diffuse_indirect.exr", c.name + " diffuse");
+        const fs::path traced = c.name.rfind("cut", 0) == 0 ? cutTraced : firstTraced;
+        expectFiniteAndNoHoles(dir / "diffuse_indirect.exr", traced / "diffuse_indirect.exr",
+                               c.name + " diffuse", c.minRatio);
         // Specular may be exactly black: at one bounce the glossy floor's sharp stripes mirror the ceiling,
         // which no light reaches (the path tracer agrees); finite it must be.
         EXPECT_EQ(vct::test::countNonFinite(vct::readExr(dir / "specular_indirect.exr").pixels), 0u)
             << c.name;
-        expectFiniteAndNotBlack(dir / "final.exr", c.name + " final");
+        expectFiniteAndNoHoles(dir / "final.exr", traced / "final.exr", c.name + " final", c.minRatio);
         EXPECT_EQ(vct::test::countNonFinite(vct::readExr(dir / "weight_sum.exr").pixels), 0u) << c.name;
     }
 }

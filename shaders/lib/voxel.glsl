@@ -41,6 +41,13 @@ VCT_INLINE bool voxelAxisOverlaps(vec3 axis, vec3 v0, vec3 v1, vec3 v2, vec3 hal
     return !(min(p0, min(p1, p2)) > r || max(p0, max(p1, p2)) < -r);
 }
 
+// Half the side of a voxel's box as the voxelizer tests it (shaders/voxelize.comp): a 1024th of a voxel wider
+// than the voxel, so that a surface lying on a voxel face overlaps both voxels beside it whatever the rounding of
+// its vertices' voxel coordinates (cornell's walls at 128³ lie within float rounding of voxel faces; exactly ½
+// left 16 of their voxels to the rounding, which depends on the device and on which multiply-adds the compiler
+// fuses).
+const float VOXEL_OVERLAP_HALF_SIZE = 0.5f + 1.0f / 1024.0f;
+
 // Exact overlap test of triangle (a, b, c) with the axis-aligned box centre ± halfSize. Only products and
 // sums: a degenerate (zero-area, even single-point) triangle gives no NaN and overlaps where its points do.
 VCT_INLINE bool triangleBoxOverlap(vec3 center, vec3 halfSize, vec3 a, vec3 b, vec3 c) {
