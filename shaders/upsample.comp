@@ -46,6 +46,9 @@ layout(constant_id = VCT_SPEC_TRACE_SCALE) const int SCALE = 4;  // trace scale 
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHTS) const int WEIGHTS = VCT_WEIGHTS_SG;
 layout(constant_id = VCT_UPSAMPLE_SPEC_TEMPORAL) const bool TEMPORAL = true;      // --temporal
 layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;  // write weightSumImage
+// The layout (--upsample-layout): false, one invocation per low-res cell, its samples in registers (CPU devices);
+// true, one invocation per pixel, the workgroup's samples in shared memory (GPUs). See main().
+layout(constant_id = VCT_UPSAMPLE_SPEC_PER_PIXEL) const bool PER_PIXEL = false;
 
 // Resources: bound by engine/passes/upsample_pass.cpp (its resource table gives these binding numbers and is
 // checked against them when the pipeline is made).
@@ -101,6 +104,21 @@ struct Sample {
     vec2 at;  // the full-res pixel it was traced at
 };
 
+// Where the samples live. Per cell: the invocation's own (2r)² samples. Per pixel: the samples of the workgroup's
+// cells, a square of REGION² from the first cell's window; a cell's window starts at its place in the group.
+Sample cellSamples[MAX_SAMPLES];
+const int GROUP_CELLS = VCT_TILE_SIZE / SCALE;  // cells per workgroup and axis, per-pixel layout
+const int REGION = GROUP_CELLS + WINDOW - 1;    // ≤ 7: 49 samples for 64 invocations
+const int MAX_REGION_SAMPLES = VCT_TILE_SIZE * VCT_TILE_SIZE;
+shared Sample groupSamples[MAX_REGION_SAMPLES];
+
+// Sample k (0 .. WINDOW² − 1) of the window of the cell at `cellInGroup` (per-pixel layout; unused per cell).
+Sample windowSample(int k, ivec2 cellInGroup) {
+    if (!PER_PIXEL) return cellSamples[k];
+    const ivec2 at = cellInGroup + ivec2(k % WINDOW, k / WINDOW);
+    return groupSamples[at.y * REGION + at.x];
+}
+
 // The pixel being reconstructed: its guide, tangent plane and specular lobe prepared for many weights.
 struct PixelGuide {
     Guide guide;
@@ -146,10 +164,10 @@ struct WeightedLight {
 // Two sums of the same weights: weight (the sum of weights W_s of docs/design.md §6.5, for τ and the weights
 // view) and the accumulation weights, in which a sample traced at this very pixel counts EXACT_SAMPLE_WEIGHT
 // (lib/upsample_weights.glsl), as many interpolated neighbourhoods as make it dominate the history.
-WeightedLight spatialLight(ivec2 pixel, PixelGuide here, Sample samples[MAX_SAMPLES]) {
+WeightedLight spatialLight(ivec2 pixel, PixelGuide here, ivec2 cellInGroup) {
     WeightedLight sum = WeightedLight(vec3(0.0), vec3(0.0), vec2(0.0), vec2(0.0));
     [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {
-        const Sample j = samples[k];
+        const Sample j = windowSample(k, cellInGroup);
         // Kernel × validity: 0 outside the image and on the background.
         const vec2 offset = (vec2(pixel) - j.at) / float(SCALE);
         const float f =
@@ -266,7 +284,7 @@ void writePixel(ivec2 pixel, bool background, WeightedLight spatial, WeightedLig
 
 // Reconstructs one full-res pixel from its cell's samples and its history; writes it and lists it for
 // re-tracing when its sum of weights is low.
-void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
+void reconstruct(ivec2 pixel, ivec2 cellInGroup) {
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const vec3 position = worldFromDepth(frame.invViewProj, uv, depth);
@@ -280,13 +298,60 @@ void reconstruct(ivec2 pixel, Sample samples[MAX_SAMPLES]) {
     here.plane = scaledTangentPlane(here.guide.n, here.guide.p, here.guide.cameraDistance);
     here.specularLobe =
         foldedSpecularLobe(here.guide.specularAxis, here.guide.specularSharpness, FOLDED_SENTINEL_PIXEL);
-    writePixel(pixel, background, spatialLight(pixel, here, samples), historyLight(pixel, uv, here));
+    writePixel(pixel, background, spatialLight(pixel, here, cellInGroup), historyLight(pixel, uv, here));
+}
+
+// Low-res sample `low` as the trace left it (zero weight outside the image and on the background).
+Sample loadSample(ivec2 low, ivec2 size, ivec2 lowSize, ivec2 jitter) {
+    const bool inside = all(greaterThanEqual(low, ivec2(0))) && all(lessThan(low, lowSize));
+    const ivec2 at = clamp(low, ivec2(0), lowSize - 1);
+    const vec4 position = texelFetch(guidePositionTexture, at, 0);
+    Sample j;
+    j.p = position.xyz;
+    j.valid = inside ? position.w : 0.0;  // w = 0: background
+    const vec4 normalSharpness =
+        WEIGHTS != VCT_WEIGHTS_BILINEAR ? texelFetch(guideNormalTexture, at, 0) : vec4(0.0);
+    j.n = normalSharpness.xyz;
+    const uvec4 light = texelFetch(indirectLow, at, 0);
+    j.diffuse = unpackIndirectDiffuse(light).rgb;
+    j.specular = unpackIndirectSpecular(light).rgb;
+    j.at = vec2(min(low * SCALE + jitter, size - 1));  // where trace.comp traced it
+    // An invalid sample is multiplied by a zero kernel weight, and 0 × NaN is NaN: its guide (which the
+    // trace does not write on the background, so it may be anything) must be finite. Selects, no branch.
+    const bool valid = j.valid > 0.0;
+    j.p = valid ? j.p : vec3(0.0);
+    j.n = valid ? j.n : vec3(0.0, 0.0, 1.0);
+    const vec3 axis = WEIGHTS == VCT_WEIGHTS_SG ? texelFetch(guideAxisTexture, at, 0).xyz : vec3(0.0);
+    j.specularLobe = foldedSpecularLobe(valid ? axis : vec3(0.0, 0.0, 1.0), valid ? normalSharpness.w : 1.0,
+                                        FOLDED_SENTINEL_SAMPLE);
+    j.diffuse = valid ? j.diffuse : vec3(0.0);
+    j.specular = valid ? j.specular : vec3(0.0);
+    return j;
 }
 
 void main() {
     const ivec2 size = ivec2(frame.imageSize);
     const ivec2 jitter = frame.upsample.traceOffset;
     const ivec2 lowSize = textureSize(indirectLow, 0);
+    if (PER_PIXEL) {
+        // ---- one invocation per pixel: the workgroup's GROUP_CELLS² cells (from cell −1), their samples loaded
+        // once into shared memory, one per invocation. On a GPU the per-cell layout keeps 16 samples in each
+        // invocation's registers (spilled) and runs s² times fewer invocations: on an NVIDIA H200 its sg upsample
+        // cost 2.0× the trace and 2.0× the normal weights' at 1280×720 (benchmarks/README.md, round 7).
+        const ivec2 groupCell = ivec2(gl_WorkGroupID.xy) * GROUP_CELLS - 1;
+        const int lane = int(gl_LocalInvocationIndex);
+        if (lane < REGION * REGION)
+            groupSamples[lane] = loadSample(groupCell - (RADIUS - 1) + ivec2(lane % REGION, lane / REGION),
+                                            size, lowSize, jitter);
+        barrier();
+        const ivec2 local = ivec2(gl_LocalInvocationID.xy);
+        const ivec2 pixel = (groupCell + local / SCALE) * SCALE + jitter + local % SCALE;
+        if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size)))
+            reconstruct(pixel, local / SCALE);
+        return;
+    }
+
+    // ---- one invocation per low-res cell (s×s pixels) ----
     // Cell b holds the pixels x with floor((x − o)/s) = b: x ∈ [s·b + o, s·b + o + s). Cells start at −1, where
     // the offset o leaves pixels left of sample 0.
     const ivec2 cell = ivec2(gl_GlobalInvocationID.xy) - 1;
@@ -294,38 +359,13 @@ void main() {
     if (any(greaterThanEqual(first, size)) || any(lessThan(first + SCALE, ivec2(1)))) return;
 
     // ---- the (2r)² samples around the cell, from cell − r + 1 ----
-    Sample samples[MAX_SAMPLES];
-    [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {
-        const ivec2 low = cell + ivec2(k % WINDOW, k / WINDOW) - (RADIUS - 1);
-        const bool inside = all(greaterThanEqual(low, ivec2(0))) && all(lessThan(low, lowSize));
-        const ivec2 at = clamp(low, ivec2(0), lowSize - 1);
-        const vec4 position = texelFetch(guidePositionTexture, at, 0);
-        Sample j;
-        j.p = position.xyz;
-        j.valid = inside ? position.w : 0.0;  // w = 0: background
-        const vec4 normalSharpness =
-            WEIGHTS != VCT_WEIGHTS_BILINEAR ? texelFetch(guideNormalTexture, at, 0) : vec4(0.0);
-        j.n = normalSharpness.xyz;
-        const uvec4 light = texelFetch(indirectLow, at, 0);
-        j.diffuse = unpackIndirectDiffuse(light).rgb;
-        j.specular = unpackIndirectSpecular(light).rgb;
-        j.at = vec2(min(low * SCALE + jitter, size - 1));  // where trace.comp traced it
-        // An invalid sample is multiplied by a zero kernel weight, and 0 × NaN is NaN: its guide (which the
-        // trace does not write on the background, so it may be anything) must be finite. Selects, no branch.
-        const bool valid = j.valid > 0.0;
-        j.p = valid ? j.p : vec3(0.0);
-        j.n = valid ? j.n : vec3(0.0, 0.0, 1.0);
-        const vec3 axis = WEIGHTS == VCT_WEIGHTS_SG ? texelFetch(guideAxisTexture, at, 0).xyz : vec3(0.0);
-        j.specularLobe = foldedSpecularLobe(valid ? axis : vec3(0.0, 0.0, 1.0),
-                                            valid ? normalSharpness.w : 1.0, FOLDED_SENTINEL_SAMPLE);
-        j.diffuse = valid ? j.diffuse : vec3(0.0);
-        j.specular = valid ? j.specular : vec3(0.0);
-        samples[k] = j;
-    }
+    [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) cellSamples[k] =
+        loadSample(cell + ivec2(k % WINDOW, k / WINDOW) - (RADIUS - 1), size, lowSize, jitter);
 
     // ---- the cell's pixels (a loop, not unrolled: s² copies of the reconstruction would be all code) ----
     [[dont_unroll]] for (int i = 0; i < SCALE * SCALE; ++i) {
         const ivec2 pixel = first + ivec2(i % SCALE, i / SCALE);
-        if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size))) reconstruct(pixel, samples);
+        if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size)))
+            reconstruct(pixel, ivec2(0));
     }
 }

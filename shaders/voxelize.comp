@@ -112,12 +112,11 @@ uint prepareTriangle(uint triangle, out TriangleSetup t) {
     vec3 worldP[3];
     const bool colored = push.params.y != 0u;  // COLOR_0 multiplies the base colour (as in gbuffer.frag)
     for (int k = 0; k < 3; ++k) {
-        // precise: no fused multiply-adds, so a vertex gets the same voxel coordinate on every device (a wall on a
-        // voxel face stays there, lib/voxel.glsl's VOXEL_OVERLAP_HALF_SIZE).
-        precise vec3 world = (instance.world * vec4(vertexPosition(vi[k]), 1.0)).xyz;
-        precise vec3 voxel = (world - grid.xyz) / grid.w;  // voxelFromWorld
-        worldP[k] = world;
-        t.p[k] = voxel;  // voxel units: the overlap test is well conditioned there
+        // Snapped (lib/voxel.glsl): the same voxels on every device. The world position keeps its rounding (it only
+        // sets the texture level).
+        worldP[k] = (instance.world * vec4(vertexPosition(vi[k]), 1.0)).xyz;
+        t.p[k] =
+            voxelSnap(voxelFromWorld(worldP[k], grid));  // voxel units: the overlap test is well conditioned
         t.normal[k] = mat3(instance.normalMatrix) * vertexNormal(vi[k]);
         t.uv[k] = vertexUv(vi[k]);
         t.color[k] = colored ? vertexColor(vi[k]) : vec4(1.0);
@@ -159,7 +158,7 @@ ivec2 columnRange(TriangleSetup t, float cu, float cv) {
 // Adds triangle t's material at voxel (x, y, z) to the accumulator if the triangle overlaps the voxel.
 void voxelizeVoxel(TriangleSetup t, ivec3 voxel, GpuMaterial material) {
     const vec3 center = vec3(voxel) + 0.5;
-    if (!triangleBoxOverlap(center, vec3(VOXEL_OVERLAP_HALF_SIZE), t.p[0], t.p[1], t.p[2])) return;
+    if (!triangleBoxOverlap(center, vec3(0.5), t.p[0], t.p[1], t.p[2])) return;
     const bool mask = material.flags.x == VCT_ALPHA_MASK;
     // A blended surface covers its voxels by its alpha (the resolve's opacity); opaque ones add nothing here.
     const bool blend = material.flags.x == VCT_ALPHA_BLEND;

@@ -66,7 +66,7 @@ void expectCoversVoxelizedVoxels(const std::string& sceneName, uint32_t n, doubl
                         instance.world *
                         glm::vec4(scene->vertices[size_t(int64_t(index) + primitive.vertexOffset)].position,
                                   1.0f));
-                    v[k] = g::voxelFromWorld(world, grid);
+                    v[k] = g::voxelSnap(g::voxelFromWorld(world, grid));
                 }
                 const glm::ivec3 lo =
                     glm::max(glm::ivec3(glm::floor(glm::min(v[0], glm::min(v[1], v[2])))), 0);
@@ -130,13 +130,13 @@ size_t cpuOccupiedVoxels(const std::string& sceneName, uint32_t n) {
                 glm::vec3 v[3];
                 for (int k = 0; k < 3; ++k) {
                     const uint32_t index = scene->indices[primitive.firstIndex + t + uint32_t(k)];
-                    v[k] = g::voxelFromWorld(
+                    v[k] = g::voxelSnap(g::voxelFromWorld(
                         glm::vec3(
                             instance.world *
                             glm::vec4(
                                 scene->vertices[size_t(int64_t(index) + primitive.vertexOffset)].position,
                                 1.0f)),
-                        grid);
+                        grid));
                 }
                 const glm::ivec3 lo =
                     glm::max(glm::ivec3(glm::floor(glm::min(v[0], glm::min(v[1], v[2])))), 0);
@@ -145,8 +145,7 @@ size_t cpuOccupiedVoxels(const std::string& sceneName, uint32_t n) {
                 for (int z = lo.z; z <= hi.z; ++z)
                     for (int y = lo.y; y <= hi.y; ++y)
                         for (int x = lo.x; x <= hi.x; ++x)
-                            if (g::triangleBoxOverlap(glm::vec3(x, y, z) + 0.5f,
-                                                      glm::vec3(g::VOXEL_OVERLAP_HALF_SIZE), v[0], v[1],
+                            if (g::triangleBoxOverlap(glm::vec3(x, y, z) + 0.5f, glm::vec3(0.5f), v[0], v[1],
                                                       v[2]))
                                 occupied[size_t(x) + n * (size_t(y) + n * size_t(z))] = true;
             }

@@ -22,14 +22,23 @@ UpsamplePass::UpsamplePass(const vk::Context& context)
                               {15, Target::guideNormal, Access::Sampled},
                               {16, Target::guideAxis, Access::Sampled}}) {}
 
+bool UpsamplePass::perPixel(const RenderSettings& settings) const {
+    using Layout = RenderSettings::UpsampleLayout;
+    if (settings.traceScale < 2) return false;
+    return settings.upsampleLayout == Layout::Pixel ||
+           (settings.upsampleLayout == Layout::Auto &&
+            context_.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU);
+}
+
 const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
     const uint32_t weights = settings.weights == RenderSettings::Weights::Bilinear ? VCT_WEIGHTS_BILINEAR
                              : settings.weights == RenderSettings::Weights::Normal ? VCT_WEIGHTS_NORMAL
                                                                                    : VCT_WEIGHTS_SG;
     // Indexed by constant_id (VCT_SPEC_TRACE_SCALE, VCT_UPSAMPLE_SPEC_*).
     const std::vector<uint32_t> constants = {settings.traceScale, weights, settings.temporal ? 1u : 0u,
-                                             settings.writeWeightSum ? 1u : 0u};
-    const uint32_t key = constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17;
+                                             settings.writeWeightSum ? 1u : 0u, perPixel(settings) ? 1u : 0u};
+    const uint32_t key =
+        constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17 | constants[4] << 18;
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
     vk::Pipeline pipeline =
         vk::Pipeline::compute(context_, name(), "upsample.comp", resources_.bindings(), 0, constants);
@@ -47,8 +56,16 @@ void UpsamplePass::execute(const FrameContext& frame) {
     const vk::Pipeline& pipeline = pipelineFor(frame.settings);
     pipeline.bind(frame.cmd);
     resources_.bind(frame, pipeline);
-    // One invocation per low-res cell of s×s pixels, from cell −1 (shaders/upsample.comp).
-    vkCmdDispatch(frame.cmd, tileCount(t.indirectLow.width() + 1), tileCount(t.indirectLow.height() + 1), 1);
+    // Cells from −1 (shaders/upsample.comp): per cell, a workgroup of VCT_TILE_SIZE² cells; per pixel, a workgroup
+    // of VCT_TILE_SIZE² pixels, (VCT_TILE_SIZE / s)² cells.
+    const uint32_t cellsX = t.indirectLow.width() + 1, cellsY = t.indirectLow.height() + 1;
+    if (perPixel(frame.settings)) {
+        const uint32_t groupCells = VCT_TILE_SIZE / frame.settings.traceScale;
+        vkCmdDispatch(frame.cmd, (cellsX + groupCells - 1) / groupCells,
+                      (cellsY + groupCells - 1) / groupCells, 1);
+    } else {
+        vkCmdDispatch(frame.cmd, tileCount(cellsX), tileCount(cellsY), 1);
+    }
 }
 
 }  // namespace vct

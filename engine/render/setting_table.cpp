@@ -93,6 +93,11 @@ const SettingSpec kTable[] = {
      .help = "upsampling guide: none, depth x normal, depth x SG lobe (docs/design.md sec. 6.3)",
      .value = NamedValue{&S::weights, kWeightsNames}, .apply = A::Live, .group = G::Upsample, .demo = true,
      .json = true, .widget = W::Combo, .label = "weights", .sideB = true},
+    {.name = "upsample-layout", .valueName = "auto|cell|pixel",
+     .help = "upsample invocations: one per low-res cell (fast on a CPU device) or one per pixel with shared "
+             "samples (fast on a GPU); auto: by device type; the same image (docs/design.md sec. 6.8)",
+     .value = NamedValue{&S::upsampleLayout, kUpsampleLayoutNames}, .apply = A::Live, .group = G::Upsample,
+     .demo = true, .json = true, .widget = W::Combo, .label = "upsample layout"},
     {.name = "beta", .valueName = "B", .help = "SG lobe weight exponent",
      .value = FloatValue{&S::beta, 0.01f, 1000.0f}, .apply = A::Live, .group = G::Upsample, .demo = true,
      .json = true, .widget = W::LogSlider, .label = "beta"},
@@ -241,7 +246,7 @@ void parseSetting(const SettingSpec& spec, const std::string& text, const std::s
             [&](const NamedValue& v) {
                 for (size_t i = 0; i < v.names.size(); ++i)
                     if (text == v.names[i]) {
-                        s.*v.member = RenderSettings::Weights(i);
+                        v.set(s, i);
                         return;
                     }
                 throw UsageError(spelling + " '" + text + "': expected " +
@@ -268,7 +273,7 @@ std::string settingText(const SettingSpec& spec, const RenderSettings& s) {
             [&](const OnOffValue& v) { return std::string(s.*v.member ? "on" : "off"); },
             [&](const SwitchValue& v) { return std::string(s.*v.member ? "on" : "off"); },
             [&](const ChoiceValue& v) { return std::to_string(s.*v.member); },
-            [&](const NamedValue& v) { return std::string(v.names[size_t(s.*v.member)]); },
+            [&](const NamedValue& v) { return std::string(v.names[v.get(s)]); },
             [&](const TextValue& v) { return s.*v.member; },
             [&](const SizeValue&) { return std::to_string(s.width) + "x" + std::to_string(s.height); },
             [&](const ColorValue& v) {
@@ -307,6 +312,7 @@ bool sameSetting(const SettingSpec& spec, const RenderSettings& current, const R
                           [&](const SizeValue&) {
                               return wanted.width == current.width && wanted.height == current.height;
                           },
+                          [&](const NamedValue& v) { return v.get(wanted) == v.get(current); },
                           [&](const auto& v) { return wanted.*v.member == current.*v.member; },
                       },
                       spec.value);

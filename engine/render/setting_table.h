@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <variant>
 
@@ -66,8 +67,15 @@ struct ChoiceValue {  // one of a few unsigned integers
     std::optional<uint32_t> automatic = std::nullopt;
 };
 struct NamedValue {  // an enum by name: names[i] is the enumerator of value i
-    RenderSettings::Weights RenderSettings::*member;
+    std::variant<RenderSettings::Weights RenderSettings::*, RenderSettings::UpsampleLayout RenderSettings::*>
+        member;
     std::span<const char* const> names;
+    size_t get(const RenderSettings& s) const {
+        return std::visit([&](auto m) { return size_t(s.*m); }, member);
+    }
+    void set(RenderSettings& s, size_t i) const {
+        std::visit([&](auto m) { s.*m = std::remove_reference_t<decltype(s.*m)>(i); }, member);
+    }
 };
 struct TextValue {  // a non-empty string (a file name)
     std::string RenderSettings::*member;

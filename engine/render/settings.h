@@ -94,6 +94,12 @@ struct RenderSettings {
     // Write the per-pixel sum of weights image (FrameTargets::weightSum) for --aux and the weights / resample
     // views; off, upsample skips that store (nothing in the frame reads it).
     bool writeWeightSum = false;
+    // How the upsample pass maps work to invocations (shaders/upsample.comp, docs/design.md §6.8): one per low-res
+    // cell with its samples in registers (cell: fast on a CPU device, where an invocation is a SIMD lane and
+    // shared memory is gathered per lane), one per pixel with the workgroup's samples in shared memory (pixel:
+    // fast on a GPU); auto picks by device type. The images are the same.
+    enum class UpsampleLayout { Auto, Cell, Pixel };  // kUpsampleLayoutNames in this order
+    UpsampleLayout upsampleLayout = UpsampleLayout::Auto;
 
     // ---- material filtering ----
     bool toksvig = true;     // normal-map mip length → effective roughness (docs/design.md §4.1)
@@ -111,6 +117,8 @@ inline constexpr const char* kWeightsNames[] = {"bilinear", "normal", "sg"};
 inline const char* weightsName(RenderSettings::Weights weights) {
     return kWeightsNames[size_t(weights)];
 }
+
+inline constexpr const char* kUpsampleLayoutNames[] = {"auto", "cell", "pixel"};
 
 // Largest κ (--kappa): glsl::SG_MAX_KAPPA, the largest fp16 value, since the trace stores each sample's
 // smoothed sharpness λ̄ ≤ κ in a 16-bit float (lib/upsample_weights.glsl; tests/upsample_weights_test.cpp

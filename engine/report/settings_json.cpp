@@ -16,7 +16,7 @@ nlohmann::json settingsJson(const RenderSettings& s) {
                 [&](const FloatValue& v) { return nlohmann::json(s.*v.member); },
                 [&](const OnOffValue& v) { return nlohmann::json(s.*v.member); },
                 [&](const ChoiceValue& v) { return nlohmann::json(s.*v.member); },
-                [&](const NamedValue& v) { return nlohmann::json(v.names[size_t(s.*v.member)]); },
+                [&](const NamedValue& v) { return nlohmann::json(v.names[v.get(s)]); },
                 [&](const auto&) -> nlohmann::json {
                     throw Error(std::string("settingsJson: no JSON form for setting '") + spec.name + "'");
                 },

@@ -178,6 +178,7 @@ struct SkinPushConstants {
 #define VCT_UPSAMPLE_SPEC_WEIGHTS 1     // VCT_WEIGHTS_*
 #define VCT_UPSAMPLE_SPEC_TEMPORAL 2    // bool: reproject the history
 #define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 3  // bool: write the sum-of-weights image (views, --aux)
+#define VCT_UPSAMPLE_SPEC_PER_PIXEL 4   // bool: one invocation per pixel (GPUs), not per low-res cell
 
 // resample (full-res cone tracing of the listed pixels)
 #define VCT_RESAMPLE_GROUP_SIZE 64

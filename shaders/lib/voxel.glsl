@@ -41,12 +41,13 @@ VCT_INLINE bool voxelAxisOverlaps(vec3 axis, vec3 v0, vec3 v1, vec3 v2, vec3 hal
     return !(min(p0, min(p1, p2)) > r || max(p0, max(p1, p2)) < -r);
 }
 
-// Half the side of a voxel's box as the voxelizer tests it (shaders/voxelize.comp): a 1024th of a voxel wider
-// than the voxel, so that a surface lying on a voxel face overlaps both voxels beside it whatever the rounding of
-// its vertices' voxel coordinates (cornell's walls at 128³ lie within float rounding of voxel faces; exactly ½
-// left 16 of their voxels to the rounding, which depends on the device and on which multiply-adds the compiler
-// fuses).
-const float VOXEL_OVERLAP_HALF_SIZE = 0.5f + 1.0f / 1024.0f;
+// A vertex's voxel coordinates as the voxelizer uses them (shaders/voxelize.comp; the CPU's checks in tests/
+// alike): snapped to a 1024th of a voxel, so that a surface lying on a voxel face (cornell's walls at 128³, at
+// voxel coordinate 127 up to float rounding) has the same coordinates on every device, whatever multiply-adds a
+// compiler fuses: the overlap test (touching counts) and the walk's bounds then put it into the same voxels. Left
+// to the rounding, the voxels beside such walls differed between lavapipe and an NVIDIA H200 (562 voxels of the
+// hall at 256³). Exact in float for coordinates below 2¹³.
+VCT_INLINE vec3 voxelSnap(vec3 p) { return floor(p * 1024.0f + 0.5f) / 1024.0f; }
 
 // Exact overlap test of triangle (a, b, c) with the axis-aligned box centre ± halfSize. Only products and
 // sums: a degenerate (zero-area, even single-point) triangle gives no NaN and overlaps where its points do.
