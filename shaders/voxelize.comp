@@ -76,8 +76,8 @@ float lodForVoxel(sampler2D tex, vec2 uvA, vec2 uvB, vec2 uvC, float worldArea2)
     return log2(max(texelsPerUnit * frame.voxels.voxelSize, 1.0));
 }
 
-// A vector's components in the order (d, u, v) of dominant axis d, u = (d+1)%3, v = (d+2)%3, and back. Selects,
-// not a variable component index: lavapipe computed wrong voxels with indices that differ between invocations.
+// A vector's components in the order (d, u, v) of dominant axis d, u = (d+1)%3, v = (d+2)%3, and back. Selects
+// rather than a variable component index, which a CPU driver may lower to memory.
 vec3 alongAxis(vec3 a, int d) { return d == 0 ? a.xyz : (d == 1 ? a.yzx : a.zxy); }
 ivec3 alongAxis(ivec3 a, int d) { return d == 0 ? a.xyz : (d == 1 ? a.yzx : a.zxy); }
 ivec3 fromAxis(ivec3 a, int d) { return d == 0 ? a.xyz : (d == 1 ? a.zxy : a.yzx); }
