@@ -63,7 +63,8 @@ std::vector<DrawItem> blendedDrawsBackToFront(const GpuScene& gpuScene, const gl
 }
 
 BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
-                     const EnvironmentSource& environment, DfgLut& dfg, bool vertexColors)
+                     const EnvironmentSource& environment, DfgLut& dfg, const Scene& scene, bool vertexColors,
+                     bool textureLod0)
     : voxelStandIn_(voxelStandIn(context, voxels)),
       brickStandIn_(
           voxels ? vk::Buffer()
@@ -81,7 +82,7 @@ BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
     desc.blendOver = true;
     // VCT_SPEC_VERTEX_COLORS, then VCT_SPEC_SPARSE_MIP0 (GI off: the shader reads no voxel).
     desc.specialization = withSparseMip0({vertexColors ? 1u : 0u}, voxels && voxels->sparseMip0);
-    pipeline_ = vk::Pipeline::graphics(context, desc);
+    pipelines_ = MaterialPipelines(context, desc, scene, DrawSet::Blended, textureLod0);
 }
 
 void BlendPass::execute(const FrameContext& frame) {
@@ -100,7 +101,7 @@ void BlendPass::execute(const FrameContext& frame) {
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the opaque frame's depth, tested, kept as it is
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     beginSceneRendering(frame.cmd, {t.width, t.height}, {color}, depth);
-    drawItems(frame, pipeline_, resources_, blendedDrawsBackToFront(frame.scene, frame.uniforms.view),
+    drawItems(frame, pipelines_, resources_, blendedDrawsBackToFront(frame.scene, frame.uniforms.view),
               kPreviousVertices);
     vkCmdEndRendering(frame.cmd);
 }

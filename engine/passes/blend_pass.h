@@ -17,9 +17,11 @@ class BlendPass : public Pass {
   public:
     // `voxels`: the grid's radiance (null with GI off: the fragments read the environment's light instead).
     // `vertexColors`: whether any primitive of the scene has COLOR_0 (VCT_SPEC_VERTEX_COLORS).
-    // `dfg`: the split-sum table (the renderer's, shared with inject and composite).
+    // `dfg`: the split-sum table (the renderer's, shared with inject and composite). One pipeline per set of
+    // textured slots of the blended materials on CPU devices (MaterialPipelines); `textureLod0`:
+    // RenderSettings::textureLod0.
     BlendPass(const vk::Context& context, const VoxelSource* voxels, const EnvironmentSource& environment,
-              DfgLut& dfg, bool vertexColors);
+              DfgLut& dfg, const Scene& scene, bool vertexColors, bool textureLod0);
     const char* name() const override { return "blend"; }
     // Depends on the scene, the camera and the voxel grid, which changes only with the scene.
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
@@ -30,7 +32,7 @@ class BlendPass : public Pass {
     vk::Image voxelStandIn_;
     vk::Buffer brickStandIn_;
     ResourceTable resources_;
-    vk::Pipeline pipeline_;
+    MaterialPipelines pipelines_;
 };
 
 // The blended draws of the scene, back to front: by the view depth of each instance × primitive's world

@@ -24,7 +24,11 @@ ResourceTable gbufferResources() {
 
 }  // namespace
 
-GBufferPass::GBufferPass(const vk::Context& context, bool vertexColors) : resources_(gbufferResources()) {
+GBufferPass::GBufferPass(const vk::Context& context, const Scene& scene, bool vertexColors, bool textureLod0)
+    : resources_(gbufferResources()),
+      pipelines_(context, pipelineDesc(vertexColors), scene, DrawSet::Opaque, textureLod0) {}
+
+vk::Pipeline::GraphicsDesc GBufferPass::pipelineDesc(bool vertexColors) const {
     vk::Pipeline::GraphicsDesc desc;
     desc.owner = name();
     desc.vertexShader = "gbuffer.vert";
@@ -34,7 +38,7 @@ GBufferPass::GBufferPass(const vk::Context& context, bool vertexColors) : resour
     desc.bindings = resources_.bindings();
     desc.pushConstantSize = sizeof(gpu::DrawPushConstants);
     desc.specialization = {vertexColors ? 1u : 0u};  // VCT_SPEC_VERTEX_COLORS
-    pipeline_ = vk::Pipeline::graphics(context, desc);
+    return desc;
 }
 
 void GBufferPass::execute(const FrameContext& frame) {
@@ -58,7 +62,7 @@ void GBufferPass::execute(const FrameContext& frame) {
     depth.clearValue.depthStencil = {1.0f, 0};
     beginSceneRendering(frame.cmd, {t.width, t.height}, colors, depth);
     // Blended surfaces are drawn forward by the blend pass, after the opaque frame (docs/design.md §2.6).
-    drawScene(frame, pipeline_, resources_, kPreviousVertices, DrawSet::Opaque);
+    drawScene(frame, pipelines_, resources_, kPreviousVertices, DrawSet::Opaque);
     vkCmdEndRendering(frame.cmd);
 }
 

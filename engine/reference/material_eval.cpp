@@ -41,9 +41,12 @@ MaterialEvaluator::MaterialEvaluator(const Scene& scene) : scene_(scene) {
 }
 
 glm::vec4 MaterialEvaluator::sampleTexture(int index, bool normalSlot, glm::vec2 uv) const {
-    // The GPU scene's defaults (render/gpu_scene.cpp): white, and a flat normal stored as (128, 128, 255).
-    if (index < 0 || size_t(index) >= scene_.textures.size() || scene_.textures[size_t(index)].mips.empty())
-        return normalSlot ? glm::vec4(128.0f / 255.0f, 128.0f / 255.0f, 1.0f, 1.0f) : glm::vec4(1.0f);
+    // What lib/surface.glsl reads where a material has no texture (materialTextureOr): white, and the flat
+    // normal's texel (VCT_FLAT_NORMAL_TEXEL).
+    if (index < 0 || size_t(index) >= scene_.textures.size() || scene_.textures[size_t(index)].mips.empty()) {
+        constexpr float flat = float(VCT_FLAT_NORMAL_TEXEL) / 255.0f;
+        return normalSlot ? glm::vec4(flat, flat, 1.0f, 1.0f) : glm::vec4(1.0f);
+    }
     const Texture& texture = scene_.textures[size_t(index)];
     const int w = int(texture.width), h = int(texture.height);
     const std::vector<uint8_t>& texels = texture.mips[0];

@@ -98,7 +98,7 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
         g.flags = glm::uvec4(m.alphaMode == AlphaMode::Mask    ? VCT_ALPHA_MASK
                              : m.alphaMode == AlphaMode::Blend ? VCT_ALPHA_BLEND
                                                                : VCT_ALPHA_OPAQUE,
-                             0, 0, 0);
+                             texturedSlots(m), 0, 0);
         materials.push_back(g);
     }
     materials_ = vk::Buffer::withData(context, materials.data(), materials.size() * sizeof(gpu::GpuMaterial),
@@ -204,7 +204,8 @@ void GpuScene::uploadTextures() {
         textureSamplers_.push_back(samplerFor(texture.wrapS, texture.wrapT));
     }
     defaultWhite_ = uploadTexture(solidTexture(TextureKind::Linear, 255, 255, 255, 255));
-    defaultNormal_ = uploadTexture(solidTexture(TextureKind::Normal, 128, 128, 255, 255));
+    defaultNormal_ = uploadTexture(
+        solidTexture(TextureKind::Normal, VCT_FLAT_NORMAL_TEXEL, VCT_FLAT_NORMAL_TEXEL, 255, 255));
     defaultBlack_ = uploadTexture(solidTexture(TextureKind::Linear, 0, 0, 0, 255));
     defaultSampler_ = samplerFor(TextureWrap::Repeat, TextureWrap::Repeat);
 }
@@ -227,11 +228,19 @@ int textureIndex(const Material& material, GpuScene::Slot slot) {
 }
 }  // namespace
 
+uint32_t GpuScene::texturedSlots(const Material& material) {
+    uint32_t bits = 0;
+    for (Slot slot : kSlots)
+        if (textureIndex(material, slot) >= 0) bits |= 1u << uint32_t(slot);
+    return bits;
+}
+
 VkImageView GpuScene::textureView(const Material& material, Slot slot) const {
     const int index = textureIndex(material, slot);
     if (index >= 0) return textures_[size_t(index)].view();
-    // Neutral defaults: the factors alone decide (white multiplies by 1; emissive texture defaults to 1 too,
-    // since glTF's emissive = factor × texture).
+    // Neutral defaults, bound so that every descriptor is valid; the shaders read GpuMaterial.flags.y and use
+    // the neutral values themselves, never these (lib/surface.glsl). White multiplies by 1 (emissive too, since
+    // glTF's emissive = factor × texture).
     return slot == Slot::Normal ? defaultNormal_.view() : defaultWhite_.view();
 }
 

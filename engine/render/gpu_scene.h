@@ -66,8 +66,19 @@ class GpuScene {
     const glm::mat4& lightViewProj() const { return lightViewProj_; }
     float shadowTexelWorldSize() const { return shadowTexelWorld_; }
 
-    // The image view for a texture slot; a neutral 1x1 default when the material has none.
-    enum class Slot { BaseColor, MetallicRoughness, Normal, Emissive, Occlusion };
+    // The image view for a texture slot; a neutral 1x1 default when the material has none (bound so that every
+    // descriptor is valid; the shaders do not sample it: GpuMaterial.flags.y).
+    enum class Slot {
+        BaseColor = VCT_TEXTURE_SLOT_BASE_COLOR,
+        MetallicRoughness = VCT_TEXTURE_SLOT_METALLIC_ROUGHNESS,
+        Normal = VCT_TEXTURE_SLOT_NORMAL,
+        Emissive = VCT_TEXTURE_SLOT_EMISSIVE,
+        Occlusion = VCT_TEXTURE_SLOT_OCCLUSION,
+    };
+    static constexpr Slot kSlots[] = {Slot::BaseColor, Slot::MetallicRoughness, Slot::Normal, Slot::Emissive,
+                                      Slot::Occlusion};
+    // GpuMaterial.flags.y: bit (1 << slot) for each slot in which `material` has a texture.
+    static uint32_t texturedSlots(const Material& material);
     VkImageView textureView(const Material& material, Slot slot) const;
     VkSampler textureSampler(const Material& material, Slot slot) const;
 

@@ -84,7 +84,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     const std::vector<Primitive>& primitives = scene.primitives;
     const bool vertexColors =
         std::any_of(primitives.begin(), primitives.end(), [](const Primitive& p) { return p.hasColors; });
-    passes_.push_back(std::make_unique<GBufferPass>(context, vertexColors));
+    passes_.push_back(std::make_unique<GBufferPass>(context, scene, vertexColors, settings.textureLod0));
     passes_.push_back(std::make_unique<DirectPass>(context, environment, settings.gi));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
@@ -102,7 +102,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     if (gpuScene_.hasBlended()) {
         const VoxelSource voxels = voxelGrid_ ? VoxelSource::of(*voxelGrid_, environment) : VoxelSource{};
         passes_.push_back(std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment,
-                                                      *dfg_, vertexColors));
+                                                      *dfg_, scene, vertexColors, settings.textureLod0));
     }
     passes_.push_back(std::make_unique<CompositePass>(context, *dfg_));
 
@@ -223,8 +223,7 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
     u.upsample.frameIndex = frameIndex_;
 
     u.flags = (settings_.gi ? VCT_FLAG_GI : 0u) | (settings_.toksvig ? VCT_FLAG_TOKSVIG : 0u) |
-              (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) |
-              (settings_.textureLod0 ? VCT_FLAG_TEXTURE_LOD0 : 0u) | (history ? VCT_FLAG_HISTORY : 0u) |
+              (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) | (history ? VCT_FLAG_HISTORY : 0u) |
               (targets_.blend ? VCT_FLAG_BLEND : 0u) |
               // Jittered cones are turned too (their turn is one of the jitter's dimensions).
               (settings_.coneRotation || settings_.coneJitter ? VCT_FLAG_CONE_ROTATION : 0u) |

@@ -28,11 +28,10 @@ using glm::vec4;
 // ---- per-frame constants (uniform buffer, binding VCT_BINDING_FRAME in every pass; std140) ----
 
 // Bits of FrameUniforms::flags: the frame's switches.
-#define VCT_FLAG_GI 1u            // cone-traced indirect light (off: direct adds the environment's light)
-#define VCT_FLAG_TOKSVIG 2u       // Toksvig roughness from normal-map mips (docs/design.md §4.1)
-#define VCT_FLAG_SPECULAR_AA 4u   // geometric specular anti-aliasing from normal derivatives (§4.2)
-#define VCT_FLAG_TEXTURE_LOD0 8u  // sample material textures at level 0 only (supersampled references)
-#define VCT_FLAG_HISTORY 16u      // last frame's indirect light is a valid history (temporal on, no cut)
+#define VCT_FLAG_GI 1u           // cone-traced indirect light (off: direct adds the environment's light)
+#define VCT_FLAG_TOKSVIG 2u      // Toksvig roughness from normal-map mips (docs/design.md §4.1)
+#define VCT_FLAG_SPECULAR_AA 4u  // geometric specular anti-aliasing from normal derivatives (§4.2)
+#define VCT_FLAG_HISTORY 16u     // last frame's indirect light is a valid history (temporal on, no cut)
 #define VCT_FLAG_BLEND 32u  // the blend pass drew the transparent layer (composite puts it over the frame)
 #define VCT_FLAG_CONE_ROTATION 64u  // turn the diffuse cones per pixel and frame (lib/cone_trace.glsl)
 #define VCT_FLAG_VOXEL_GLOSSY 128u  // voxels reflect the lights' specular lobes (inject.comp; §5.11)
@@ -51,6 +50,16 @@ using glm::vec4;
 // (RenderSettings::sparseMip0From). A constant, not a uniform: lavapipe runs both sides of a branch its lanes
 // could take, so the path not taken would still cost its texture reads (trace 3.3× measured with a uniform).
 #define VCT_SPEC_SPARSE_MIP0 4
+// The G-buffer and blend pipelines (lib/surface.glsl): bit (1 << VCT_TEXTURE_SLOT_*) set for each texture slot the
+// pipeline may sample. On a CPU device there is one pipeline per set of slots the scene's materials have, each
+// draw using its material's (render/scene_draw.h): lavapipe would filter a missing texture's 1x1 default like a
+// real one, a branch on the material's flags would not skip it. On a GPU one pipeline has every slot and that
+// branch (uniform over a draw) skips the missing ones.
+#define VCT_SPEC_TEXTURED_SLOTS 5
+// The same pipelines: sample material textures at level 0 only (RenderSettings::textureLod0, supersampled
+// references). A constant: a flag would make lavapipe filter every material texture twice, at level 0 and
+// mip-mapped.
+#define VCT_SPEC_TEXTURE_LOD0 6
 // direct.comp: whether GI is on (RenderSettings::gi). Off, direct adds the environment's light; a uniform flag
 // would make lavapipe pay for those environment reads on every pixel with GI on too (direct 55 → 45 ms measured,
 // cornell 640×360).
@@ -129,11 +138,26 @@ struct GpuLight {
 #define VCT_ALPHA_MASK 1
 #define VCT_ALPHA_BLEND 2  // drawn by the blend pass, not the G-buffer (docs/design.md §2.6)
 
+// A material's texture slots (GpuScene::Slot takes its values from these). GpuMaterial.flags.y has bit
+// (1 << slot) set where the material has a texture in that slot. A slot without one is not sampled: the shaders
+// use its neutral value (lib/surface.glsl) where they would have filtered a 1x1 default texture, which on
+// lavapipe cost as much as a real texture (benchmarks/README.md, round 8).
+#define VCT_TEXTURE_SLOT_BASE_COLOR 0
+#define VCT_TEXTURE_SLOT_METALLIC_ROUGHNESS 1
+#define VCT_TEXTURE_SLOT_NORMAL 2
+#define VCT_TEXTURE_SLOT_EMISSIVE 3
+#define VCT_TEXTURE_SLOT_OCCLUSION 4
+// The x and y texel (8-bit unorm) of the flat normal that a material without a normal map reads: the GPU's 1x1
+// default, lib/surface.glsl's neutral value and the path tracer's (reference/material_eval.cpp) alike. 128/255 is
+// 0.0039 off the flat 0.5, a 0.3° tilt of every surface without a normal map, kept so that images and the
+// committed references stay comparable.
+#define VCT_FLAT_NORMAL_TEXEL 128
+
 struct GpuMaterial {
     vec4 baseColorFactor;
     vec4 emissiveNormalScale;        // rgb emissive factor, w: normal scale
     vec4 metallicRoughnessCutoffAo;  // metallic, perceptual roughness, alpha cutoff, occlusion strength
-    uvec4 flags;                     // x: alpha mode
+    uvec4 flags;                     // x: alpha mode, y: the slots that have a texture (VCT_TEXTURE_SLOT_*)
 };
 
 struct GpuInstance {

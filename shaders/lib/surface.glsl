@@ -20,11 +20,23 @@ vec3 safeNormalize(vec3 v, vec3 fallback) {
     return (len2 > 1e-20 && !isinf(len2) && !isnan(len2)) ? v * inversesqrt(len2) : fallback;
 }
 
-// A material texture: mip-mapped (and anisotropic where the sampler is), or level 0 only when
-// VCT_FLAG_TEXTURE_LOD0 is set, so that a supersampled, box-filtered render shows the unfiltered material: the
-// ground truth that mip filtering and Toksvig approximate (tests/toksvig_test.cpp). The condition is uniform.
+// A material texture: mip-mapped (and anisotropic where the sampler is), or level 0 only with TEXTURE_LOD0
+// (VCT_SPEC_TEXTURE_LOD0), so that a supersampled, box-filtered render shows the unfiltered material: the ground
+// truth that mip filtering and Toksvig approximate (tests/toksvig_test.cpp).
+layout(constant_id = VCT_SPEC_TEXTURE_LOD0) const bool TEXTURE_LOD0 = false;
 vec4 materialTexture(sampler2D map, vec2 uv) {
-    return (frame.flags & VCT_FLAG_TEXTURE_LOD0) != 0u ? textureLod(map, uv, 0.0) : texture(map, uv);
+    return TEXTURE_LOD0 ? textureLod(map, uv, 0.0) : texture(map, uv);
+}
+
+// The material's texture in `slot` (VCT_TEXTURE_SLOT_*), or `neutral` where it has none: the value that leaves
+// the factor alone (white; a flat tangent-space normal). A missing texture is not sampled: on a CPU device the
+// pipeline's TEXTURED_SLOTS (VCT_SPEC_TEXTURED_SLOTS) leaves the sample out of the shader; on a GPU the
+// material's flags skip it, a condition uniform over a draw, so the samples' derivatives stay defined.
+layout(constant_id = VCT_SPEC_TEXTURED_SLOTS) const uint TEXTURED_SLOTS = 31u;  // every slot
+vec4 materialTextureOr(GpuMaterial material, int slot, sampler2D map, vec2 uv, vec4 neutral) {
+    const uint bit = 1u << uint(slot);
+    return (TEXTURED_SLOTS & bit) != 0u && (material.flags.y & bit) != 0u ? materialTexture(map, uv)
+                                                                          : neutral;
 }
 
 // The triangle's geometric normal, towards the camera (the front face's normal on a front face, the back
@@ -42,7 +54,8 @@ vec3 surfaceFaceNormal(vec3 world) {
 // glTF COLOR_0 multiplies it (alpha too), only where the primitive has one (`hasVertexColor`, the draw's
 // indices.w): the interpolated white of the others need not be exactly 1, and their images stay bit-identical.
 vec4 surfaceBaseColor(GpuMaterial material, vec2 uv, vec4 vertexColor, bool hasVertexColor) {
-    vec4 baseColor = material.baseColorFactor * materialTexture(baseColorTexture, uv);
+    vec4 baseColor = material.baseColorFactor * materialTextureOr(material, VCT_TEXTURE_SLOT_BASE_COLOR,
+                                                                  baseColorTexture, uv, vec4(1.0));
     if (hasVertexColor) baseColor *= vertexColor;
     return baseColor;
 }
@@ -69,18 +82,27 @@ Surface evaluateSurface(GpuMaterial material, vec3 faceNormal, vec3 inNormal, ve
 
     // Tangent-space normal (glTF: scaled in x, y). The texel's length is kept until here: mips of a normal
     // map average unit normals, and |N̄| < 1 tells how much they disagreed (Toksvig, below).
-    const vec3 mapped = materialTexture(normalTexture, uv).xyz * 2.0 - 1.0;
+    const float flatTexel = float(VCT_FLAT_NORMAL_TEXEL) / 255.0;
+    const vec4 normalTexel = materialTextureOr(material, VCT_TEXTURE_SLOT_NORMAL, normalTexture, uv,
+                                               vec4(flatTexel, flatTexel, 1.0, 1.0));
+    const vec3 mapped = normalTexel.xyz * 2.0 - 1.0;
     const float normalScale = material.emissiveNormalScale.w;
     const vec3 scaled = vec3(mapped.xy * normalScale, mapped.z);
     const vec3 shadingNormal =
         safeNormalize(tangent * scaled.x + bitangent * scaled.y + normal * scaled.z, normal);
 
-    const vec4 mr = materialTexture(metallicRoughnessTexture, uv);
+    const vec4 mr = materialTextureOr(material, VCT_TEXTURE_SLOT_METALLIC_ROUGHNESS, metallicRoughnessTexture,
+                                      uv, vec4(1.0));
     const float metallic = clamp(material.metallicRoughnessCutoffAo.x * mr.b, 0.0, 1.0);
     const float perceptualRoughness = clamp(material.metallicRoughnessCutoffAo.y * mr.g, 0.0, 1.0);
-    const vec3 emissive = material.emissiveNormalScale.rgb * materialTexture(emissiveTexture, uv).rgb;
+    const vec3 emissive =
+        material.emissiveNormalScale.rgb *
+        materialTextureOr(material, VCT_TEXTURE_SLOT_EMISSIVE, emissiveTexture, uv, vec4(1.0)).rgb;
     const float occlusion =
-        1.0 + material.metallicRoughnessCutoffAo.w * (materialTexture(occlusionTexture, uv).r - 1.0);
+        1.0 +
+        material.metallicRoughnessCutoffAo.w *
+            (materialTextureOr(material, VCT_TEXTURE_SLOT_OCCLUSION, occlusionTexture, uv, vec4(1.0)).r -
+             1.0);
 
     // Normal filtering widens the GGX lobe: α'² from α² (α = perceptual²), written back as perceptual √α'.
     const float alpha = alphaFromPerceptual(perceptualRoughness);
