@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // composite: linear HDR result, then exposure, tone map and sRGB encoding for display.
-// With GI on (VCT_FLAG_GI): direct + albedo·diffuse·occlusion + specularDfg(F0, DFG)·specular, where
+// With GI on (GI, VCT_COMPOSITE_SPEC_GI): direct + albedo·diffuse·occlusion + specularDfg(F0, DFG)·specular, where
 // diffuse and specular are the demodulated cone-traced incoming radiance (lib/cone.glsl) and DFG the split-sum
 // table with multiple-scattering energy compensation (brdf.glsl). With GI off, direct already holds the
 // environment's light, unoccluded (direct.comp). Blended surfaces (the blend pass's premultiplied layer) go
@@ -14,6 +14,8 @@
 #include "lib/indirect_pack.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
+layout(constant_id = VCT_COMPOSITE_SPEC_GI) const bool GI = true;         // RenderSettings::gi
+layout(constant_id = VCT_COMPOSITE_SPEC_BLEND) const bool BLEND = false;  // the scene has blended surfaces
 
 // Resources: bound by engine/passes/composite_pass.cpp (its resource table gives these binding numbers and is checked
 // against them when the pipeline is made).
@@ -29,7 +31,7 @@ layout(set = 0, binding = 7) uniform sampler2D emissiveOcclusionTexture;
 layout(set = 0, binding = 8, rgba32ui) uniform readonly uimage2D indirectImage;
 // Split-sum DFG table, uv = (n·v, perceptual roughness).
 layout(set = 0, binding = 10) uniform sampler2D dfgTable;
-// Blended surfaces (the blend pass, VCT_FLAG_BLEND): premultiplied radiance, a = their combined coverage.
+// Blended surfaces (the blend pass, BLEND): premultiplied radiance, a = their combined coverage.
 layout(set = 0, binding = 11) uniform sampler2D transparentTexture;
 
 // Indirect light leaving the surface at `pixel` towards the camera.
@@ -58,11 +60,11 @@ void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.imageSize)))) return;
     vec3 hdr = imageLoad(directImage, pixel).rgb;
-    if ((frame.flags & VCT_FLAG_GI) != 0u) hdr += indirect(pixel);
+    if (GI) hdr += indirect(pixel);
     // The blended surfaces over the opaque frame (Porter-Duff "over", premultiplied). The layer holds them
     // already composited with each other back to front; "over" is associative, so this equals drawing each
     // over the finished opaque frame in turn.
-    if ((frame.flags & VCT_FLAG_BLEND) != 0u) {
+    if (BLEND) {
         const vec4 layer = texelFetch(transparentTexture, pixel, 0);
         hdr = layer.rgb + (1.0 - layer.a) * hdr;
     }

@@ -54,11 +54,12 @@ Range roughnessOn(const ImageRgba32f& roughness, const ImageRgba32f& ids, float 
 TEST(MaterialPipelinesGpu, EveryMaterialIsDrawnWithItsOwnTextures) {
     const fs::path dir = test::freshOutputDir("material_pipelines/render");
     const fs::path ref = test::freshOutputDir("material_pipelines/reference");
-    auto r = test::runVct(
-        {"render", "--scene", "cornell", "--size", "160x90", "--frames", "1", "--aux", "--out", dir.string()});
+    auto r = test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames", "1", "--aux",
+                           "--out", dir.string()});
     ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
     // The path tracer's surface ids (cornell's surfaces: floor 0, back wall 2, red wall 4) at the same frame.
-    r = test::runVct({"reference", "--scene", "cornell", "--size", "160x90", "--spp", "1", "--out", ref.string()});
+    r = test::runVct(
+        {"reference", "--scene", "cornell", "--size", "160x90", "--spp", "1", "--out", ref.string()});
     ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
     const ImageRgba32f ids = readExr(ref / "surface_id.exr");
     const ImageRgba32f roughness = readExr(dir / "roughness.exr");

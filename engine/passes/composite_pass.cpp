@@ -2,7 +2,7 @@
 
 namespace vct {
 
-CompositePass::CompositePass(const vk::Context& context, DfgLut& dfg)
+CompositePass::CompositePass(const vk::Context& context, DfgLut& dfg, bool gi, bool blended)
     :  // Binding numbers: shaders/composite.comp's.
       resources_("composite",
                  {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
@@ -13,12 +13,16 @@ CompositePass::CompositePass(const vk::Context& context, DfgLut& dfg)
                   {5, Target::normalRoughness, Access::Sampled},
                   {6, Target::baseColorMetallic, Access::Sampled},
                   {7, Target::emissiveOcclusion, Access::Sampled},
-                  // A 1×1 stand-in with GI off: one pipeline for both modes, the shader skips it.
+                  // A 1×1 stand-in with GI off, which the shader does not read.
                   {8, Target::indirect, Access::Read},
                   {10, Resource::image("dfg", dfg.image(), dfg.sampler()), Access::Sampled},
-                  // The blend pass's layer (a 1×1 stand-in in a scene without blended surfaces, skipped).
+                  // The blend pass's layer (a 1×1 stand-in in a scene without blended surfaces, not read).
                   {11, Target::transparent, Access::Sampled}}) {
-    pipeline_ = vk::Pipeline::compute(context, name(), "composite.comp", resources_.bindings(), 0);
+    std::vector<uint32_t> specialization(VCT_COMPOSITE_SPEC_BLEND + 1);
+    specialization[VCT_COMPOSITE_SPEC_GI] = gi ? 1u : 0u;
+    specialization[VCT_COMPOSITE_SPEC_BLEND] = blended ? 1u : 0u;
+    pipeline_ =
+        vk::Pipeline::compute(context, name(), "composite.comp", resources_.bindings(), 0, specialization);
 }
 
 void CompositePass::execute(const FrameContext& frame) {

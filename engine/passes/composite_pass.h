@@ -12,8 +12,9 @@ namespace vct {
 
 class CompositePass : public Pass {
   public:
-    // `dfg`: the split-sum table (the renderer's, shared with inject and blend).
-    CompositePass(const vk::Context& context, DfgLut& dfg);
+    // `dfg`: the split-sum table (the renderer's, shared with inject and blend). `gi`: RenderSettings::gi;
+    // `blended`: whether the scene has blended surfaces (the blend pass runs). Both specialization constants.
+    CompositePass(const vk::Context& context, DfgLut& dfg, bool gi, bool blended);
     const char* name() const override { return "composite"; }
     void execute(const FrameContext& frame) override;
 

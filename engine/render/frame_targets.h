@@ -23,7 +23,7 @@ enum class TargetSize : uint8_t { Frame, Trace, Shadow };
 enum class TargetUsage : uint8_t { Depth, Color, Storage };
 // Exists: Always; WithGi = only with GI (fixed for a renderer's life); StandInWithoutGi = 1×1 without GI
 // (a pass that runs in both modes binds it, its shader skips it); StandInWithoutBlend = 1×1 in a scene without
-// blended surfaces (composite binds it and skips it).
+// blended surfaces (composite binds it and does not read it).
 enum class TargetExists : uint8_t { Always, WithGi, StandInWithoutGi, StandInWithoutBlend };
 // When a history pair swaps at the start of a frame (FrameTargets::swapHistory): every frame, or only when
 // the G-buffer is redrawn (a frame that reuses it keeps both copies, render/renderer.cpp).

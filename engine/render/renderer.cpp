@@ -104,7 +104,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         passes_.push_back(std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment,
                                                       *dfg_, scene, vertexColors, settings.textureLod0));
     }
-    passes_.push_back(std::make_unique<CompositePass>(context, *dfg_));
+    passes_.push_back(std::make_unique<CompositePass>(context, *dfg_, settings.gi, gpuScene_.hasBlended()));
 
     for (FrameSlot& slot : slots_) {
         VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -224,7 +224,6 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
 
     u.flags = (settings_.gi ? VCT_FLAG_GI : 0u) | (settings_.toksvig ? VCT_FLAG_TOKSVIG : 0u) |
               (settings_.specularAA ? VCT_FLAG_SPECULAR_AA : 0u) | (history ? VCT_FLAG_HISTORY : 0u) |
-              (targets_.blend ? VCT_FLAG_BLEND : 0u) |
               // Jittered cones are turned too (their turn is one of the jitter's dimensions).
               (settings_.coneRotation || settings_.coneJitter ? VCT_FLAG_CONE_ROTATION : 0u) |
               (settings_.coneJitter ? VCT_FLAG_CONE_JITTER : 0u) |

@@ -28,11 +28,10 @@ using glm::vec4;
 // ---- per-frame constants (uniform buffer, binding VCT_BINDING_FRAME in every pass; std140) ----
 
 // Bits of FrameUniforms::flags: the frame's switches.
-#define VCT_FLAG_GI 1u           // cone-traced indirect light (off: direct adds the environment's light)
-#define VCT_FLAG_TOKSVIG 2u      // Toksvig roughness from normal-map mips (docs/design.md §4.1)
-#define VCT_FLAG_SPECULAR_AA 4u  // geometric specular anti-aliasing from normal derivatives (§4.2)
-#define VCT_FLAG_HISTORY 16u     // last frame's indirect light is a valid history (temporal on, no cut)
-#define VCT_FLAG_BLEND 32u  // the blend pass drew the transparent layer (composite puts it over the frame)
+#define VCT_FLAG_GI 1u              // cone-traced indirect light (off: direct adds the environment's light)
+#define VCT_FLAG_TOKSVIG 2u         // Toksvig roughness from normal-map mips (docs/design.md §4.1)
+#define VCT_FLAG_SPECULAR_AA 4u     // geometric specular anti-aliasing from normal derivatives (§4.2)
+#define VCT_FLAG_HISTORY 16u        // last frame's indirect light is a valid history (temporal on, no cut)
 #define VCT_FLAG_CONE_ROTATION 64u  // turn the diffuse cones per pixel and frame (lib/cone_trace.glsl)
 #define VCT_FLAG_VOXEL_GLOSSY 128u  // voxels reflect the lights' specular lobes (inject.comp; §5.11)
 #define VCT_FLAG_CONE_JITTER \
@@ -64,6 +63,11 @@ using glm::vec4;
 // would make lavapipe pay for those environment reads on every pixel with GI on too (direct 55 → 45 ms measured,
 // cornell 640×360).
 #define VCT_DIRECT_SPEC_GI 0
+// composite.comp: whether GI is on (the indirect light's reads) and whether the scene has blended surfaces (the
+// blend pass's layer, put over the frame). Constants for the same reason: as flags, lavapipe read the layer
+// on every pixel of every scene.
+#define VCT_COMPOSITE_SPEC_GI 0
+#define VCT_COMPOSITE_SPEC_BLEND 1
 
 // The lights and the shadow map (direct, inject), the environment's rotation (lib/environment_sample.glsl).
 struct LightingUniforms {
