@@ -27,7 +27,8 @@ TEST(MaterialPipelines, TexturedSlotsNameTheSlotsThatHaveATexture) {
     Material all;
     all.baseColorTexture = all.metallicRoughnessTexture = all.normalTexture = all.emissiveTexture =
         all.occlusionTexture = 1;
-    EXPECT_EQ(GpuScene::texturedSlots(all), 31u);
+    EXPECT_EQ(GpuScene::texturedSlots(all), VCT_EVERY_TEXTURE_SLOT);
+    EXPECT_EQ(VCT_EVERY_TEXTURE_SLOT, 31u);
 }
 
 // The G-buffer's roughness of the pixels where the path tracer saw surface `id`: {min, max, count}.

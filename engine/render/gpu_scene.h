@@ -2,6 +2,7 @@
 // once; per frame only the instance transforms (current and previous) are written.
 #pragma once
 
+#include <iterator>
 #include <map>
 #include <memory>
 #include <vector>
@@ -77,6 +78,7 @@ class GpuScene {
     };
     static constexpr Slot kSlots[] = {Slot::BaseColor, Slot::MetallicRoughness, Slot::Normal, Slot::Emissive,
                                       Slot::Occlusion};
+    static_assert(VCT_EVERY_TEXTURE_SLOT == (1u << std::size(kSlots)) - 1u, "a slot missing from kSlots");
     // GpuMaterial.flags.y: bit (1 << slot) for each slot in which `material` has a texture.
     static uint32_t texturedSlots(const Material& material);
     VkImageView textureView(const Material& material, Slot slot) const;

@@ -9,8 +9,6 @@ namespace {
 // The material's textures, written per draw.
 enum TextureBinding : uint32_t { kBaseColor = 3, kMetallicRoughness, kNormal, kEmissive, kOcclusion };
 
-constexpr uint32_t kEveryTexturedSlot = (1u << std::size(GpuScene::kSlots)) - 1u;
-
 }  // namespace
 
 bool inDrawSet(const Material& material, DrawSet set) {
@@ -27,12 +25,12 @@ MaterialPipelines::MaterialPipelines(const vk::Context& context, vk::Pipeline::G
             pipelineOfMaterial_.push_back(0);
             continue;
         }
-        const uint32_t slots = perSlotSet ? GpuScene::texturedSlots(material) : kEveryTexturedSlot;
+        const uint32_t slots = perSlotSet ? GpuScene::texturedSlots(material) : VCT_EVERY_TEXTURE_SLOT;
         auto found = std::find(slotSets.begin(), slotSets.end(), slots);
         if (found == slotSets.end()) found = slotSets.insert(slotSets.end(), slots);
         pipelineOfMaterial_.push_back(uint32_t(found - slotSets.begin()));
     }
-    if (slotSets.empty()) slotSets.push_back(kEveryTexturedSlot);  // nothing drawn: one pipeline to bind
+    if (slotSets.empty()) slotSets.push_back(VCT_EVERY_TEXTURE_SLOT);  // nothing drawn: one pipeline to bind
     desc.specialization.resize(std::max<size_t>(desc.specialization.size(),
                                                 std::max(VCT_SPEC_TEXTURED_SLOTS, VCT_SPEC_TEXTURE_LOD0) + 1),
                                0u);

@@ -151,6 +151,7 @@ struct GpuLight {
 #define VCT_TEXTURE_SLOT_NORMAL 2
 #define VCT_TEXTURE_SLOT_EMISSIVE 3
 #define VCT_TEXTURE_SLOT_OCCLUSION 4
+#define VCT_EVERY_TEXTURE_SLOT 31u  // bit (1 << slot) of each slot above (GpuScene::kSlots checks it)
 // The x and y texel (8-bit unorm) of the flat normal that a material without a normal map reads: the GPU's 1x1
 // default, lib/surface.glsl's neutral value and the path tracer's (reference/material_eval.cpp) alike. 128/255 is
 // 0.0039 off the flat 0.5, a 0.3° tilt of every surface without a normal map, kept so that images and the

@@ -32,7 +32,7 @@ vec4 materialTexture(sampler2D map, vec2 uv) {
 // the factor alone (white; a flat tangent-space normal). A missing texture is not sampled: on a CPU device the
 // pipeline's TEXTURED_SLOTS (VCT_SPEC_TEXTURED_SLOTS) leaves the sample out of the shader; on a GPU the
 // material's flags skip it, a condition uniform over a draw, so the samples' derivatives stay defined.
-layout(constant_id = VCT_SPEC_TEXTURED_SLOTS) const uint TEXTURED_SLOTS = 31u;  // every slot
+layout(constant_id = VCT_SPEC_TEXTURED_SLOTS) const uint TEXTURED_SLOTS = VCT_EVERY_TEXTURE_SLOT;
 vec4 materialTextureOr(GpuMaterial material, int slot, sampler2D map, vec2 uv, vec4 neutral) {
     const uint bit = 1u << uint(slot);
     return (TEXTURED_SLOTS & bit) != 0u && (material.flags.y & bit) != 0u ? materialTexture(map, uv)
