@@ -16,6 +16,10 @@
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 layout(constant_id = VCT_COMPOSITE_SPEC_GI) const bool GI = true;         // RenderSettings::gi
 layout(constant_id = VCT_COMPOSITE_SPEC_BLEND) const bool BLEND = false;  // the scene has blended surfaces
+// The scene's materials have occlusion (GpuScene::hasOcclusion): else the G-buffer holds 1 (shared.h).
+layout(constant_id = VCT_COMPOSITE_SPEC_OCCLUSION) const bool OCCLUSION = true;
+// Also write the linear HDR image (Renderer::readFinalHdr); the frame writes the tone-mapped one alone.
+layout(constant_id = VCT_COMPOSITE_SPEC_HDR) const bool HDR = true;
 
 // Resources: bound by engine/passes/composite_pass.cpp (its resource table gives these binding numbers and is checked
 // against them when the pipeline is made).
@@ -41,7 +45,7 @@ vec3 indirect(ivec2 pixel) {
     const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
-    const float occlusion = texelFetch(emissiveOcclusionTexture, pixel, 0).a;
+    const float occlusion = OCCLUSION ? texelFetch(emissiveOcclusionTexture, pixel, 0).a : 1.0;
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
     const vec3 n = gbufferNormal(normalRoughness);
     const vec3 v = viewDirection(frame.cameraPosition - p, n);
@@ -68,6 +72,6 @@ void main() {
         const vec4 layer = texelFetch(transparentTexture, pixel, 0);
         hdr = layer.rgb + (1.0 - layer.a) * hdr;
     }
-    imageStore(hdrImage, pixel, vec4(hdr, 1.0));
+    if (HDR) imageStore(hdrImage, pixel, vec4(hdr, 1.0));
     imageStore(ldrImage, pixel, vec4(linearToSrgb(toneMapAces(hdr, frame.exposure)), 1.0));
 }

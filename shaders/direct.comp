@@ -12,6 +12,10 @@
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 layout(constant_id = VCT_DIRECT_SPEC_GI) const bool GI = true;  // --gi (VCT_FLAG_GI), as a constant: shared.h
+// The scene's materials emit / have occlusion (GpuScene::hasEmission, hasOcclusion): else the G-buffer holds no
+// emission and occlusion 1, and is not read for them (shared.h).
+layout(constant_id = VCT_DIRECT_SPEC_EMISSION) const bool EMISSION = true;
+layout(constant_id = VCT_DIRECT_SPEC_OCCLUSION) const bool OCCLUSION = true;
 
 // Resources: bound by engine/passes/direct_pass.cpp (its resource table gives these binding numbers and is checked
 // against them when the pipeline is made).
@@ -44,7 +48,10 @@ void main() {
     }
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
-    const vec4 emissiveOcclusion = texelFetch(emissiveOcclusionTexture, pixel, 0);
+    // Occlusion is read only with GI off (composite applies it to the indirect light).
+    const vec4 emissiveOcclusion = EMISSION || (OCCLUSION && !GI)
+                                       ? texelFetch(emissiveOcclusionTexture, pixel, 0)
+                                       : vec4(0.0, 0.0, 0.0, 1.0);
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
     const vec3 n = gbufferNormal(normalRoughness);  // never NaN: a zero-length normal reads as +y
     const vec3 v = viewDirection(frame.cameraPosition - p, n);

@@ -98,7 +98,7 @@ Render render(const Scene& scene, bool gi = false, uint32_t frames = 1) {
         input.cut = i == 0;
         renderer.render(input);
     }
-    const std::vector<float> rgba = renderer.readFloatImage(renderer.targets().hdr);
+    const std::vector<float> rgba = renderer.readFinalHdr();
     Render result;
     for (size_t p = 0; p < rgba.size() / 4; ++p)
         result.hdr.emplace_back(rgba[4 * p], rgba[4 * p + 1], rgba[4 * p + 2]);

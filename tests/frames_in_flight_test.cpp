@@ -46,7 +46,7 @@ FramesRun renderFrames(const Scene& scene, uint32_t framesInFlight) {
         run.resampled.push_back(renderer.resampledFraction());
     }
     renderer.finishFrames();
-    run.finalImage = renderer.readFloatImage(renderer.targets().hdr);
+    run.finalImage = renderer.readFinalHdr();
     run.indirect = renderer.readIndirect().diffuse;
     run.timedFrames = renderer.timer().frameStats().samples;
     for (const vk::PassTiming& pass : renderer.timer().passStats()) {

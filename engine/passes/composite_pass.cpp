@@ -2,8 +2,9 @@
 
 namespace vct {
 
-CompositePass::CompositePass(const vk::Context& context, DfgLut& dfg, bool gi, bool blended)
-    :  // Binding numbers: shaders/composite.comp's.
+CompositePass::CompositePass(const vk::Context& context, DfgLut& dfg, const GpuScene& scene, bool gi)
+    : context_(context),
+      // Binding numbers: shaders/composite.comp's.
       resources_("composite",
                  {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
                   {1, Target::direct, Access::Read},
@@ -18,17 +19,38 @@ CompositePass::CompositePass(const vk::Context& context, DfgLut& dfg, bool gi, b
                   {10, Resource::image("dfg", dfg.image(), dfg.sampler()), Access::Sampled},
                   // The blend pass's layer (a 1×1 stand-in in a scene without blended surfaces, not read).
                   {11, Target::transparent, Access::Sampled}}) {
-    std::vector<uint32_t> specialization(VCT_COMPOSITE_SPEC_BLEND + 1);
-    specialization[VCT_COMPOSITE_SPEC_GI] = gi ? 1u : 0u;
-    specialization[VCT_COMPOSITE_SPEC_BLEND] = blended ? 1u : 0u;
+    specialization_.resize(VCT_COMPOSITE_SPEC_HDR + 1);
+    specialization_[VCT_COMPOSITE_SPEC_GI] = gi ? 1u : 0u;
+    specialization_[VCT_COMPOSITE_SPEC_BLEND] = scene.hasBlended() ? 1u : 0u;
+    specialization_[VCT_COMPOSITE_SPEC_OCCLUSION] = scene.hasOcclusion() ? 1u : 0u;
+    specialization_[VCT_COMPOSITE_SPEC_HDR] = 0u;
     pipeline_ =
-        vk::Pipeline::compute(context, name(), "composite.comp", resources_.bindings(), 0, specialization);
+        vk::Pipeline::compute(context, name(), "composite.comp", resources_.bindings(), 0, specialization_);
 }
 
-void CompositePass::execute(const FrameContext& frame) {
-    pipeline_.bind(frame.cmd);
-    resources_.bind(frame, pipeline_);
+namespace {
+
+void dispatchComposite(const FrameContext& frame, const ResourceTable& resources,
+                       const vk::Pipeline& pipeline) {
+    pipeline.bind(frame.cmd);
+    resources.bind(frame, pipeline);
     vkCmdDispatch(frame.cmd, tileCount(frame.targets.width), tileCount(frame.targets.height), 1);
+}
+
+}  // namespace
+
+void CompositePass::execute(const FrameContext& frame) {
+    dispatchComposite(frame, resources_, pipeline_);
+}
+
+void CompositePass::executeWithHdr(const FrameContext& frame) {
+    if (hdrPipeline_.handle() == VK_NULL_HANDLE) {
+        std::vector<uint32_t> withHdr = specialization_;
+        withHdr[VCT_COMPOSITE_SPEC_HDR] = 1u;
+        hdrPipeline_ =
+            vk::Pipeline::compute(context_, name(), "composite.comp", resources_.bindings(), 0, withHdr);
+    }
+    dispatchComposite(frame, resources_, hdrPipeline_);
 }
 
 }  // namespace vct

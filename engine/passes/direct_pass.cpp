@@ -20,10 +20,15 @@ ResourceTable directResources(const EnvironmentSource& environment) {
 
 }  // namespace
 
-DirectPass::DirectPass(const vk::Context& context, const EnvironmentSource& environment, bool gi)
+DirectPass::DirectPass(const vk::Context& context, const EnvironmentSource& environment,
+                       const GpuScene& scene, bool gi)
     : resources_(directResources(environment)) {
-    pipeline_ = vk::Pipeline::compute(context, name(), "direct.comp", resources_.bindings(), 0,
-                                      {gi ? 1u : 0u});  // VCT_DIRECT_SPEC_GI
+    std::vector<uint32_t> specialization(VCT_DIRECT_SPEC_OCCLUSION + 1);
+    specialization[VCT_DIRECT_SPEC_GI] = gi ? 1u : 0u;
+    specialization[VCT_DIRECT_SPEC_EMISSION] = scene.hasEmission() ? 1u : 0u;
+    specialization[VCT_DIRECT_SPEC_OCCLUSION] = scene.hasOcclusion() ? 1u : 0u;
+    pipeline_ =
+        vk::Pipeline::compute(context, name(), "direct.comp", resources_.bindings(), 0, specialization);
 }
 
 void DirectPass::execute(const FrameContext& frame) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "render/gpu_environment.h"
+#include "render/gpu_scene.h"
 #include "render/pass.h"
 #include "vk/pipeline.h"
 
@@ -11,8 +12,10 @@ namespace vct {
 
 class DirectPass : public Pass {
   public:
-    // `environment`: the background, and the ambient light with GI off (`gi`: RenderSettings::gi).
-    DirectPass(const vk::Context& context, const EnvironmentSource& environment, bool gi);
+    // `environment`: the background, and the ambient light with GI off (`gi`: RenderSettings::gi). Whether
+    // `scene` has emission and occlusion, and `gi`, are specialization constants (lib/shared.h).
+    DirectPass(const vk::Context& context, const EnvironmentSource& environment, const GpuScene& scene,
+               bool gi);
     const char* name() const override { return "direct"; }
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     void execute(const FrameContext& frame) override;

@@ -50,7 +50,8 @@ enum class HistorySwap : uint8_t { None, EveryFrame, WithGBuffer };
 // weightSum          upsample: sum of weights, r diffuse, g specular; b: 1 where re-traced
 // transparent        the blend pass's layer of blended surfaces, premultiplied: rgb radiance·alpha summed "over"
 //                    back to front, a its coverage (composite: hdr = rgb + (1 − a)·opaque)
-// hdr, ldr           the final linear HDR (final.exr) and tone-mapped sRGB (final.png, the window)
+// hdr, ldr           the final linear HDR (final.exr; written only on demand, Renderer::readFinalHdr) and
+//                    tone-mapped sRGB (final.png, the window; every frame)
 // the H rows         last frame's upsample output and G-buffer: the temporal history
 #define VCT_FRAME_TARGETS(T, H)                                                               \
     T(shadowMap,         VK_FORMAT_D32_SFLOAT,          Shadow, Depth,   Always)              \

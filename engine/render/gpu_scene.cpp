@@ -100,6 +100,8 @@ GpuScene::GpuScene(const vk::Context& context, const Scene& scene, uint32_t anis
                                                                : VCT_ALPHA_OPAQUE,
                              texturedSlots(m), 0, 0);
         materials.push_back(g);
+        hasEmission_ = hasEmission_ || emits(m);
+        hasOcclusion_ = hasOcclusion_ || occludes(m);
     }
     materials_ = vk::Buffer::withData(context, materials.data(), materials.size() * sizeof(gpu::GpuMaterial),
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -227,6 +229,15 @@ int textureIndex(const Material& material, GpuScene::Slot slot) {
     return -1;
 }
 }  // namespace
+
+// lib/surface.glsl: emission = factor × texture, occlusion = 1 + strength × (texture − 1).
+bool GpuScene::emits(const Material& material) {
+    return material.emissiveFactor != glm::vec3(0.0f);
+}
+
+bool GpuScene::occludes(const Material& material) {
+    return material.occlusionTexture >= 0 && material.occlusionStrength != 0.0f;
+}
 
 uint32_t GpuScene::texturedSlots(const Material& material) {
     uint32_t bits = 0;

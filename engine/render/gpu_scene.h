@@ -56,6 +56,14 @@ class GpuScene {
     const std::vector<Instance>& instances() const { return instances_; }
     // Whether an instance draws a primitive with an alphaMode BLEND material (the blend pass runs).
     bool hasBlended() const { return hasBlended_; }
+    // Whether a material emits (a non-zero emissive factor) / darkens its indirect light (an occlusion texture
+    // of non-zero strength). Without, the G-buffer's emissiveOcclusion target is (0, 0, 0, 1) on every pixel and
+    // direct and composite do not read it (their specialization constants, lib/shared.h).
+    bool hasEmission() const { return hasEmission_; }
+    bool hasOcclusion() const { return hasOcclusion_; }
+    // The same of one material.
+    static bool emits(const Material& material);
+    static bool occludes(const Material& material);
     // Skinned and morphed instances: their deformed vertices (the skin pass writes them; render/gpu_deform.h).
     const GpuDeform& deform() const { return *deform_; }
     GpuDeform& deform() { return *deform_; }
@@ -114,6 +122,8 @@ class GpuScene {
     Aabb movedBounds_;
     bool onlyInstancesMoved_ = false;
     bool hasBlended_ = false;
+    bool hasEmission_ = false;
+    bool hasOcclusion_ = false;
     void fitShadow();
 };
 

@@ -85,7 +85,7 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     const bool vertexColors =
         std::any_of(primitives.begin(), primitives.end(), [](const Primitive& p) { return p.hasColors; });
     passes_.push_back(std::make_unique<GBufferPass>(context, scene, vertexColors, settings.textureLod0));
-    passes_.push_back(std::make_unique<DirectPass>(context, environment, settings.gi));
+    passes_.push_back(std::make_unique<DirectPass>(context, environment, gpuScene_, settings.gi));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
         const VoxelSource voxels = VoxelSource::of(*voxelGrid_, environment);
@@ -104,7 +104,9 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         passes_.push_back(std::make_unique<BlendPass>(context, voxelGrid_ ? &voxels : nullptr, environment,
                                                       *dfg_, scene, vertexColors, settings.textureLod0));
     }
-    passes_.push_back(std::make_unique<CompositePass>(context, *dfg_, settings.gi, gpuScene_.hasBlended()));
+    auto composite = std::make_unique<CompositePass>(context, *dfg_, gpuScene_, settings.gi);
+    composite_ = composite.get();
+    passes_.push_back(std::move(composite));
 
     for (FrameSlot& slot : slots_) {
         VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -393,7 +395,24 @@ vk::Buffer Renderer::copyToHost(vk::Image& image) {
     return staging;
 }
 
+std::vector<float> Renderer::readFinalHdr() {
+    if (submitted_ == 0) throw Error("there is no final image before the first frame");
+    // The frame uniforms still hold the last frame's exposure; the targets composite reads, its results.
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        FrameContext frame{context_,  cmd,       gpuScene_, targets_, lastSubmitted().uniforms.handle(),
+                           settings_, samplers_, uniforms_};
+        composite_->executeWithHdr(frame);
+    });
+    return readImage(targets_.hdr);
+}
+
 std::vector<float> Renderer::readFloatImage(vk::Image& image) {
+    // The frames do not write it: only readFinalHdr does, on demand.
+    if (&image == &targets_.hdr) throw Error("the final HDR image is read with Renderer::readFinalHdr");
+    return readImage(image);
+}
+
+std::vector<float> Renderer::readImage(vk::Image& image) {
     const TexelLayout layout = texelLayout(image.format());
     vk::Buffer staging = copyToHost(image);
     const auto* src = static_cast<const uint8_t*>(staging.mapped());

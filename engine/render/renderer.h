@@ -45,6 +45,7 @@ struct FrameSubmit {
     VkSemaphore signal = VK_NULL_HANDLE;
 };
 
+class CompositePass;
 class VoxelViewPass;
 
 class Renderer {
@@ -96,8 +97,13 @@ class Renderer {
     // re-tracing).
     float resampledFraction() const;
 
-    // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones).
+    // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones); not
+    // FrameTargets::hdr, which the frames do not write (readFinalHdr).
     std::vector<float> readFloatImage(vk::Image& image);
+    // The last frame's linear HDR result (final.exr), RGBA32F: composite run again on what the frame left, in a
+    // submit of its own that writes the HDR image too (the frames write only the tone-mapped one; lib/shared.h,
+    // VCT_COMPOSITE_SPEC_HDR). Not part of the frame or its timings. Throws before the first frame.
+    std::vector<float> readFinalHdr();
     std::vector<uint8_t> readLdr();
     // This frame's full-res demodulated indirect light (FrameTargets::indirect, unpacked): RGBA32F, rgb the
     // radiance, a its accumulated weight. Throws when GI is off (nothing traced).
@@ -122,6 +128,7 @@ class Renderer {
     void finishSlot(FrameSlot& slot);
     FrameSlot& lastSubmitted() { return slots_[(submitted_ + slots_.size() - 1) % slots_.size()]; }
     vk::Buffer copyToHost(vk::Image& image);
+    std::vector<float> readImage(vk::Image& image);
     void writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms);
     void createSamplers();
 
@@ -143,6 +150,7 @@ class Renderer {
     std::unique_ptr<DfgLut> dfg_;
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
+    CompositePass* composite_ = nullptr;        // in passes_; readFinalHdr runs it again
     std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_
     glm::mat4 previousViewProj_{1.0f};
     glm::mat4 previousInvViewProj_{1.0f};

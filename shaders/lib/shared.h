@@ -63,11 +63,22 @@ using glm::vec4;
 // would make lavapipe pay for those environment reads on every pixel with GI on too (direct 55 → 45 ms measured,
 // cornell 640×360).
 #define VCT_DIRECT_SPEC_GI 0
+// direct.comp and composite.comp: whether the scene's materials emit (GpuScene::hasEmission) and have an
+// occlusion texture (GpuScene::hasOcclusion). Without them the G-buffer's emissiveOcclusion target holds
+// (0, 0, 0, 1) on every pixel, and the passes use that instead of reading it: lavapipe pays for a read whether
+// or not it matters (about 1.5 ms a read at 640×360).
+#define VCT_DIRECT_SPEC_EMISSION 1
+#define VCT_DIRECT_SPEC_OCCLUSION 2
 // composite.comp: whether GI is on (the indirect light's reads) and whether the scene has blended surfaces (the
 // blend pass's layer, put over the frame). Constants for the same reason: as flags, lavapipe read the layer
 // on every pixel of every scene.
 #define VCT_COMPOSITE_SPEC_GI 0
 #define VCT_COMPOSITE_SPEC_BLEND 1
+#define VCT_COMPOSITE_SPEC_OCCLUSION 2
+// composite.comp: whether it also writes the linear HDR image (FrameTargets::hdr). Only what is read back wants
+// it (final.exr, error metrics: Renderer::readFinalHdr runs composite again with it); the frame writes the
+// tone-mapped image alone (the RGBA32F store was about a quarter of composite on lavapipe, 640×360).
+#define VCT_COMPOSITE_SPEC_HDR 3
 
 // The lights and the shadow map (direct, inject), the environment's rotation (lib/environment_sample.glsl).
 struct LightingUniforms {

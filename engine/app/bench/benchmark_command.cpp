@@ -59,10 +59,6 @@ std::vector<BenchmarkRun> makeConfigs(const Scene& scene, const RenderSettings& 
     return configs;
 }
 
-ImageRgba32f readImage(Renderer& renderer, vk::Image& image) {
-    return {image.width(), image.height(), renderer.readFloatImage(image)};
-}
-
 // Build: the configurations (makeConfigs), each with its renderer.
 std::vector<BenchmarkRun> buildUpsamplingRuns(vk::Context& context, const Scene& scene,
                                               const RenderSettings& settings, uint32_t scale) {
@@ -95,7 +91,7 @@ void reportUpsampling(std::vector<BenchmarkRun>& configs, uint32_t w, uint32_t h
     const Renderer::IndirectLight refLight = reference.readIndirect();
     const ImageRgba32f refDiffuse{w, h, refLight.diffuse};
     const ImageRgba32f refSpecular{w, h, refLight.specular};
-    const ImageRgba32f refFinal = readImage(reference, reference.targets().hdr);
+    const ImageRgba32f refFinal{w, h, reference.readFinalHdr()};
     // The indirect light's cost: what tracing fewer pixels is meant to save (trace + upsample +
     // re-trace).
     auto indirectMs = [](const Renderer& r) {
@@ -117,7 +113,7 @@ void reportUpsampling(std::vector<BenchmarkRun>& configs, uint32_t w, uint32_t h
         Renderer::IndirectLight light = r.readIndirect();
         const ImageError diffuse = compareImages(refDiffuse, {w, h, std::move(light.diffuse)});
         const ImageError specular = compareImages(refSpecular, {w, h, std::move(light.specular)});
-        const ImageError final = compareImages(refFinal, readImage(r, r.targets().hdr));
+        const ImageError final = compareImages(refFinal, {w, h, r.readFinalHdr()});
         auto errorJson = [](const ImageError& e) {
             return nlohmann::json{{"mse", e.mse},
                                   {"rel_mse", e.relMse},

@@ -46,7 +46,7 @@ struct FrameImages {
 FrameImages readFrame(Renderer& renderer) {
     const uint32_t w = renderer.settings().width, h = renderer.settings().height;
     Renderer::IndirectLight light = renderer.readIndirect();
-    ImageRgba32f hdr{w, h, renderer.readFloatImage(renderer.targets().hdr)};
+    ImageRgba32f hdr{w, h, renderer.readFinalHdr()};
     ImageRgba32f display = toneMappedSrgb(hdr, renderer.settings().exposure);
     return {{w, h, std::move(light.diffuse)},
             {w, h, std::move(light.specular)},

@@ -103,8 +103,7 @@ AuxView parseAuxView(const std::string& value) {
 }
 
 void writeFinalExr(Renderer& renderer, const std::filesystem::path& path) {
-    writeExr(path, renderer.settings().width, renderer.settings().height,
-             renderer.readFloatImage(renderer.targets().hdr));
+    writeExr(path, renderer.settings().width, renderer.settings().height, renderer.readFinalHdr());
 }
 
 std::vector<std::string> writeLightImages(Renderer& renderer, const std::filesystem::path& dir) {
