@@ -5,7 +5,8 @@
 // shadow-mapped at the voxel centre, the others unshadowed) + emission, written premultiplied by opacity into
 // mip 0 of the radiance, the radiance atlas's six direction slabs (rgb = radiance × facing × opacity, a = opacity;
 // lib/voxel.glsl, lib/voxel_bricks.glsl), in the voxel's brick and in the aprons of the bricks below it. One
-// workgroup per brick (every allocated brick, or those of the frame's region), one thread per voxel.
+// workgroup per brick (every allocated brick, or those of the frame's region), its invocations packed onto the
+// brick's occupied voxels (lib/voxel_packing.glsl).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
@@ -37,6 +38,7 @@ layout(set = 0, binding = 9) uniform sampler2D dfgTable;
 
 #include "lib/voxel_storage.glsl"
 #include "lib/voxel_workgroup.glsl"
+#include "lib/voxel_packing.glsl"
 
 layout(push_constant) uniform Push { InjectPushConstants push; };
 
@@ -84,21 +86,24 @@ void main() {
     uint k;
     ivec3 brick;
     const bool region = push.region.w != 0u;
+    // Uniform over the workgroup (one brick each): all of it or none reaches the packing's barriers.
     if (!workgroupBrick(region, push.region.xyz, k, brick)) return;
-    const ivec3 local = ivec3(gl_LocalInvocationID);
-    const ivec3 voxel = brick * VOXEL_BRICK + local;
-    const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, local);
-    const vec4 albedoOpacity = imageLoad(albedoImage, texel);
-    vec4 slabs[VOXEL_SLAB_COUNT];
+    const uint side = frame.voxels.brickAtlasSide;
+    const ivec3 own = ivec3(gl_LocalInvocationID);
+    const bool occupied = imageLoad(albedoImage, materialAtlasTexel(k, side, own)).a > 0.0;
     // Empty: left as the clear before the dispatch made it (inject_pass.cpp), or, in a region (the atlas was not
     // cleared), stored as zero here.
-    if (albedoOpacity.a <= 0.0) {
-        if (region) {
-            for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) slabs[slab] = vec4(0.0);
-            storeRadiance(k, brick, local, slabs);
-        }
-        return;
+    if (!occupied && region) {
+        vec4 zero[VOXEL_SLAB_COUNT];
+        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) zero[slab] = vec4(0.0);
+        storeRadiance(k, brick, own, zero);
     }
+    ivec3 local;
+    if (!packOccupiedVoxels(occupied, local)) return;
+    const ivec3 voxel = brick * VOXEL_BRICK + local;
+    const ivec3 texel = materialAtlasTexel(k, side, local);
+    const vec4 albedoOpacity = imageLoad(albedoImage, texel);
+    vec4 slabs[VOXEL_SLAB_COUNT];
     const vec4 normalRoughness = imageLoad(normalImage, texel);
     const vec4 emissionMetallic = imageLoad(emissionImage, texel);
     const vec3 nbar = normalRoughness.xyz;

@@ -5,8 +5,8 @@
 // voxel's centre about its averaged normal: the cosine-weighted mean incoming radiance, the Lambertian bounce's
 // albedo/π · E. Voxels whose surfaces disagree on a side (|n̄| short: both faces of a thin wall) gather about
 // n̄'s side only when it is clear, and over both sides (the mean of ±n̂) when it is not. Cones that leave the grid
-// see the environment (lib/cone_trace.glsl), so sky light bounces too. One workgroup per allocated brick, one
-// thread per voxel (lib/voxel_storage.glsl).
+// see the environment (lib/cone_trace.glsl), so sky light bounces too. One workgroup per allocated brick
+// (lib/voxel_storage.glsl), its invocations packed onto the brick's occupied voxels (lib/voxel_packing.glsl).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
@@ -27,8 +27,11 @@ layout(set = 0, binding = 4, rgba16f) uniform writeonly image3D bounceImage;
 // The environment: sky light reaches the voxels through cones that leave the grid (lib/environment_sample.glsl).
 layout(set = 0, binding = 5) uniform sampler2D environmentMap;
 
+layout(push_constant) uniform Push { VoxelBouncePushConstants push; };
+
 #include "lib/cone_trace.glsl"
 #include "lib/voxel_workgroup.glsl"
+#include "lib/voxel_packing.glsl"
 
 // Below this |n̄| a voxel's surfaces face both ways about equally: gather both hemispheres.
 const float BOUNCE_ONE_SIDED = 0.5;
@@ -36,14 +39,16 @@ const float BOUNCE_ONE_SIDED = 0.5;
 void main() {
     uint k;
     ivec3 brick;
-    if (!workgroupBrick(false, uvec3(0), k, brick)) return;
-    const ivec3 local = ivec3(gl_LocalInvocationID);
+    // Uniform over the workgroup (one brick each): all of it or none reaches the packing's barriers.
+    if (!workgroupBrick(push.region.w != 0u, push.region.xyz, k, brick)) return;
+    const ivec3 own = ivec3(gl_LocalInvocationID);
+    const ivec3 ownTexel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, own);
+    const bool occupied = imageLoad(albedoImage, ownTexel).a > 0.0;
+    if (!occupied) imageStore(bounceImage, ownTexel, vec4(0.0));
+    ivec3 local;
+    if (!packOccupiedVoxels(occupied, local)) return;
     const ivec3 voxel = brick * VOXEL_BRICK + local;
     const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, local);
-    if (imageLoad(albedoImage, texel).a <= 0.0) {
-        imageStore(bounceImage, texel, vec4(0.0));
-        return;
-    }
     const vec3 nbar = imageLoad(normalImage, texel).xyz;
     const float r = length(nbar);
     const vec3 p = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));

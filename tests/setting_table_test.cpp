@@ -94,6 +94,17 @@ TEST(SettingTable, CommandLineAndDemoShareRangesAndMessages) {
               "trace-scale '3': expected 1, 2 or 4");
     EXPECT_EQ(usageError([&] { parseSetting(*findSetting("anisotropy"), "3", "--anisotropy", s); }),
               "--anisotropy '3': expected 0, 2, 4, 8 or 16");
+    // A choice with a word: `--bounces all`, a number internally, the word everywhere it is written.
+    EXPECT_EQ(usageError([&] { parseSetting(*findSetting("bounces"), "9", "--bounces", s); }),
+              "--bounces '9': expected 1, 2, 3, 4, 5, 6, 7, 8 or all");
+    RenderSettings all;
+    parseSetting(*findSetting("bounces"), "all", "--bounces", all);
+    EXPECT_EQ(all.bounces, kAllBounces);
+    EXPECT_EQ(settingText(*findSetting("bounces"), all), "all");
+    EXPECT_EQ(settingsJson(all)["bounces"], "all");
+    EXPECT_EQ(settingsJson(RenderSettings{})["bounces"], 1);
+    EXPECT_TRUE(applySetting(all, "bounces", "3"));
+    EXPECT_EQ(all.bounces, 3u);
     EXPECT_EQ(usageError([&] { applySetting(s, "weights", "lobe"); }),
               "weights 'lobe': expected bilinear, normal or sg");
     EXPECT_EQ(usageError([&] { applySetting(s, "gi", "maybe"); }), "gi 'maybe': expected on or off");

@@ -2,8 +2,9 @@
 
 namespace vct {
 
-InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg)
+InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg, bool addBounce)
     : grid_(grid),
+      addBounce_(addBounce),
       // Binding numbers: shaders/inject.comp's.
       resources_("inject",
                  {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
@@ -26,15 +27,24 @@ InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg)
 }
 
 void InjectPass::execute(const FrameContext& frame) {
-    inject(frame, false);
+    inject(frame, addBounce_);
 }
 
 void InjectPass::inject(const FrameContext& frame, bool addBounce) {
     const std::optional<VoxelGrid::UpdateRegions>& regions = grid_.updateRegions();
+    dispatch(frame, addBounce, regions ? std::optional<VoxelRegion>(regions->inject) : std::nullopt);
+}
+
+void InjectPass::injectRegion(const FrameContext& frame, bool addBounce, const VoxelRegion& region) {
+    dispatch(frame, addBounce, region);
+}
+
+void InjectPass::dispatch(const FrameContext& frame, bool addBounce,
+                          const std::optional<VoxelRegion>& region) {
     // Empty voxels are most of a brick: a clear (a memset on lavapipe) and stores only for the occupied voxels'
     // six slabs cost less than six stores of zero per empty voxel. A region's empty voxels are stored by the
     // shader instead (the rest of the atlas keeps the last frame's light).
-    if (!regions) {
+    if (!region) {
         clear_.barriers(frame);
         const VkClearColorValue zero{};
         const VkImageSubresourceRange level0{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -44,16 +54,15 @@ void InjectPass::inject(const FrameContext& frame, bool addBounce) {
     pipeline_.bind(frame.cmd);
     resources_.bind(frame, pipeline_);
     const glm::uvec4 params(addBounce ? 1u : 0u, 0u, 0u, 0u);
-    if (!regions) {  // every allocated brick
+    if (!region) {  // every allocated brick
         const gpu::InjectPushConstants push{params, glm::uvec4(0u)};
         pipeline_.pushConstants(frame.cmd, &push, sizeof(push));
         dispatchBricks(frame.cmd, grid_.bricks().brickCount());
         return;
     }
-    const VoxelRegion& region = regions->inject;
-    const gpu::InjectPushConstants push{params, glm::uvec4(region.min, 1u)};
+    const gpu::InjectPushConstants push{params, glm::uvec4(region->min, 1u)};
     pipeline_.pushConstants(frame.cmd, &push, sizeof(push));
-    dispatchRegionBricks(frame.cmd, region);
+    dispatchRegionBricks(frame.cmd, *region);
 }
 
 }  // namespace vct

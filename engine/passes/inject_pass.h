@@ -13,15 +13,23 @@ namespace vct {
 class InjectPass : public Pass {
   public:
     // `dfg`: the split-sum table, for the specular lobes' directional albedo (docs/design.md §5.11).
-    InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg);
+    // `addBounce`: the frame's inject adds albedo × the light the voxels gathered (`--bounces all`, whose
+    // gathers persist from frame to frame).
+    InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg, bool addBounce = false);
     const char* name() const override { return "inject"; }
     void execute(const FrameContext& frame) override;
-    // The direct light, plus with `addBounce` albedo × the light the voxels gathered (the bounce pass).
+    // The direct light, plus with `addBounce` albedo × the light the voxels gathered (the bounce pass), into the
+    // frame's region (VoxelGrid::updateRegions).
     void inject(const FrameContext& frame, bool addBounce);
+    // The same into `region` (brick-aligned), whatever the frame's.
+    void injectRegion(const FrameContext& frame, bool addBounce, const VoxelRegion& region);
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
   private:
+    void dispatch(const FrameContext& frame, bool addBounce, const std::optional<VoxelRegion>& region);
+
     VoxelGrid& grid_;
+    bool addBounce_;
     ResourceTable resources_;
     // Mip 0 of the radiance as the clear before the dispatch writes it (one image cannot be a transfer
     // destination and a storage image in one table).

@@ -1,10 +1,20 @@
 #include "passes/voxel_bounce_pass.h"
 
+#include <algorithm>
+
 #include "passes/voxel_source.h"
+#include "render/settings.h"
 
 namespace vct {
 
 namespace {
+
+// Slabs of the grid for `--bounces all`: 8, so that a slab at 64³ is two layers of bricks (8 voxels) and its
+// gather costs an eighth of a whole-grid one; fewer when the grid has fewer layers of bricks.
+constexpr uint32_t kSlabs = 8;
+// Rounds of every slab after the grid last changed. Each round adds at least one bounce; a furnace of albedo ρ
+// misses ρ^(rounds + 1) of its light after them (ρ = 0.8: 1.4 % after 18 rounds).
+constexpr uint32_t kSettleRounds = 18;
 
 // Binding numbers: shaders/voxel_bounce.comp's.
 ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environment) {
@@ -21,23 +31,68 @@ ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environm
 
 }  // namespace
 
+uint32_t VoxelBouncePass::slabCount(const VoxelGrid& grid) {
+    return std::clamp(grid.resolution() / VCT_VOXEL_BRICK, 1u, kSlabs);
+}
+
+VoxelRegion VoxelBouncePass::slab(const VoxelGrid& grid, uint32_t i) {
+    const uint32_t bricks = grid.resolution() / VCT_VOXEL_BRICK, slabs = slabCount(grid);
+    const uint32_t first = bricks * i / slabs, last = bricks * (i + 1) / slabs;
+    const uint32_t n = grid.resolution();
+    return {glm::uvec3(0u, 0u, first * VCT_VOXEL_BRICK), glm::uvec3(n, n, last * VCT_VOXEL_BRICK)};
+}
+
+uint32_t VoxelBouncePass::settleFrames(const VoxelGrid& grid) {
+    return slabCount(grid) * kSettleRounds;
+}
+
 VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject,
                                  VoxelMipsPass& mips, uint32_t bounces, const EnvironmentSource& environment)
     : grid_(grid),
       inject_(inject),
       mips_(mips),
-      iterations_(bounces > 1 ? bounces - 1 : 0),
+      iterations_(bounces == kAllBounces ? 0
+                  : bounces > 1          ? bounces - 1
+                                         : 0),
       resources_(bounceResources(grid, environment)) {
-    pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(), 0,
-                                      grid.specialization());
+    pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(),
+                                      sizeof(gpu::VoxelBouncePushConstants), grid.specialization());
+    if (amortised()) {
+        // Every frame's inject reads the gathers, the first one before any gather ran: none yet.
+        context.submitAndWait([&](VkCommandBuffer cmd) {
+            grid.bounce().use(cmd, vk::ImageAccess::TransferDst);
+            const VkClearColorValue zero{};
+            const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(cmd, grid.bounce().handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+                                 &all);
+        });
+    }
+}
+
+void VoxelBouncePass::gather(const FrameContext& frame, const std::optional<VoxelRegion>& region) {
+    pipeline_.bind(frame.cmd);
+    resources_.bind(frame, pipeline_);
+    const gpu::VoxelBouncePushConstants push{region ? glm::uvec4(region->min, 1u) : glm::uvec4(0u)};
+    pipeline_.pushConstants(frame.cmd, &push, sizeof(push));
+    if (region)
+        dispatchRegionBricks(frame.cmd, *region);
+    else
+        dispatchBricks(frame.cmd, grid_.bricks().brickCount());
 }
 
 void VoxelBouncePass::execute(const FrameContext& frame) {
+    if (amortised()) {
+        // This frame's slab gathers from the grid as it stands and sends the result on at once.
+        const VoxelRegion region = slab(grid_, nextSlab_);
+        nextSlab_ = (nextSlab_ + 1) % slabCount(grid_);
+        gather(frame, region);
+        inject_.injectRegion(frame, true, region);
+        mips_.update(frame, region);
+        return;
+    }
     for (uint32_t i = 0; i < iterations_; ++i) {
         // Gather from the grid as it stands (its mips included)...
-        pipeline_.bind(frame.cmd);
-        resources_.bind(frame, pipeline_);
-        dispatchBricks(frame.cmd, grid_.bricks().brickCount());
+        gather(frame, std::nullopt);
         // ...and send it on: direct light + albedo × gathered, and the mips of that.
         inject_.inject(frame, true);
         mips_.execute(frame);

@@ -1,9 +1,13 @@
-// bounce: multiple bounces of indirect light in the voxel grid (docs/design.md §5.7). After the frame's inject
-// and mips hold the directly lit voxels, each of bounces − 1 iterations lets every occupied voxel gather the
-// light arriving at it through the grid with the 6 diffuse cones (voxel_bounce.comp), then re-injects direct
-// light + albedo × that (the inject pass, adding the gathered light) and rebuilds the mips: iteration k leaves
-// light that has bounced k + 1 times in the grid, so the cones of the trace see bounces + 0 … bounces. Runs
-// when the grid is rebuilt (the scene's geometry or lights changed), like inject; one timer scope, "bounce".
+// bounce: multiple bounces of indirect light in the voxel grid (docs/design.md §5.7). Each occupied voxel gathers
+// the light arriving at it through the grid with the 6 diffuse cones (voxel_bounce.comp); inject then sends on
+// direct light + albedo × that, and the mips follow. One timer scope, "bounce".
+// - `--bounces N`: after the frame's inject and mips, N − 1 iterations of gather, inject and mips over the whole
+//   grid, whenever the grid is rebuilt: light that has bounced up to N times.
+// - `--bounces all`: the gathers persist from frame to frame (every inject adds them), and each frame one slab of
+//   the grid (a layer of bricks along z) gathers again from the grid as it stands, then is injected and its mips
+//   updated. Gathering from light that has already bounced k times adds bounce k + 1: the grid converges to every
+//   bounce, one more per round of the slabs at least, and a slab gathers from the slabs before it in the same
+//   round. The gathers go on for settleFrames() after the grid last changed, then stop until it changes again.
 #pragma once
 
 #include "passes/inject_pass.h"
@@ -17,18 +21,30 @@ namespace vct {
 
 class VoxelBouncePass : public Pass {
   public:
-    // `bounces` ≥ 2: the number of bounces the indirect light of a pixel carries (1 needs no pass).
+    // `bounces` ≥ 2: the number of bounces the indirect light of a pixel carries (1 needs no pass); kAllBounces:
+    // every bounce, amortised over frames (then `inject` must add the gathers in every frame's inject too).
     VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject, VoxelMipsPass& mips,
                     uint32_t bounces, const EnvironmentSource& environment);
     const char* name() const override { return "bounce"; }
     void execute(const FrameContext& frame) override;
-    PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
+    PassReuse reuse() const override {
+        return amortised() ? PassReuse::WhileVoxelLightSettled : PassReuse::WhileSceneUnchanged;
+    }
+    // `--bounces all`: the slabs the grid is cut into (one gathers per frame), the slab `i` covers, and the frames
+    // the gathers go on after the grid last changed (kSettleRounds rounds of every slab).
+    static uint32_t slabCount(const VoxelGrid& grid);
+    static VoxelRegion slab(const VoxelGrid& grid, uint32_t i);
+    static uint32_t settleFrames(const VoxelGrid& grid);
 
   private:
+    bool amortised() const { return iterations_ == 0; }
+    void gather(const FrameContext& frame, const std::optional<VoxelRegion>& region);
+
     VoxelGrid& grid_;
     InjectPass& inject_;
     VoxelMipsPass& mips_;
-    uint32_t iterations_;
+    uint32_t iterations_;  // N − 1; 0 for kAllBounces
+    uint32_t nextSlab_ = 0;
     ResourceTable resources_;
     vk::Pipeline pipeline_;
 };

@@ -30,9 +30,13 @@ VoxelMipsPass::VoxelMipsPass(const vk::Context& context, VoxelGrid& grid)
 }
 
 void VoxelMipsPass::execute(const FrameContext& frame) {
+    const std::optional<VoxelGrid::UpdateRegions>& regions = grid_.updateRegions();
+    update(frame, regions ? std::optional<VoxelRegion>(regions->inject) : std::nullopt);
+}
+
+void VoxelMipsPass::update(const FrameContext& frame, const std::optional<VoxelRegion>& updated) {
     VkCommandBuffer cmd = frame.cmd;
     vk::Image& radiance = grid_.radianceMips();
-    const std::optional<VoxelGrid::UpdateRegions>& regions = grid_.updateRegions();
     pipeline_.bind(cmd);
     resources_.barriers(frame);
     for (uint32_t level = 1; level < grid_.mipCount(); ++level) {
@@ -55,7 +59,7 @@ void VoxelMipsPass::execute(const FrameContext& frame) {
         // direction slabs side by side along x (lib/voxel.glsl).
         const uint32_t size = std::max(1u, grid_.resolution() >> level);
         const VoxelRegion region =
-            regions ? regions->inject.atLevel(level) : VoxelRegion{glm::uvec3(0), glm::uvec3(size)};
+            updated ? updated->atLevel(level) : VoxelRegion{glm::uvec3(0), glm::uvec3(size)};
         if (region.empty()) continue;
         const glm::uvec3 extent = region.max - region.min;
         const gpu::VoxelMipsPushConstants push{glm::uvec4(region.min, extent.x),

@@ -36,6 +36,8 @@ enum class PassReuse {
     Never,                // runs every frame (the jittered trace and what follows it)
     WhileSceneUnchanged,  // depends only on the scene's geometry and lights (shadow map, voxel grid)
     WhileViewUnchanged,   // depends on those and the camera (G-buffer, direct light)
+    // Runs while the scene changes and for a set number of frames after (`--bounces all`'s gathers, converging)
+    WhileVoxelLightSettled,
 };
 
 class Pass {

@@ -69,13 +69,16 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         // The static voxelization from a file (vct voxelize) instead of computing it; validated here.
         if (!settings.voxelCache.empty()) voxelGrid_->loadStaticCache(settings.voxelCache);
         passes_.push_back(std::make_unique<VoxelizePass>(context, *voxelGrid_));
-        auto inject = std::make_unique<InjectPass>(context, *voxelGrid_, *dfg_);
+        // `--bounces all`: every inject adds the gathers, which persist from frame to frame.
+        const bool allBounces = settings.bounces == kAllBounces;
+        auto inject = std::make_unique<InjectPass>(context, *voxelGrid_, *dfg_, allBounces);
         auto mips = std::make_unique<VoxelMipsPass>(context, *voxelGrid_);
         // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.7).
         std::unique_ptr<Pass> bounce;
         if (settings.bounces > 1)
             bounce = std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces,
                                                        environment);
+        if (allBounces) voxelLightSettleFrames_ = VoxelBouncePass::settleFrames(*voxelGrid_);
         passes_.push_back(std::move(inject));
         passes_.push_back(std::move(mips));
         if (bounce) passes_.push_back(std::move(bounce));
@@ -263,6 +266,8 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
     //   same for two frames, so that both G-buffer copies (current and previous, for the history) hold them.
     const bool sceneChanged = !sceneBuilt_ || input.cut || !hasPrevious_ || gpuScene_.changedInLastUpdate() ||
                               settings_.recomputeEveryFrame;
+    // `--bounces all`: the grid's light keeps converging for a while after the grid last changed.
+    voxelLightFramesLeft_ = sceneChanged ? voxelLightSettleFrames_ : std::max(voxelLightFramesLeft_, 1u) - 1;
     // Moving instances alone: the voxel passes update only the voxels the move touched (render/voxel_update.h).
     if (voxelGrid_)
         voxelGrid_->setUpdateRegions(voxelUpdateRegions(*voxelGrid_, gpuScene_, settings_,
@@ -292,6 +297,7 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
         for (const auto& pass : passes_) {
             const PassReuse reuse = pass->reuse();
             if ((reuse == PassReuse::WhileSceneUnchanged && !sceneChanged) ||
+                (reuse == PassReuse::WhileVoxelLightSettled && !sceneChanged && voxelLightFramesLeft_ == 0) ||
                 (reuse == PassReuse::WhileViewUnchanged && reuseView)) {
                 timer_.skipScope(pass->name());  // timed as 0 ms, with a run count (vk/timer.h)
                 continue;

@@ -160,6 +160,10 @@ class Renderer {
     bool sceneBuilt_ = false;
     // Consecutive frames whose scene and camera equal the previous frame's (0: this frame changed something).
     uint32_t stableFrames_ = 0;
+    // `--bounces all` (passes/voxel_bounce_pass.h): the frames its gathers go on after the grid last changed, and
+    // how many of them are left (0 otherwise).
+    uint32_t voxelLightSettleFrames_ = 0;
+    uint32_t voxelLightFramesLeft_ = 0;
     bool hasPrevious_ = false;
 };
 

@@ -15,7 +15,7 @@ namespace {
 
 constexpr uint32_t kTraceScales[] = {1, 2, 4};
 constexpr uint32_t kVoxelResolutions[] = {32, 64, 128, 256};
-constexpr uint32_t kBounceCounts[] = {1, 2, 3, 4, 5, 6, 7, 8};
+constexpr uint32_t kBounceCounts[] = {1, 2, 3, 4, 5, 6, 7, 8, kAllBounces};
 constexpr uint32_t kAnisotropyLevels[] = {0, 2, 4, 8, 16};
 
 using A = SettingApply;
@@ -34,10 +34,13 @@ const SettingSpec kTable[] = {
      .help = "trace indirect light at 1/S of the resolution per axis (1: every pixel)",
      .value = ChoiceValue{&S::traceScale, kTraceScales}, .apply = A::Rebuild, .group = G::Gi, .demo = true,
      .json = true, .widget = W::Combo, .label = "trace scale", .sideB = true},
-    {.name = "bounces", .valueName = "1..8",
+    {.name = "bounces", .valueName = "1..8|all",
      .help = "bounces of indirect light: 1 = light from directly lit surfaces; N: the voxels also pass on "
-             "light that has already bounced (N - 1 gathers in the grid when it is rebuilt)",
-     .value = ChoiceValue{&S::bounces, kBounceCounts}, .apply = A::Rebuild, .group = G::Gi, .demo = true,
+             "light that has already bounced (N - 1 gathers in the grid when it is rebuilt); all: the voxels "
+             "gather again from the grid a slab at a time, one slab a frame, converging to every bounce over "
+             "frames (docs/design.md sec. 5.7)",
+     .value = ChoiceValue{&S::bounces, kBounceCounts, std::nullopt, std::pair{kAllBounces, "all"}},
+     .apply = A::Rebuild, .group = G::Gi, .demo = true,
      .json = true, .widget = W::Combo, .label = "bounces"},
     {.name = "cone-rotation", .valueName = "on|off",
      .help = "turn each pixel's diffuse cones about its normal, differently every frame (docs/design.md sec. 5.5)",
@@ -236,12 +239,12 @@ void parseSetting(const SettingSpec& spec, const std::string& text, const std::s
             [&](const SwitchValue& v) { s.*v.member = parseOnOff(text, spelling); },
             [&](const ChoiceValue& v) {
                 for (uint32_t choice : v.choices)
-                    if (text == std::to_string(choice)) {
+                    if (text == v.text(choice)) {
                         s.*v.member = choice;
                         return;
                     }
                 throw UsageError(spelling + " '" + text + "': expected " +
-                                 alternatives(v.choices, [](uint32_t c) { return std::to_string(c); }));
+                                 alternatives(v.choices, [&](uint32_t c) { return v.text(c); }));
             },
             [&](const NamedValue& v) {
                 for (size_t i = 0; i < v.names.size(); ++i)
@@ -272,7 +275,7 @@ std::string settingText(const SettingSpec& spec, const RenderSettings& s) {
             [&](const FloatValue& v) { return numberText(s.*v.member); },
             [&](const OnOffValue& v) { return std::string(s.*v.member ? "on" : "off"); },
             [&](const SwitchValue& v) { return std::string(s.*v.member ? "on" : "off"); },
-            [&](const ChoiceValue& v) { return std::to_string(s.*v.member); },
+            [&](const ChoiceValue& v) { return v.text(s.*v.member); },
             [&](const NamedValue& v) { return std::string(v.names[v.get(s)]); },
             [&](const TextValue& v) { return s.*v.member; },
             [&](const SizeValue&) { return std::to_string(s.width) + "x" + std::to_string(s.height); },

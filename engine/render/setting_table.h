@@ -65,6 +65,12 @@ struct ChoiceValue {  // one of a few unsigned integers
     // A request the Renderer resolves from the device (0 voxels, kAnisotropyFromDevice): not a choice on the
     // command line, it matches whatever the renderer chose (settingsChange), and --help describes it.
     std::optional<uint32_t> automatic = std::nullopt;
+    // One choice written as a word on the command line, in the demo and in JSON ("all" bounces), else none.
+    std::optional<std::pair<uint32_t, const char*>> word = std::nullopt;
+    // A choice as written: its word, or its number.
+    std::string text(uint32_t choice) const {
+        return word && word->first == choice ? std::string(word->second) : std::to_string(choice);
+    }
 };
 struct NamedValue {  // an enum by name: names[i] is the enumerator of value i
     std::variant<RenderSettings::Weights RenderSettings::*, RenderSettings::UpsampleLayout RenderSettings::*>

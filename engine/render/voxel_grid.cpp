@@ -141,7 +141,9 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     albedo_ = volume("albedo atlas", VK_FORMAT_R8G8B8A8_UNORM, materialSize, 1, storage);
     normal_ = volume("normal atlas", VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
     emission_ = volume("emission atlas", VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
-    bounce_ = volume("bounce atlas", VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1, storage);
+    // Transfer destination: `--bounces all` clears it before the first frame (its gathers persist).
+    bounce_ = volume("bounce atlas", VK_FORMAT_R16G16B16A16_SFLOAT, materialSize, 1,
+                     storage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
 
     // TRANSFER_DST: cleared, and filled from a voxel cache; TRANSFER_SRC: read back for `vct voxelize`.
     constexpr VkBufferUsageFlags accumUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |

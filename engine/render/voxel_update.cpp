@@ -56,7 +56,10 @@ Aabb withShadowSweep(const Aabb& box, const gpu::GpuLight& light, const Aabb& co
 
 std::optional<VoxelGrid::UpdateRegions> voxelUpdateRegions(const VoxelGrid& grid, const GpuScene& scene,
                                                            const RenderSettings& settings, bool fullUpdate) {
-    if (fullUpdate || settings.recomputeEveryFrame || settings.bounces > 1 ||
+    // `--bounces N` gathers over the whole grid, and the light it bounced changes everywhere; `--bounces all`
+    // gathers a slab a frame on its own (passes/voxel_bounce_pass.h), so what moved is updated as with one.
+    const bool wholeGridBounces = settings.bounces > 1 && settings.bounces != kAllBounces;
+    if (fullUpdate || settings.recomputeEveryFrame || wholeGridBounces ||
         !scene.onlyInstancesMovedInLastUpdate())
         return std::nullopt;
     const Aabb& moved = scene.movedBounds();

@@ -15,7 +15,11 @@ nlohmann::json settingsJson(const RenderSettings& s) {
             Overloaded{
                 [&](const FloatValue& v) { return nlohmann::json(s.*v.member); },
                 [&](const OnOffValue& v) { return nlohmann::json(s.*v.member); },
-                [&](const ChoiceValue& v) { return nlohmann::json(s.*v.member); },
+                [&](const ChoiceValue& v) {
+                    const uint32_t choice = s.*v.member;
+                    return v.word && v.word->first == choice ? nlohmann::json(v.word->second)
+                                                             : nlohmann::json(choice);
+                },
                 [&](const NamedValue& v) { return nlohmann::json(v.names[v.get(s)]); },
                 [&](const auto&) -> nlohmann::json {
                     throw Error(std::string("settingsJson: no JSON form for setting '") + spec.name + "'");

@@ -275,6 +275,12 @@ struct InjectPushConstants {
     uvec4 region;
 };
 
+// Push constants of bounce: region.xyz the first voxel of the region the dispatch covers and w = 1 (`--bounces
+// all`: one slab of the grid a frame); w = 0: one workgroup per allocated brick.
+struct VoxelBouncePushConstants {
+    uvec4 region;
+};
+
 // Push constants of mips: the region of the level written, its first texel (xyz, per slab) and width in x; params.x
 // = 1 for level 1 (read from the radiance atlas).
 struct VoxelMipsPushConstants {

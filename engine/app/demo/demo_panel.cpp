@@ -80,7 +80,7 @@ void settingWidgets(Setter& set, const RenderSettings& shown, const std::string&
                        [&](const auto& v) {
                            std::vector<std::string> values;
                            if constexpr (std::is_same_v<std::decay_t<decltype(v)>, ChoiceValue>)
-                               for (uint32_t c : v.choices) values.push_back(std::to_string(c));
+                               for (uint32_t c : v.choices) values.push_back(v.text(c));
                            if constexpr (std::is_same_v<std::decay_t<decltype(v)>, NamedValue>)
                                for (const char* n : v.names) values.push_back(n);
                            if (values.empty() || !ImGui::BeginCombo(label.c_str(), current.c_str())) return;
