@@ -51,9 +51,7 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
     : grid_(grid),
       inject_(inject),
       mips_(mips),
-      iterations_(bounces == kAllBounces ? 0
-                  : bounces > 1          ? bounces - 1
-                                         : 0),
+      iterations_(bounces == kAllBounces || bounces < 2 ? 0 : bounces - 1),
       resources_(bounceResources(grid, environment)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(),
                                       sizeof(gpu::VoxelBouncePushConstants), grid.specialization());

@@ -23,7 +23,8 @@ bool packOccupiedVoxels(bool occupied, out ivec3 local) {
     local = ivec3(0);
     if (gl_LocalInvocationIndex >= packedCount) return false;
     const uint i = packedVoxels[gl_LocalInvocationIndex];
-    local = ivec3(i % VCT_VOXEL_TILE, (i / VCT_VOXEL_TILE) % VCT_VOXEL_TILE, i / (VCT_VOXEL_TILE * VCT_VOXEL_TILE));
+    local = ivec3(i % VCT_VOXEL_TILE, (i / VCT_VOXEL_TILE) % VCT_VOXEL_TILE,
+                  i / (VCT_VOXEL_TILE * VCT_VOXEL_TILE));
     return true;
 }
 
