@@ -27,20 +27,10 @@ InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg,
 }
 
 void InjectPass::execute(const FrameContext& frame) {
-    inject(frame, addBounce_);
+    inject(frame, addBounce_, grid_.injectRegion());
 }
 
-void InjectPass::inject(const FrameContext& frame, bool addBounce) {
-    const std::optional<VoxelGrid::UpdateRegions>& regions = grid_.updateRegions();
-    dispatch(frame, addBounce, regions ? std::optional<VoxelRegion>(regions->inject) : std::nullopt);
-}
-
-void InjectPass::injectRegion(const FrameContext& frame, bool addBounce, const VoxelRegion& region) {
-    dispatch(frame, addBounce, region);
-}
-
-void InjectPass::dispatch(const FrameContext& frame, bool addBounce,
-                          const std::optional<VoxelRegion>& region) {
+void InjectPass::inject(const FrameContext& frame, bool addBounce, const std::optional<VoxelRegion>& region) {
     // Empty voxels are most of a brick: a clear (a memset on lavapipe) and stores only for the occupied voxels'
     // six slabs cost less than six stores of zero per empty voxel. A region's empty voxels are stored by the
     // shader instead (the rest of the atlas keeps the last frame's light).

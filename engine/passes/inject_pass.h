@@ -18,16 +18,12 @@ class InjectPass : public Pass {
     InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg, bool addBounce = false);
     const char* name() const override { return "inject"; }
     void execute(const FrameContext& frame) override;
-    // The direct light, plus with `addBounce` albedo × the light the voxels gathered (the bounce pass), into the
-    // frame's region (VoxelGrid::updateRegions).
-    void inject(const FrameContext& frame, bool addBounce);
-    // The same into `region` (brick-aligned), whatever the frame's.
-    void injectRegion(const FrameContext& frame, bool addBounce, const VoxelRegion& region);
+    // The direct light, plus with `addBounce` albedo × the light the voxels gathered (the bounce pass), into
+    // `region` (brick-aligned; nullopt: the whole grid). The frame's own is VoxelGrid::injectRegion.
+    void inject(const FrameContext& frame, bool addBounce, const std::optional<VoxelRegion>& region);
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
 
   private:
-    void dispatch(const FrameContext& frame, bool addBounce, const std::optional<VoxelRegion>& region);
-
     VoxelGrid& grid_;
     bool addBounce_;
     ResourceTable resources_;

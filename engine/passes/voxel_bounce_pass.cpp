@@ -84,7 +84,7 @@ void VoxelBouncePass::execute(const FrameContext& frame) {
         const VoxelRegion region = slab(grid_, nextSlab_);
         nextSlab_ = (nextSlab_ + 1) % slabCount(grid_);
         gather(frame, region);
-        inject_.injectRegion(frame, true, region);
+        inject_.inject(frame, true, region);
         mips_.update(frame, region);
         return;
     }
@@ -92,7 +92,7 @@ void VoxelBouncePass::execute(const FrameContext& frame) {
         // Gather from the grid as it stands (its mips included)...
         gather(frame, std::nullopt);
         // ...and send it on: direct light + albedo × gathered, and the mips of that.
-        inject_.inject(frame, true);
+        inject_.inject(frame, true, grid_.injectRegion());
         mips_.execute(frame);
     }
 }

@@ -30,8 +30,7 @@ VoxelMipsPass::VoxelMipsPass(const vk::Context& context, VoxelGrid& grid)
 }
 
 void VoxelMipsPass::execute(const FrameContext& frame) {
-    const std::optional<VoxelGrid::UpdateRegions>& regions = grid_.updateRegions();
-    update(frame, regions ? std::optional<VoxelRegion>(regions->inject) : std::nullopt);
+    update(frame, grid_.injectRegion());
 }
 
 void VoxelMipsPass::update(const FrameContext& frame, const std::optional<VoxelRegion>& updated) {

@@ -12,7 +12,7 @@ class VoxelMipsPass : public Pass {
   public:
     VoxelMipsPass(const vk::Context& context, VoxelGrid& grid);
     const char* name() const override { return "mips"; }
-    // The texels with a child in the frame's region (VoxelGrid::updateRegions), every level.
+    // The texels with a child in the frame's region (VoxelGrid::injectRegion), every level.
     void execute(const FrameContext& frame) override;
     // The same for `region` (nullopt: the whole grid), whatever the frame's.
     void update(const FrameContext& frame, const std::optional<VoxelRegion>& region);

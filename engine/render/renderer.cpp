@@ -404,11 +404,7 @@ vk::Buffer Renderer::copyToHost(vk::Image& image) {
 std::vector<float> Renderer::readFinalHdr() {
     if (submitted_ == 0) throw Error("there is no final image before the first frame");
     // The frame uniforms still hold the last frame's exposure; the targets composite reads, its results.
-    context_.submitAndWait([&](VkCommandBuffer cmd) {
-        FrameContext frame{context_,  cmd,       gpuScene_, targets_, lastSubmitted().uniforms.handle(),
-                           settings_, samplers_, uniforms_};
-        composite_->executeWithHdr(frame);
-    });
+    runAfterFrame([&](const FrameContext& frame) { composite_->executeWithHdr(frame); });
     return readImage(targets_.hdr);
 }
 
@@ -478,12 +474,16 @@ vk::Image& Renderer::renderVoxelView(uint32_t mip) {
     if (!voxelView_) voxelView_ = std::make_unique<VoxelViewPass>(context_, *voxelGrid_);
     voxelView_->prepare(mip, targets_.width, targets_.height);
     // The frame uniforms still hold the last frame's camera and grid placement.
-    context_.submitAndWait([&](VkCommandBuffer cmd) {
-        FrameContext frame{context_,  cmd,       gpuScene_, targets_, lastSubmitted().uniforms.handle(),
-                           settings_, samplers_, uniforms_};
-        voxelView_->execute(frame);
-    });
+    runAfterFrame([&](const FrameContext& frame) { voxelView_->execute(frame); });
     return voxelView_->output();
+}
+
+void Renderer::runAfterFrame(const std::function<void(const FrameContext&)>& record) {
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        const FrameContext frame{context_,  cmd,       gpuScene_, targets_, lastSubmitted().uniforms.handle(),
+                                 settings_, samplers_, uniforms_};
+        record(frame);
+    });
 }
 
 }  // namespace vct

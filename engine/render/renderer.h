@@ -129,6 +129,9 @@ class Renderer {
     FrameSlot& lastSubmitted() { return slots_[(submitted_ + slots_.size() - 1) % slots_.size()]; }
     vk::Buffer copyToHost(vk::Image& image);
     std::vector<float> readImage(vk::Image& image);
+    // Records work on what the last frame left (its targets, its uniforms) in a submit of its own, and waits:
+    // readFinalHdr, renderVoxelView.
+    void runAfterFrame(const std::function<void(const FrameContext&)>& record);
     void writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms);
     void createSamplers();
 

@@ -67,9 +67,14 @@ struct ChoiceValue {  // one of a few unsigned integers
     std::optional<uint32_t> automatic = std::nullopt;
     // One choice written as a word on the command line, in the demo and in JSON ("all" bounces), else none.
     std::optional<std::pair<uint32_t, const char*>> word = std::nullopt;
+    // The word `choice` is written as, or null for a number.
+    const char* wordOf(uint32_t choice) const {
+        return word && word->first == choice ? word->second : nullptr;
+    }
     // A choice as written: its word, or its number.
     std::string text(uint32_t choice) const {
-        return word && word->first == choice ? std::string(word->second) : std::to_string(choice);
+        const char* w = wordOf(choice);
+        return w ? std::string(w) : std::to_string(choice);
     }
 };
 struct NamedValue {  // an enum by name: names[i] is the enumerator of value i

@@ -147,6 +147,10 @@ class VoxelGrid {
         VoxelRegion resolve, inject;
     };
     const std::optional<UpdateRegions>& updateRegions() const { return updateRegions_; }
+    // What this frame's inject and mips update: the region's `inject`, nullopt for the whole grid.
+    std::optional<VoxelRegion> injectRegion() const {
+        return updateRegions_ ? std::optional<VoxelRegion>(updateRegions_->inject) : std::nullopt;
+    }
     void setUpdateRegions(std::optional<UpdateRegions> regions) { updateRegions_ = regions; }
     // The voxels that world bounds `box` touch, widened by `margin` voxels and aligned to VCT_VOXEL_TILE.
     VoxelRegion regionOf(const Aabb& box, uint32_t margin) const;

@@ -16,9 +16,8 @@ nlohmann::json settingsJson(const RenderSettings& s) {
                 [&](const FloatValue& v) { return nlohmann::json(s.*v.member); },
                 [&](const OnOffValue& v) { return nlohmann::json(s.*v.member); },
                 [&](const ChoiceValue& v) {
-                    const uint32_t choice = s.*v.member;
-                    return v.word && v.word->first == choice ? nlohmann::json(v.word->second)
-                                                             : nlohmann::json(choice);
+                    const char* word = v.wordOf(s.*v.member);
+                    return word ? nlohmann::json(word) : nlohmann::json(s.*v.member);
                 },
                 [&](const NamedValue& v) { return nlohmann::json(v.names[v.get(s)]); },
                 [&](const auto&) -> nlohmann::json {
