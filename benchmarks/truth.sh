@@ -20,6 +20,7 @@
 #                1), passed to compare as --second-reference-dir: the reference's own noise in the sRGB PSNRs
 #   TRUTH_TAG    appended to the results directory's name (e.g. t0 for TRUTH_FRAMES=1: the static pose at t = 0)
 #   TRUTH_RENDER_FLAGS  extra `vct render` flags for every vct image (e.g. "--cone-jitter on"; split on spaces)
+#                (default: --bounces 1)
 #   VCT          the program [build/vct]
 set -euo pipefail
 # Scene arguments that are files are made absolute before common.sh changes to the repository root.
@@ -60,7 +61,9 @@ fi
 exposure_flags=()
 [ -n "${TRUTH_EXPOSURE:-}" ] && exposure_flags=(--exposure "$TRUTH_EXPOSURE")
 # shellcheck disable=SC2206  # split on purpose: several flags in one variable
-render_flags=(${TRUTH_RENDER_FLAGS:-})
+# Without TRUTH_RENDER_FLAGS vct renders one bounce: most references are one-bounce, and the report measures the
+# cone tracer itself (TRUTH_RENDER_FLAGS="--bounces all" TRUTH_REFERENCES=all for the default, docs/design.md §5.7).
+render_flags=(${TRUTH_RENDER_FLAGS:---bounces 1})
 reference_flags=("${exposure_flags[@]}")
 [ -n "${TRUTH_SEED:-}" ] && reference_flags+=(--seed "$TRUTH_SEED")
 [ -n "${TRUTH_THREADS:-}" ] && reference_flags+=(--threads "$TRUTH_THREADS")
@@ -137,7 +140,7 @@ for scene in "${scenes[@]}"; do
     for v in $voxels; do
         for t in $scales; do
             image="$work/vct-$name-v$v-s$t"
-            echo "== vct render --scene $scene --voxels $v --trace-scale $t ${TRUTH_RENDER_FLAGS:+$TRUTH_RENDER_FLAGS }($size, $frames frames) -> $image"
+            echo "== vct render --scene $scene --voxels $v --trace-scale $t ${render_flags[*]} ($size, $frames frames) -> $image"
             "$vct" render --scene "$scene" --size "$size" --frames "$frames" --voxels "$v" --trace-scale "$t" \
                 "${exposure_flags[@]}" "${render_flags[@]}" --aux --out "$image"
             [ -n "$slug" ] || slug="$(device_slug "$image/timings.json")"
@@ -169,7 +172,7 @@ for scene in "${scenes[@]}"; do
                 annotate "$json" "scene=$name" "scene_path=$scene" "voxels=$v" "trace_scale=$t" \
                     "reference_kind=$kind" "reference_label=$(reference_label "$kind")" "size=$size" \
                     "spp=$spp" "frames=$frames" "frame=$frame" \
-                    "reference_seconds=$reference_seconds" "render_flags=${TRUTH_RENDER_FLAGS:-}"
+                    "reference_seconds=$reference_seconds" "render_flags=${render_flags[*]}"
             done
         done
     done

@@ -342,10 +342,11 @@ TEST(DemoWindow, ScriptedAcceptanceRun) {
     const std::filesystem::path dir = test::freshOutputDir("demo/acceptance");
     auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
     // Steps 1-2 with the animation paused: the only change between two screenshots is the setting, measured
-    // against the change between two screenshots of the same setting 16 frames apart (one jitter cycle).
+    // against the change between two screenshots of the same setting 16 frames apart (one jitter cycle). One
+    // bounce, so that the light stands still: the default's gathers would still be converging (design §5.7).
     // Steps 3-5 with the cube moving, as in Tokuyoshi 2015 Fig. 8.
     const nlohmann::json steps = {
-        {{"frame", 0}, {"set", {{"pause", "on"}, {"weights", "sg"}, {"trace-scale", 4}}}},
+        {{"frame", 0}, {"set", {{"pause", "on"}, {"weights", "sg"}, {"trace-scale", 4}, {"bounces", 1}}}},
         {{"frame", 16}, {"screenshot", shot("0-sg")}},
         {{"frame", 32}, {"screenshot", shot("0-sg-again")}},
         {{"frame", 33}, {"set", {{"weights", "normal"}}}},

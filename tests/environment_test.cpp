@@ -301,7 +301,7 @@ TEST(EnvironmentGpu, WhiteEnvironmentOverAnOpenWhitePlaneGivesTheAnalyticRadianc
         const fs::path dir = vct::test::freshOutputDir(std::string("environment/white_vct_") + scale);
         r = vct::test::runVct({"render", "--scene", scene, "--size", "48x27", "--frames", "8",
                                "--trace-scale", scale, "--environment", env.string(), "--aux", "--out",
-                               dir.string()});
+                               dir.string(), "--bounces", "1"});
         ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
         EXPECT_NE(r.out.find("environment: file white.exr"), std::string::npos) << r.out;
         const vct::ImageRgba32f diffuse = vct::readExr(dir / "diffuse_indirect.exr");

@@ -102,7 +102,10 @@ TEST(SettingTable, CommandLineAndDemoShareRangesAndMessages) {
     EXPECT_EQ(all.bounces, kAllBounces);
     EXPECT_EQ(settingText(*findSetting("bounces"), all), "all");
     EXPECT_EQ(settingsJson(all)["bounces"], "all");
-    EXPECT_EQ(settingsJson(RenderSettings{})["bounces"], 1);
+    EXPECT_EQ(settingsJson(RenderSettings{})["bounces"], "all");
+    RenderSettings one;
+    one.bounces = 1;
+    EXPECT_EQ(settingsJson(one)["bounces"], 1);
     EXPECT_TRUE(applySetting(all, "bounces", "3"));
     EXPECT_EQ(all.bounces, 3u);
     EXPECT_EQ(usageError([&] { applySetting(s, "weights", "lobe"); }),

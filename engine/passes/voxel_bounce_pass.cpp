@@ -9,9 +9,10 @@ namespace vct {
 
 namespace {
 
-// Slabs of the grid for `--bounces all`: 8, so that a slab at 64³ is two layers of bricks (8 voxels) and its
-// gather costs an eighth of a whole-grid one; fewer when the grid has fewer layers of bricks.
-constexpr uint32_t kSlabs = 8;
+// Slabs of the grid for `--bounces all`: one layer of bricks each (4 voxels deep), so that a frame's gather costs
+// 1/(N/4) of a whole-grid one: 16 slabs at 64³. With 8 (two layers) the gather took 0.20× cornell's default frame at
+// 640×360 on lavapipe, with 16 0.10× (benchmarks/README.md, round 10); a round then takes N/4 frames.
+
 // Rounds of every slab after the grid last changed. Each round adds at least one bounce; a furnace of albedo ρ
 // misses ρ^(rounds + 1) of its light after them (ρ = 0.8: 1.4 % after 18 rounds).
 constexpr uint32_t kSettleRounds = 18;
@@ -32,14 +33,12 @@ ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environm
 }  // namespace
 
 uint32_t VoxelBouncePass::slabCount(const VoxelGrid& grid) {
-    return std::clamp(grid.resolution() / VCT_VOXEL_BRICK, 1u, kSlabs);
+    return std::max(grid.resolution() / VCT_VOXEL_BRICK, 1u);
 }
 
 VoxelRegion VoxelBouncePass::slab(const VoxelGrid& grid, uint32_t i) {
-    const uint32_t bricks = grid.resolution() / VCT_VOXEL_BRICK, slabs = slabCount(grid);
-    const uint32_t first = bricks * i / slabs, last = bricks * (i + 1) / slabs;
     const uint32_t n = grid.resolution();
-    return {glm::uvec3(0u, 0u, first * VCT_VOXEL_BRICK), glm::uvec3(n, n, last * VCT_VOXEL_BRICK)};
+    return {glm::uvec3(0u, 0u, i * VCT_VOXEL_BRICK), glm::uvec3(n, n, (i + 1) * VCT_VOXEL_BRICK)};
 }
 
 uint32_t VoxelBouncePass::settleFrames(const VoxelGrid& grid) {

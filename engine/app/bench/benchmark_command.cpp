@@ -247,6 +247,7 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""},
         settingOption("voxels"),
+        settingOption("bounces"),
         settingOption("exposure"),
         settingOption("recompute-every-frame")};
     for (Option& option : settingOptions(SettingGroup::Material)) options.push_back(std::move(option));
