@@ -47,7 +47,9 @@ const CommandSpec& referenceSpec() {
           "samples per pixel (each: one camera ray, light samples, one diffuse and one specular ray)", "64"},
          {"seed", "S", "random seed: the image is the same for a seed, whatever the thread count", "1"},
          {"bounces", "0|1|N|all",
-          "indirect bounces: 0 direct only, 1 what vct's cones estimate, N, all (full GI, Russian roulette)",
+          "indirect bounces: 0 direct only, 1 what vct's cones estimate (vct --bounces 1), N, all (full GI, "
+          "Russian "
+          "roulette: what vct's default converges to)",
           "1"},
          {"secondary", "full|diffuse",
           "how surfaces hit by indirect rays reflect: the full BRDF (the truth) or its Lambert part only "
