@@ -268,9 +268,10 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
     EXPECT_GE(allWhole, 0.8);
     EXPECT_LE(allWhole, 1.15);
 
-    // `--bounces all`, its gathers amortised over 64 frames (8 rounds of the 8 slabs), against the full GI at
-    // the last frame: measured 0.906 of it, every surface 0.84 (red wall) to 1.07 (blue cube); at 320×180 against
-    // 256 spp 0.911, as --bounces 8's 0.912.
+    // `--bounces all` (the default), its gathers amortised over 64 frames (4 rounds of the 16 slabs, one layer of
+    // bricks each, at 64³), against the full GI at the last frame: measured 0.890 of it, every surface 0.82 (red
+    // wall) to 1.07 (blue cube); with 8 slabs (8 rounds) 0.906. At 320×180 against 256 spp 0.890, settled
+    // as --bounces 8's 0.912.
     const nlohmann::json amortised =
         compareWith(cornellReference("per_surface", "all", 63),
                     renderVct("cornell_ball", "cornell", {"--voxels", "64", "--bounces", "all"}, 64));
