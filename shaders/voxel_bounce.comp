@@ -54,7 +54,13 @@ void main() {
     const vec3 p = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
     // No direction at all (rare: opposite faces in one voxel cancelling exactly): +y's two sides.
     const vec3 axis = r > 1e-3 ? nbar / r : vec3(0.0, 1.0, 0.0);
-    vec3 gathered = traceDiffuse(voxels, p, axis);
-    if (r < BOUNCE_ONE_SIDED) gathered = 0.5 * (gathered + traceDiffuse(voxels, p, -axis));
+    // The cones leave from one voxel out along the normal, not from the centre: the surface lies anywhere within
+    // its voxel, and from the centre the side cones met the voxel's own neighbours along the surface (its own
+    // light, or a shadow where the truth sees the room). Measured on cornell against the all-bounce truth
+    // (320×180, 64 frames): 64³ 0.890 → 0.925 of the indirect light, sRGB PSNR 22.90 → 23.33 dB; 32³ and 128³
+    // and DamagedHelmet gain 0.1–0.5 dB (docs/design.md §5.7).
+    const float lift = frame.voxels.voxelSize;
+    vec3 gathered = traceDiffuse(voxels, p + lift * axis, axis);
+    if (r < BOUNCE_ONE_SIDED) gathered = 0.5 * (gathered + traceDiffuse(voxels, p - lift * axis, -axis));
     imageStore(bounceImage, texel, vec4(gathered, 0.0));
 }
