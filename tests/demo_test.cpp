@@ -81,7 +81,7 @@ TEST(DemoControls, ActionsAreOneShotFlags) {
 TEST(DemoControls, SplitSourceAndReferenceBounces) {
     DemoControls c;
     EXPECT_EQ(c.splitSource, SplitSource::Vct);
-    EXPECT_EQ(c.referenceBounces, 1);  // what vct's cones estimate
+    EXPECT_EQ(c.referenceBounces, reference::kUnlimitedBounces);  // what vct's default converges to
     applyOption(c, "split", "on");
     EXPECT_TRUE(c.rendersB());
     EXPECT_FALSE(c.showsReference());
@@ -479,7 +479,7 @@ TEST(DemoWindow, SplitViewShowsThePathTracedReferenceConvergingAndRestarting) {
 
     const test::RunResult reference =
         test::runVct({"reference", "--size", "160x90", "--spp", "16", "--frame", "0", "--threads", "1",
-                      "--out", (dir / "reference").string()});
+                      "--bounces", "all", "--out", (dir / "reference").string()});
     ASSERT_TRUE(reference.exited() && reference.exitCode == 0) << reference.describe();
     const ImageRgba8 truth = readPng(dir / "reference" / "final.png");
     const ImageRgba8 at8 = readPng(shot("0-8spp")), at16 = readPng(shot("1-16spp")),

@@ -79,10 +79,9 @@ CommandSpec makeDemoSpec() {
          "converging on a CPU thread",
          "vct"},
         {"reference-bounces", "0..64|all",
-         "the reference's indirect bounces: 1 is what vct estimates with --bounces 1, all is full GI (what "
-         "vct's "
-         "default converges to)",
-         "1"},
+         "the reference's indirect bounces: all is full GI (what vct's default converges to), 1 what vct "
+         "estimates with --bounces 1",
+         "all"},
         settingOption("exposure"),
         {"device", "SUBSTRING", "use the first Vulkan device whose name contains SUBSTRING", ""},
         {"validate", "", "enable the Khronos validation layer; any message fails the run", ""}};

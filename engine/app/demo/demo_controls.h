@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/cli/aux_output.h"
+#include "reference/path_tracer.h"
 #include "render/settings.h"
 
 namespace vct {
@@ -26,7 +27,9 @@ struct DemoControls {
     std::map<std::string, std::string> splitOverrides = {{"weights", "normal"}};
     float wipe = 0.5f;  // where side B starts, as a fraction of the width
     SplitSource splitSource = SplitSource::Vct;
-    int referenceBounces = 1;  // the reference's indirect bounces: 1 (what vct estimates), N, or -1 (all)
+    // The reference's indirect bounces: -1 (all: full GI, what vct's default converges to), 1 (what vct estimates
+    // with --bounces 1) or N.
+    int referenceBounces = reference::kUnlimitedBounces;
     AuxView view = AuxView::Final;
     uint32_t voxelMip = 0;
     bool panel = true;      // F1
