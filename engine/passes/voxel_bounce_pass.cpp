@@ -9,10 +9,6 @@ namespace vct {
 
 namespace {
 
-// Slabs of the grid for `--bounces all`: one layer of bricks each (4 voxels deep), so that a frame's gather costs
-// 1/(N/4) of a whole-grid one: 16 slabs at 64³. With 8 (two layers) the gather took 0.20× cornell's default frame at
-// 640×360 on lavapipe, with 16 0.10× (benchmarks/README.md, round 10); a round then takes N/4 frames.
-
 // Rounds of every slab after the grid last changed. Each round adds at least one bounce; a furnace of albedo ρ
 // misses ρ^(rounds + 1) of its light after them (ρ = 0.8: 1.4 % after 18 rounds).
 constexpr uint32_t kSettleRounds = 18;
@@ -32,6 +28,9 @@ ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environm
 
 }  // namespace
 
+// Slabs of the grid for `--bounces all`: one layer of bricks each (4 voxels deep), so that a frame's gather costs
+// 1/(N/4) of a whole-grid one: 16 slabs at 64³. With 8 (two layers) the gather took 0.20× cornell's default frame at
+// 640×360 on lavapipe, with 16 0.10× (benchmarks/README.md, round 10); a round then takes N/4 frames.
 uint32_t VoxelBouncePass::slabCount(const VoxelGrid& grid) {
     return std::max(grid.resolution() / VCT_VOXEL_BRICK, 1u);
 }
