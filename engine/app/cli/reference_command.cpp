@@ -48,8 +48,7 @@ const CommandSpec& referenceSpec() {
          {"seed", "S", "random seed: the image is the same for a seed, whatever the thread count", "1"},
          {"bounces", "0|1|N|all",
           "indirect bounces: 0 direct only, 1 what vct's cones estimate (vct --bounces 1), N, all (full GI, "
-          "Russian "
-          "roulette: what vct's default converges to)",
+          "Russian roulette: what vct's default converges to)",
           "1"},
          {"secondary", "full|diffuse",
           "how surfaces hit by indirect rays reflect: the full BRDF (the truth) or its Lambert part only "
