@@ -64,6 +64,36 @@ TEST(Cone, FootprintMipAndStep) {
     EXPECT_GT(coneStep(v0), 0.0f);
 }
 
+// A sample whose footprint the surface clearance limits keeps the surface out of both levels of its trilinear
+// blend once lifted: the coarser level's reach (CONE_MIP_REACH of its voxels) ends at or above the surface once
+// that level weighs CONE_MIP_REACH_FULL_WEIGHT or more, and the lift is continuous along the cone.
+TEST(Cone, CoarseMipLiftKeepsTheSurfaceOutOfBothLevels) {
+    const float v0 = 0.1f;
+    for (float height : {0.05f, 0.1f, 0.25f, 0.4f, 0.9f, 3.0f}) {
+        const float footprint = coneSurfaceFootprint(10.0f, height, v0, CONE_SURFACE_CLEARANCE);
+        const float mip = coneMip(footprint, v0);
+        const float lift = coneCoarseMipLift(height, mip, v0);
+        EXPECT_GE(lift, 0.0f) << height;
+        const float level =
+            mip - std::floor(mip) >= CONE_MIP_REACH_FULL_WEIGHT ? std::ceil(mip) : std::floor(mip);
+        EXPECT_GE(height + lift, CONE_MIP_REACH * v0 * std::exp2(level) - 1e-6f) << height;
+    }
+    // Integer mips (no blend): their own level's reach; mip 0 1.5 voxels.
+    EXPECT_NEAR(coneCoarseMipLift(0.0f, 0.0f, v0), 0.15f, 1e-7f);
+    EXPECT_NEAR(coneCoarseMipLift(0.1f, 1.0f, v0), 0.2f, 1e-7f);
+    // The next level's whole reach from a quarter of its weight on.
+    EXPECT_NEAR(coneCoarseMipLift(0.1f, 1.25f, v0), 0.5f, 1e-6f);
+    EXPECT_NEAR(coneCoarseMipLift(0.1f, 1.9f, v0), 0.5f, 1e-6f);
+    EXPECT_FLOAT_EQ(coneCoarseMipLift(1.0f, 2.5f, v0), 0.2f);
+    // Continuous in the mip (a cone's footprint grows smoothly): no jump where it crosses an integer.
+    for (float mip = 0.0f; mip < 5.0f; mip += 0.01f) {
+        const float a = coneCoarseMipLift(0.0f, mip, v0), b = coneCoarseMipLift(0.0f, mip + 0.01f, v0);
+        EXPECT_LE(std::abs(b - a), CONE_MIP_REACH * v0 * std::exp2(std::ceil(mip + 0.01f)) * 0.05f) << mip;
+    }
+    // Never NaN or negative, at any height, with a zero voxel.
+    EXPECT_EQ(coneCoarseMipLift(5.0f, 3.0f, 0.0f), 0.0f);
+}
+
 // The jittered cone set (docs/design.md §5.5): averaged over its random number, each cone's direction samples its
 // tile of the hemisphere by the cosine, so the weighted cones give the cosine-weighted mean of any radiance
 // (here functions of the angle θ from n: the azimuth is covered by the set's turn). The fixed set reads
@@ -397,7 +427,9 @@ TEST(ConeGpu, IndirectLightInShadowsMatchesThePathTracedTruthOnCornell) {
     // vct (32³, every pixel traced, t = 0) against the path-traced one-bounce reference of the same frame.
     const auto vctDir = vct::test::freshOutputDir("cone/gi_on");
     auto r = vct::test::runVct({"render", "--scene", "cornell", "--size", "160x90", "--frames", "1",
-                                "--voxels", "32", "--trace-scale", "1", "--out", vctDir.string(), "--aux"});
+                                "--voxels", "32", "--trace-scale", "1", "--out", vctDir.string(), "--aux",
+                                // One bounce, as the reference (the default starts from four).
+                                "--bounces", "1"});
     ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
     const auto refDir = vct::test::freshOutputDir("cone/gi_reference");
     r = vct::test::runVct({"reference", "--scene", "cornell", "--size", "160x90", "--frame", "0", "--spp",

@@ -13,6 +13,14 @@ namespace {
 // misses ρ^(rounds + 1) of its light after them (ρ = 0.8: 1.4 % after 18 rounds).
 constexpr uint32_t kSettleRounds = 18;
 
+// `--bounces all` starts from the light of this many bounces: on its first frame the whole grid gathers
+// kWarmStartBounces − 1 times. Without it the light rose over the first rounds (N/4 frames each): cornell at
+// 320×180 had 0.64 of the full GI after 16 frames at 64³ (0.54 at 128³) and 0.925 after 64 (0.790); starting
+// from 4 bounces, 0.90 (0.83) and 0.942 (0.867). From 2 or 3 bounces, 0.934 / 0.939 after 64 frames at 64³ and
+// 0.830 / 0.853 at 128³ (benchmarks/README.md, round 11). The price, once per load: 3 whole-grid gathers, on
+// lavapipe 0.3 s at 64³, 1.7 s at 128³ and 13 s at 256³ (cornell), against the 16, 32 or 64 frames a round takes.
+constexpr uint32_t kWarmStartBounces = 4;
+
 // Binding numbers: shaders/voxel_bounce.comp's.
 ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environment) {
     std::vector<ResourceRow> rows{
@@ -77,6 +85,13 @@ void VoxelBouncePass::gather(const FrameContext& frame, const std::optional<Voxe
 }
 
 void VoxelBouncePass::execute(const FrameContext& frame) {
+    if (amortised() && !warmStarted_) {
+        // The first frame: the gathers start from nothing (the atlas was cleared), so the whole grid gathers as
+        // `--bounces kWarmStartBounces` does; the slabs carry on from there.
+        warmStarted_ = true;
+        wholeGridIterations(frame, kWarmStartBounces - 1);
+        return;
+    }
     if (amortised()) {
         // This frame's slab gathers from the grid as it stands and sends the result on at once.
         const VoxelRegion region = slab(grid_, nextSlab_);
@@ -86,7 +101,11 @@ void VoxelBouncePass::execute(const FrameContext& frame) {
         mips_.update(frame, region);
         return;
     }
-    for (uint32_t i = 0; i < iterations_; ++i) {
+    wholeGridIterations(frame, iterations_);
+}
+
+void VoxelBouncePass::wholeGridIterations(const FrameContext& frame, uint32_t iterations) {
+    for (uint32_t i = 0; i < iterations; ++i) {
         // Gather from the grid as it stands (its mips included)...
         gather(frame, std::nullopt);
         // ...and send it on: direct light + albedo × gathered, and the mips of that.

@@ -7,7 +7,8 @@
 //   the grid (a layer of bricks along z) gathers again from the grid as it stands, then is injected and its mips
 //   updated. Gathering from light that has already bounced k times adds bounce k + 1: the grid converges to every
 //   bounce, one more per round of the slabs at least, and a slab gathers from the slabs before it in the same
-//   round. The gathers go on for settleFrames() after the grid last changed, then stop until it changes again.
+//   round. The first frame starts from 4 bounces (whole-grid gathers as `--bounces 4`). The gathers go on for
+//   settleFrames() after the grid last changed, then stop until it changes again.
 #pragma once
 
 #include "passes/inject_pass.h"
@@ -39,12 +40,15 @@ class VoxelBouncePass : public Pass {
   private:
     bool amortised() const { return iterations_ == 0; }
     void gather(const FrameContext& frame, const std::optional<VoxelRegion>& region);
+    // `iterations` × (gather over the whole grid, inject, mips): `iterations` more bounces.
+    void wholeGridIterations(const FrameContext& frame, uint32_t iterations);
 
     VoxelGrid& grid_;
     InjectPass& inject_;
     VoxelMipsPass& mips_;
     uint32_t iterations_;  // N − 1; 0 for kAllBounces
     uint32_t nextSlab_ = 0;
+    bool warmStarted_ = false;  // `--bounces all`: the first frame's whole-grid gathers ran
     ResourceTable resources_;
     vk::Pipeline pipeline_;
 };

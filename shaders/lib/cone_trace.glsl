@@ -83,7 +83,8 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
-        const float d = coneSurfaceFootprint(coneD, dot(x - p, n), v0, clearance);
+        const float height = dot(x - p, n);
+        const float d = coneSurfaceFootprint(coneD, height, v0, clearance);
         const vec3 uvw = (x - gridOrigin) / gridSize;
         // The axis leaves the grid: the grid is padded around the scene bounds, so nothing lies beyond, but
         // the footprint still covers the grid's outermost texels. A cone meeting a wall obliquely sees it
@@ -96,7 +97,9 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             if (++stepsPastGrid > CONE_STEPS_PAST_GRID) break;
         }
         const float mip = min(coneMip(d, v0), maxMip);
-        const vec4 s = sampleVoxels(voxels, uvw, dir, mip);
+        // Read where the coarser level of the blend keeps the surface out too.
+        const vec3 lifted = x + n * coneCoarseMipLift(height, mip, v0);
+        const vec4 s = sampleVoxels(voxels, (lifted - gridOrigin) / gridSize, dir, mip);
         const float dt = coneStep(coneD);
         // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
         acc = coneComposite(acc, s, dt, v0 * exp2(mip));
