@@ -94,6 +94,37 @@ TEST(Cone, CoarseMipLiftKeepsTheSurfaceOutOfBothLevels) {
     EXPECT_EQ(coneCoarseMipLift(5.0f, 3.0f, 0.0f), 0.0f);
 }
 
+// Samples read within the grid: inside it a sample is only lifted; past its edge it reads the edge texels (the
+// sampler's clamp), lifted along the edge where the grid lets it, and where it cannot be lifted clear (a cone
+// leaving the grid straight above the surface) at the finest mip whose reach ends above the surface.
+TEST(Cone, SamplesPastTheGridKeepTheSurfaceOut) {
+    const float v0 = 0.1f;
+    const glm::vec3 lo(-3.2f, -3.2f, -3.2f), hi(3.2f, 3.2f, 3.2f), p(0.0f), up(0, 1, 0);
+    // Inside, clear of the surface: unchanged.
+    ConeSampleAt at = coneSampleAt(glm::vec3(0.3f, 1.0f, 0.0f), 2.0f, p, up, v0, lo, hi);
+    EXPECT_EQ(at.position, glm::vec3(0.3f, 1.0f, 0.0f));
+    EXPECT_EQ(at.mip, 2.0f);
+    // Inside, too low for the coarser level: lifted, the mip kept.
+    at = coneSampleAt(glm::vec3(0.3f, 0.2f, 0.0f), 1.5f, p, up, v0, lo, hi);
+    EXPECT_NEAR(at.position.y, CONE_MIP_REACH * v0 * 4.0f, 1e-6f);
+    EXPECT_EQ(at.mip, 1.5f);
+    // Past the top, straight above p: read at the edge (3.2 above p), the mip capped to the finest level whose
+    // reach (1.5 of its voxels) ends above the surface: 1.5 · 0.1 · 2^4 = 2.4 ≤ 3.2 < 4.8.
+    at = coneSampleAt(glm::vec3(0.0f, 4.0f, 0.0f), 5.6f, p, up, v0, lo, hi);
+    EXPECT_EQ(at.position, glm::vec3(0.0f, 3.2f, 0.0f));
+    EXPECT_EQ(at.mip, 4.0f);
+    EXPECT_LE(CONE_MIP_REACH * v0 * std::exp2(at.mip), at.position.y);
+    // Past a side wall of the grid at a height: clamped to the wall, lifted up along it, the mip kept.
+    at = coneSampleAt(glm::vec3(4.0f, 1.0f, 0.0f), 3.5f, p, up, v0, lo, hi);
+    EXPECT_EQ(at.position.x, 3.2f);
+    EXPECT_NEAR(at.position.y, CONE_MIP_REACH * v0 * 16.0f, 1e-5f);
+    EXPECT_EQ(at.mip, 3.5f);
+    // At the surface itself past the grid: mip 0, never NaN.
+    at = coneSampleAt(glm::vec3(0.0f, 0.0f, 4.0f), 3.0f, glm::vec3(0.0f, 3.2f, 3.0f), up, v0, lo, hi);
+    EXPECT_EQ(at.mip, 0.0f);
+    EXPECT_TRUE(std::isfinite(at.position.x) && std::isfinite(at.position.y) && std::isfinite(at.position.z));
+}
+
 // The jittered cone set (docs/design.md §5.5): averaged over its random number, each cone's direction samples its
 // tile of the hemisphere by the cosine, so the weighted cones give the cosine-weighted mean of any radiance
 // (here functions of the angle θ from n: the azimuth is covered by the set's turn). The fixed set reads

@@ -99,6 +99,35 @@ VCT_INLINE float coneCoarseMipLift(float height, float mip, float voxelSize) {
     return max(reach - height, 0.0f);
 }
 
+// Where a cone's sample at x reads the grid [gridMin, gridMax], and at which mip, for a cone that left the surface
+// at p with unit normal n: lifted by coneCoarseMipLift, and kept inside the grid. The sampler clamps to the edge
+// texels, so a sample past the grid (a cone that has left it: cone_trace.glsl takes CONE_STEPS_PAST_GRID more, to
+// close walls met obliquely at the border) reads the edge texels as if taken at the edge: there its height above
+// the surface, not x's, counts. Where the lift cannot be had within the grid (a cone leaving it straight above an
+// open floor that spans the grid) the mip is capped instead at the level whose reach ends above the surface:
+// the top level's texel holds the whole grid, the floor among it, opaque in the slab along the normal, and an
+// open white floor under a white sky gathered 0.46 of the sky (exact 1) before; 0.96 capped
+// (`EnvironmentGpu.WhiteEnvironmentOverAnOpenWhitePlaneGivesTheAnalyticRadiance`, docs/design.md §5.3).
+struct ConeSampleAt {
+    vec3 position;
+    float mip;
+};
+
+VCT_INLINE ConeSampleAt coneSampleAt(vec3 x, float mip, vec3 p, vec3 n, float voxelSize, vec3 gridMin,
+                                     vec3 gridMax) {
+    ConeSampleAt at;
+    const vec3 edge = clamp(x, gridMin, gridMax);
+    const vec3 lifted = edge + n * coneCoarseMipLift(dot(edge - p, n), mip, voxelSize);
+    at.position = clamp(lifted, gridMin, gridMax);
+    at.mip = mip;
+    if (any(notEqual(at.position, lifted))) {
+        const float height = max(dot(at.position - p, n), 0.0f);
+        const float clear = floor(log2(max(height / (CONE_MIP_REACH * voxelSize), 1e-6f)));
+        at.mip = min(mip, max(clear, 0.0f));
+    }
+    return at;
+}
+
 // Mip whose voxels match the footprint: log2(d / v0) ≥ 0 (fractional: trilinear between mips).
 VCT_INLINE float coneMip(float diameter, float voxelSize) {
     return max(log2(max(diameter, voxelSize) / voxelSize), 0.0f);

@@ -83,8 +83,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
-        const float height = dot(x - p, n);
-        const float d = coneSurfaceFootprint(coneD, height, v0, clearance);
+        const float d = coneSurfaceFootprint(coneD, dot(x - p, n), v0, clearance);
         const vec3 uvw = (x - gridOrigin) / gridSize;
         // The axis leaves the grid: the grid is padded around the scene bounds, so nothing lies beyond, but
         // the footprint still covers the grid's outermost texels. A cone meeting a wall obliquely sees it
@@ -96,13 +95,13 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) {
             if (++stepsPastGrid > CONE_STEPS_PAST_GRID) break;
         }
-        const float mip = min(coneMip(d, v0), maxMip);
-        // Read where the coarser level of the blend keeps the surface out too.
-        const vec3 lifted = x + n * coneCoarseMipLift(height, mip, v0);
-        const vec4 s = sampleVoxels(voxels, (lifted - gridOrigin) / gridSize, dir, mip);
+        // Read where the coarser level of the blend keeps the surface out too, within the grid.
+        const ConeSampleAt at =
+            coneSampleAt(x, min(coneMip(d, v0), maxMip), p, n, v0, gridOrigin, gridOrigin + vec3(gridSize));
+        const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip);
         const float dt = coneStep(coneD);
         // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
-        acc = coneComposite(acc, s, dt, v0 * exp2(mip));
+        acc = coneComposite(acc, s, dt, v0 * exp2(at.mip));
         t += dt;
     }
     // Stopped as nearly opaque: what lies behind the last CONE_MAX_OPACITY would add its share of the cone in
