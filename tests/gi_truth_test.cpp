@@ -4,6 +4,7 @@
 // and all-bounce references; light leaking through a one-voxel wall into a dark room.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/image_io.h"
+#include "passes/voxel_bounce_pass.h"
 #include "scene/gltf_writer.h"
 #include "scene_util.h"
 #include "test_util.h"
@@ -162,6 +164,42 @@ TEST(VoxelGi, AllBouncesConvergeOverFramesToTheFurnaceLimitAndThenStop) {
     // Gathers in the frames after the first (which is a change): the settle frames, then none.
     EXPECT_EQ(convergedGathers, 73);
     EXPECT_EQ(settledGathers, 8 * 18);
+}
+
+// `--bounces all`'s slabs (passes/voxel_bounce_pass.h): one round visits every voxel of the grid exactly once, in
+// whole bricks, layer after layer along z. On a CPU device no slab holds more brick places than a 64³ layer (16 ×
+// 16), so a frame's gather costs about the same at every resolution: rounds of 8, 16, 128 and 1024 slabs at 32³ to
+// 256³. On a GPU a slab is a whole layer: N/4 slabs.
+TEST(VoxelBounce, SlabsTileTheGridOnceARound) {
+    struct Case {
+        uint32_t n;
+        bool cpu;
+        uint32_t slabs, maxBrickPlaces;
+    };
+    for (const Case& c : {Case{32, true, 8, 64}, Case{64, true, 16, 256}, Case{128, true, 128, 256},
+                          Case{256, true, 1024, 256}, Case{64, false, 16, 256}, Case{128, false, 32, 1024},
+                          Case{256, false, 64, 4096}}) {
+        const uint32_t n = c.n, bands = vct::VoxelBouncePass::bandsPerLayer(n, c.cpu);
+        ASSERT_EQ(vct::VoxelBouncePass::slabCount(n, bands), c.slabs) << n;
+        std::vector<uint8_t> visits(size_t(n) * n * n, 0);
+        uint32_t lastZ = 0;
+        for (uint32_t i = 0; i < c.slabs; ++i) {
+            const vct::VoxelRegion r = vct::VoxelBouncePass::slab(n, bands, i);
+            for (int axis = 0; axis < 3; ++axis) {
+                EXPECT_EQ(r.min[axis] % VCT_VOXEL_BRICK, 0u) << n << " slab " << i;
+                EXPECT_EQ(r.max[axis] % VCT_VOXEL_BRICK, 0u) << n << " slab " << i;
+                EXPECT_LE(r.max[axis], n);
+            }
+            const glm::uvec3 bricks = (r.max - r.min) / uint32_t(VCT_VOXEL_BRICK);
+            EXPECT_EQ(bricks.x * bricks.y * bricks.z, c.maxBrickPlaces) << n << " slab " << i;
+            EXPECT_GE(r.min.z, lastZ) << "slabs go along z: " << n << " slab " << i;
+            lastZ = r.min.z;
+            for (uint32_t z = r.min.z; z < r.max.z; ++z)
+                for (uint32_t y = r.min.y; y < r.max.y; ++y)
+                    for (uint32_t x = r.min.x; x < r.max.x; ++x) ++visits[(size_t(z) * n + y) * n + x];
+        }
+        EXPECT_EQ(std::count(visits.begin(), visits.end(), uint8_t(1)), std::ptrdiff_t(visits.size())) << n;
+    }
 }
 
 // The closed black cube [−1, 1]³ with some faces emitting radiance 1, seen from its centre with a narrow view

@@ -36,20 +36,34 @@ ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environm
 
 }  // namespace
 
-// Slabs of the grid for `--bounces all`: one layer of bricks each (4 voxels deep), so that a frame's gather costs
-// 1/(N/4) of a whole-grid one: 16 slabs at 64³. With 8 (two layers) the gather took 0.20× cornell's default frame at
-// 640×360 on lavapipe, with 16 0.10× (benchmarks/README.md, round 10); a round then takes N/4 frames.
-uint32_t VoxelBouncePass::slabCount(const VoxelGrid& grid) {
-    return std::max(grid.resolution() / VCT_VOXEL_BRICK, 1u);
+// Slabs of the grid for `--bounces all`: a layer of bricks (4 voxels deep) each, 16 slabs at 64³, whose gather took
+// 0.10× cornell's default frame at 640×360 on lavapipe (with 8 slabs of two layers 0.20×: benchmarks/README.md,
+// round 10). A layer holds more bricks at finer grids: at 128³ its gather cost 1.36× the one-bounce frame on
+// lavapipe, at 256³ 4× (round 10). On a CPU device each layer is therefore cut into bands along y, so that a slab
+// holds no more than a 64³ layer's 16 × 16 brick places: 4 bands at 128³ (128 slabs), 16 at 256³ (1024), the gather
+// 0.29× and 0.07× of one layer's (round 11). The rounds are longer instead (the light after a change converges
+// more slowly; cornell at 128³ has 0.83 of the full GI after 64 frames instead of 0.87), which a GPU need not
+// pay: there a slab stays a whole layer.
+constexpr uint32_t kCpuSlabBrickPlaces = 16 * 16;
+
+uint32_t VoxelBouncePass::bandsPerLayer(uint32_t resolution, bool cpuDevice) {
+    const uint32_t side = std::max(resolution / VCT_VOXEL_BRICK, 1u);
+    return cpuDevice ? std::max(side * side / kCpuSlabBrickPlaces, 1u) : 1u;
 }
 
-VoxelRegion VoxelBouncePass::slab(const VoxelGrid& grid, uint32_t i) {
-    const uint32_t n = grid.resolution();
-    return {glm::uvec3(0u, 0u, i * VCT_VOXEL_BRICK), glm::uvec3(n, n, (i + 1) * VCT_VOXEL_BRICK)};
+uint32_t VoxelBouncePass::slabCount(uint32_t resolution, uint32_t bands) {
+    return std::max(resolution / VCT_VOXEL_BRICK, 1u) * bands;
 }
 
-uint32_t VoxelBouncePass::settleFrames(const VoxelGrid& grid) {
-    return slabCount(grid) * kSettleRounds;
+VoxelRegion VoxelBouncePass::slab(uint32_t resolution, uint32_t bands, uint32_t i) {
+    const uint32_t n = resolution;
+    const uint32_t layer = i / bands, band = i % bands, rows = n / bands;  // rows: voxels, whole bricks
+    return {glm::uvec3(0u, band * rows, layer * VCT_VOXEL_BRICK),
+            glm::uvec3(n, (band + 1) * rows, (layer + 1) * VCT_VOXEL_BRICK)};
+}
+
+uint32_t VoxelBouncePass::settleFrames() const {
+    return slabCount(grid_.resolution(), bands_) * kSettleRounds;
 }
 
 VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject,
@@ -58,6 +72,8 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
       inject_(inject),
       mips_(mips),
       iterations_(bounces == kAllBounces || bounces < 2 ? 0 : bounces - 1),
+      bands_(
+          bandsPerLayer(grid.resolution(), context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)),
       resources_(bounceResources(grid, environment)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(),
                                       sizeof(gpu::VoxelBouncePushConstants), grid.specialization());
@@ -94,8 +110,8 @@ void VoxelBouncePass::execute(const FrameContext& frame) {
     }
     if (amortised()) {
         // This frame's slab gathers from the grid as it stands and sends the result on at once.
-        const VoxelRegion region = slab(grid_, nextSlab_);
-        nextSlab_ = (nextSlab_ + 1) % slabCount(grid_);
+        const VoxelRegion region = slab(grid_.resolution(), bands_, nextSlab_);
+        nextSlab_ = (nextSlab_ + 1) % slabCount(grid_.resolution(), bands_);
         gather(frame, region);
         inject_.inject(frame, true, region);
         mips_.update(frame, region);

@@ -4,7 +4,7 @@
 // - `--bounces N`: after the frame's inject and mips, N − 1 iterations of gather, inject and mips over the whole
 //   grid, whenever the grid is rebuilt: light that has bounced up to N times.
 // - `--bounces all`: the gathers persist from frame to frame (every inject adds them), and each frame one slab of
-//   the grid (a layer of bricks along z) gathers again from the grid as it stands, then is injected and its mips
+//   the grid (a layer of bricks along z; on a CPU device, at grids finer than 64³, a band of one along y) gathers again from the grid as it stands, then is injected and its mips
 //   updated. Gathering from light that has already bounced k times adds bounce k + 1: the grid converges to every
 //   bounce, one more per round of the slabs at least, and a slab gathers from the slabs before it in the same
 //   round. The first frame starts from 4 bounces (whole-grid gathers as `--bounces 4`). The gathers go on for
@@ -31,11 +31,13 @@ class VoxelBouncePass : public Pass {
     PassReuse reuse() const override {
         return amortised() ? PassReuse::WhileVoxelLightSettled : PassReuse::WhileSceneUnchanged;
     }
-    // `--bounces all`: the slabs the grid is cut into (one gathers per frame), the slab `i` covers, and the frames
-    // the gathers go on after the grid last changed (kSettleRounds rounds of every slab).
-    static uint32_t slabCount(const VoxelGrid& grid);
-    static VoxelRegion slab(const VoxelGrid& grid, uint32_t i);
-    static uint32_t settleFrames(const VoxelGrid& grid);
+    // `--bounces all`: the bands along y each layer of bricks of an N³ grid is cut into (more than one on a CPU
+    // device only), the slabs the grid is cut into (one gathers per frame), the slab `i` covers, and the frames the
+    // gathers go on after the grid last changed (kSettleRounds rounds of every slab).
+    static uint32_t bandsPerLayer(uint32_t resolution, bool cpuDevice);
+    static uint32_t slabCount(uint32_t resolution, uint32_t bands);
+    static VoxelRegion slab(uint32_t resolution, uint32_t bands, uint32_t i);
+    uint32_t settleFrames() const;
 
   private:
     bool amortised() const { return iterations_ == 0; }
@@ -47,6 +49,7 @@ class VoxelBouncePass : public Pass {
     InjectPass& inject_;
     VoxelMipsPass& mips_;
     uint32_t iterations_;  // N − 1; 0 for kAllBounces
+    uint32_t bands_;       // per layer of bricks (bandsPerLayer)
     uint32_t nextSlab_ = 0;
     bool warmStarted_ = false;  // `--bounces all`: the first frame's whole-grid gathers ran
     ResourceTable resources_;

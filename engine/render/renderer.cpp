@@ -74,11 +74,11 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         auto inject = std::make_unique<InjectPass>(context, *voxelGrid_, *dfg_, allBounces);
         auto mips = std::make_unique<VoxelMipsPass>(context, *voxelGrid_);
         // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.7).
-        std::unique_ptr<Pass> bounce;
+        std::unique_ptr<VoxelBouncePass> bounce;
         if (settings.bounces > 1)
             bounce = std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces,
                                                        environment);
-        if (allBounces) voxelLightSettleFrames_ = VoxelBouncePass::settleFrames(*voxelGrid_);
+        if (allBounces) voxelLightSettleFrames_ = bounce->settleFrames();
         passes_.push_back(std::move(inject));
         passes_.push_back(std::move(mips));
         if (bounce) passes_.push_back(std::move(bounce));
