@@ -228,14 +228,14 @@ TEST(VoxelGi, HowMuchASurfaceShadowsAndLightsItselfInAClosedBox) {
     //                 gathers 0:  32³ 0.010 / 0.009, 64³ 0.010 / 0.010, 128³ 0.010 / 0.010
     //   jittered set  gathers 1:  32³ 0.999 / 0.999, 64³ 1.000 / 1.000, 128³ 1.000 / 1.000
     //                 gathers 0:  32³ 0.001 / 0.001, 64³ 0.000 / 0.000, 128³ 0.000 / 0.000
-    // Before round 11 the fixed set gathered 0.970 / 0.973, 0.934 / 0.938, 0.843 / 0.872 and lit itself with
-    // 0.010 / 0.009, 0.014 / 0.014, 0.039 / 0.028: the face's own voxels, read through the coarser level of the
-    // blend between mips, whose voxels are twice the footprint the surface clearance allows; it grew as voxels
-    // got finer. Samples lifted until that level's reach clears the surface, and past the grid read at a mip
-    // that keeps it out (lib/cone.glsl's coneCoarseMipLift, coneSampleAt), keep the face out at every resolution. The jittered set's narrower footprints
-    // (CONE_SURFACE_CLEARANCE_JITTERED) and farther start (CONE_START_OFFSET_JITTERED) keep its voxels out as well.
-    // The bounds are the measured values plus about 0.02 (0.01 for the jittered set's self-lighting at 32³ and
-    // 64³).
+    // Before round 11 the fixed set gathered 0.970 / 0.973, 0.934 / 0.938, 0.843 / 0.872 and lit itself with 0.010 /
+    // 0.009, 0.014 / 0.014, 0.039 / 0.028: the face's own voxels, read through the coarser level of the blend between
+    // mips, whose voxels are twice the footprint the surface clearance allows; it grew as voxels got finer. Samples
+    // lifted until that level's reach clears the surface, and past the grid read at a mip that keeps it out
+    // (lib/cone.glsl's coneCoarseMipLift, coneSampleAt), keep the face out at every resolution. The jittered set's
+    // narrower footprints (CONE_SURFACE_CLEARANCE_JITTERED) and farther start (CONE_START_OFFSET_JITTERED) keep its
+    // voxels out as well. The bounds are the measured values plus about 0.02 (0.01 for the jittered set's self-lighting
+    // at 32³ and 64³).
     struct Expected {
         const char* voxels;
         double gathered, selfLit;

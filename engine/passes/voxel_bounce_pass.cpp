@@ -16,9 +16,10 @@ constexpr uint32_t kSettleRounds = 18;
 // `--bounces all` starts from the light of this many bounces: on its first frame the whole grid gathers
 // kWarmStartBounces − 1 times. Without it the light rose over the first rounds (N/4 frames each): cornell at
 // 320×180 had 0.64 of the full GI after 16 frames at 64³ (0.54 at 128³) and 0.925 after 64 (0.790); starting
-// from 4 bounces, 0.90 (0.83) and 0.942 (0.867). From 2 or 3 bounces, 0.934 / 0.939 after 64 frames at 64³ and
-// 0.830 / 0.853 at 128³ (benchmarks/README.md, round 11). The price, once per load: 3 whole-grid gathers, on
-// lavapipe 0.3 s at 64³, 1.7 s at 128³ and 13 s at 256³ (cornell), against the 16, 32 or 64 frames a round takes.
+// from 4 bounces, 0.90 (0.83) and 0.942 (0.867), before round 11's cone samples. From 2 or 3 bounces, 0.934 /
+// 0.939 after 64 frames at 64³ and 0.830 / 0.853 at 128³ (benchmarks/README.md, round 11). The price, once per
+// load: 3 whole-grid gathers, on lavapipe 0.3 s at 64³, 1.7 s at 128³ and 13 s at 256³ (cornell), against rounds
+// of 16, 128 or 1024 frames there (bandsPerLayer).
 constexpr uint32_t kWarmStartBounces = 4;
 
 // Binding numbers: shaders/voxel_bounce.comp's.

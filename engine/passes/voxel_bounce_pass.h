@@ -3,12 +3,12 @@
 // direct light + albedo × that, and the mips follow. One timer scope, "bounce".
 // - `--bounces N`: after the frame's inject and mips, N − 1 iterations of gather, inject and mips over the whole
 //   grid, whenever the grid is rebuilt: light that has bounced up to N times.
-// - `--bounces all`: the gathers persist from frame to frame (every inject adds them), and each frame one slab of
-//   the grid (a layer of bricks along z; on a CPU device, at grids finer than 64³, a band of one along y) gathers again from the grid as it stands, then is injected and its mips
-//   updated. Gathering from light that has already bounced k times adds bounce k + 1: the grid converges to every
-//   bounce, one more per round of the slabs at least, and a slab gathers from the slabs before it in the same
-//   round. The first frame starts from 4 bounces (whole-grid gathers as `--bounces 4`). The gathers go on for
-//   settleFrames() after the grid last changed, then stop until it changes again.
+// - `--bounces all`: the gathers persist from frame to frame (every inject adds them), and each frame one slab of the
+//   grid (a layer of bricks along z; on a CPU device, at grids finer than 64³, a band of one along y) gathers again
+//   from the grid as it stands, then is injected and its mips updated. Gathering from light that has already bounced k
+//   times adds bounce k + 1: the grid converges to every bounce, one more per round of the slabs at least, and a slab
+//   gathers from the slabs before it in the same round. The first frame starts from 4 bounces (whole-grid gathers as
+//   `--bounces 4`). The gathers go on for settleFrames() after the grid last changed, then stop until it changes again.
 #pragma once
 
 #include "passes/inject_pass.h"

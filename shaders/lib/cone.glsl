@@ -91,7 +91,8 @@ const float CONE_MIP_REACH_FULL_WEIGHT = 0.25f;
 // level's voxels by clearance × height, but the trilinear blend between levels also reads the next one, whose
 // voxels are twice as wide: at clearance 0.5 it reached the surface, whose own voxels then shadowed or lit the
 // cone, even at a small weight, over many steps. A black face of a closed emissive box gathered 0.970 / 0.934 /
-// 0.855 of its light at 32³ / 64³ / 128³ this way, lifted 0.979 / 0.974 / 0.974 (docs/design.md §5.6).
+// 0.855 of its light at 32³ / 64³ / 128³ this way, lifted 0.979 / 0.974 / 0.974, with coneSampleAt's reads past
+// the grid 0.981 at each (docs/design.md §5.3).
 // 0 once the cone has risen clear.
 VCT_INLINE float coneCoarseMipLift(float height, float mip, float voxelSize) {
     const float coarser = saturate(fract(mip) / CONE_MIP_REACH_FULL_WEIGHT);
