@@ -86,9 +86,8 @@ TEST(VoxelGi, EmissiveFurnaceGathersItsRadianceAtEveryResolution) {
     // Walls of radiance 1, black: every pixel's demodulated diffuse indirect light (the cosine-weighted mean
     // radiance arriving) is exactly 1. Measured 0.990 at 32³ and 0.992 at 64³ since the samples are lifted clear of
     // the walls' coarser mips and read within the grid (lib/cone.glsl's coneSampleAt; 0.978 and 0.954 before); 0.970
-    // and 0.957 with
-    // 0.5·d steps instead of 0.75·d before that: the step length changed it by < 1 % (0.786 and 0.776 before
-    // cones took samples past the grid's edge and renormalised at early termination: cone_trace.glsl).
+    // and 0.957 with 0.5·d steps instead of 0.75·d before that: the step length changed it by < 1 % (0.786 and 0.776
+    // before cones took samples past the grid's edge and renormalised at early termination: cone_trace.glsl).
     const std::string file = furnaceFile("furnace_black", 0.0f);
     for (const char* voxels : {"32", "64"}) {
         const fs::path dir = renderVct(std::string("furnace_black_") + voxels, file, {"--voxels", voxels});
@@ -158,7 +157,7 @@ TEST(VoxelGi, AllBouncesConvergeOverFramesToTheFurnaceLimitAndThenStop) {
     EXPECT_NEAR(oneRound, 1.934, 0.02);
     EXPECT_GT(oneRound, first + 0.02) << "a round adds no bounce";
     EXPECT_NEAR(converged, 2.0, 0.06 * 2.0);
-    EXPECT_GE(converged, oneRound);
+    EXPECT_GT(converged, oneRound + 0.03) << "the rounds after the first add no bounce";  // measured + 0.047
     EXPECT_LE(settled, 2.0) << "runs away";
     EXPECT_NEAR(settled, converged, 0.01 * converged) << "still changing after the gathers settled";
     // Gathers in the frames after the first (which is a change): the settle frames, then none.
@@ -174,7 +173,7 @@ TEST(VoxelBounce, SlabsTileTheGridOnceARound) {
     struct Case {
         uint32_t n;
         bool cpu;
-        uint32_t slabs, maxBrickPlaces;
+        uint32_t slabs, brickPlaces;  // per slab
     };
     for (const Case& c : {Case{32, true, 8, 64}, Case{64, true, 16, 256}, Case{128, true, 128, 256},
                           Case{256, true, 1024, 256}, Case{64, false, 16, 256}, Case{128, false, 32, 1024},
@@ -191,7 +190,7 @@ TEST(VoxelBounce, SlabsTileTheGridOnceARound) {
                 EXPECT_LE(r.max[axis], n);
             }
             const glm::uvec3 bricks = (r.max - r.min) / uint32_t(VCT_VOXEL_BRICK);
-            EXPECT_EQ(bricks.x * bricks.y * bricks.z, c.maxBrickPlaces) << n << " slab " << i;
+            EXPECT_EQ(bricks.x * bricks.y * bricks.z, c.brickPlaces) << n << " slab " << i;
             EXPECT_GE(r.min.z, lastZ) << "slabs go along z: " << n << " slab " << i;
             lastZ = r.min.z;
             for (uint32_t z = r.min.z; z < r.max.z; ++z)
