@@ -112,10 +112,21 @@ const int REGION = GROUP_CELLS + WINDOW - 1;    // ≤ 7: 49 samples for 64 invo
 const int MAX_REGION_SAMPLES = VCT_TILE_SIZE * VCT_TILE_SIZE;
 shared Sample groupSamples[MAX_REGION_SAMPLES];
 
-// Sample k (0 .. WINDOW² − 1) of the window of the cell at `cellInGroup` (per-pixel layout; unused per cell).
-Sample windowSample(int k, ivec2 cellInGroup) {
+// The samples a pixel weighs, per axis: per cell the whole window (an invocation reconstructs every pixel of its
+// cell from the same registers, and a variable index into them costs more than the weights it saves); per pixel
+// only the ones its kernel reaches. The B-spline (radius 1.5 low-res texels) of a pixel in the first half of its
+// cell reaches window columns 0–2 and gives column 3 an exact 0, and the second half's columns 1–3 (rows
+// alike): 9 of the 16 pairs, the same sums, since the 7 left out add exactly 0 (their log weights are ≤ 0, so
+// f = 0 multiplies a finite number). Bilinear reaches its whole 2×2 window. Not where a sample of the window was
+// traced at a clamped pixel (the last low-res column or row of an image whose size is not a multiple of s): it
+// sits nearer than the lattice says, and main() gives such a workgroup the whole window.
+const int REACH = PER_PIXEL && WEIGHTS != VCT_WEIGHTS_BILINEAR ? WINDOW - 1 : WINDOW;
+
+// Sample k (0 .. reach² − 1) of the samples a pixel weighs: per cell window sample k, per pixel the sample of its
+// cell's window from `first` (a window column and row: 0, or 1 for the second half of the cell) in rows of `reach`.
+Sample windowSample(int k, ivec2 cellInGroup, ivec2 first, int reach) {
     if (!PER_PIXEL) return cellSamples[k];
-    const ivec2 at = cellInGroup + ivec2(k % WINDOW, k / WINDOW);
+    const ivec2 at = cellInGroup + first + ivec2(k % reach, k / reach);
     return groupSamples[at.y * REGION + at.x];
 }
 
@@ -164,10 +175,13 @@ struct WeightedLight {
 // Two sums of the same weights: weight (the sum of weights W_s of docs/design.md §6.5, for τ and the weights
 // view) and the accumulation weights, in which a sample traced at this very pixel counts EXACT_SAMPLE_WEIGHT
 // (lib/upsample_weights.glsl), as many interpolated neighbourhoods as make it dominate the history.
-WeightedLight spatialLight(ivec2 pixel, PixelGuide here, ivec2 cellInGroup) {
-    WeightedLight sum = WeightedLight(vec3(0.0), vec3(0.0), vec2(0.0), vec2(0.0));
-    [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) {
-        const Sample j = windowSample(k, cellInGroup);
+// `precise` (no fused multiply-add in the sums and in the weights feeding them): the cell and pixel layouts sum
+// different numbers of exact zeros, and a GPU compiler fuses a·b + c in one instance of this code and not in the
+// other (4–11 pixels of a 160×90 image differed on an NVIDIA H200); so they round alike on every device.
+WeightedLight spatialLight(ivec2 pixel, PixelGuide here, ivec2 cellInGroup, ivec2 first, int reach) {
+    precise WeightedLight sum = WeightedLight(vec3(0.0), vec3(0.0), vec2(0.0), vec2(0.0));
+    [[unroll]] for (int k = 0; k < reach * reach; ++k) {
+        const Sample j = windowSample(k, cellInGroup, first, reach);
         // Kernel × validity: 0 outside the image and on the background.
         const vec2 offset = (vec2(pixel) - j.at) / float(SCALE);
         const float f =
@@ -283,8 +297,8 @@ void writePixel(ivec2 pixel, bool background, WeightedLight spatial, WeightedLig
 }
 
 // Reconstructs one full-res pixel from its cell's samples and its history; writes it and lists it for
-// re-tracing when its sum of weights is low.
-void reconstruct(ivec2 pixel, ivec2 cellInGroup) {
+// re-tracing when its sum of weights is low. `first`, `reach`: the samples it weighs (windowSample).
+void reconstruct(ivec2 pixel, ivec2 cellInGroup, ivec2 first, int reach) {
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const vec3 position = worldFromDepth(frame.invViewProj, uv, depth);
@@ -298,7 +312,8 @@ void reconstruct(ivec2 pixel, ivec2 cellInGroup) {
     here.plane = scaledTangentPlane(here.guide.n, here.guide.p, here.guide.cameraDistance);
     here.specularLobe =
         foldedSpecularLobe(here.guide.specularAxis, here.guide.specularSharpness, FOLDED_SENTINEL_PIXEL);
-    writePixel(pixel, background, spatialLight(pixel, here, cellInGroup), historyLight(pixel, uv, here));
+    writePixel(pixel, background, spatialLight(pixel, here, cellInGroup, first, reach),
+               historyLight(pixel, uv, here));
 }
 
 // Low-res sample `low` as the trace left it (zero weight outside the image and on the background).
@@ -346,8 +361,17 @@ void main() {
         barrier();
         const ivec2 local = ivec2(gl_LocalInvocationID.xy);
         const ivec2 pixel = (groupCell + local / SCALE) * SCALE + jitter + local % SCALE;
-        if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size)))
-            reconstruct(pixel, local / SCALE);
+        // A sample traced at a clamped pixel (REACH) anywhere in the group's region: the whole window, in the same
+        // branch for the whole workgroup.
+        const ivec2 lastSample = groupCell - (RADIUS - 1) + REGION - 1;
+        const bool clamped = any(greaterThan(lastSample * SCALE + jitter, size - 1));
+        if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size))) {
+            if (REACH == WINDOW || clamped)
+                reconstruct(pixel, local / SCALE, ivec2(0), WINDOW);
+            else
+                reconstruct(pixel, local / SCALE, ivec2(greaterThanEqual(local % SCALE, ivec2(SCALE / 2))),
+                            REACH);
+        }
         return;
     }
 
@@ -366,6 +390,6 @@ void main() {
     [[dont_unroll]] for (int i = 0; i < SCALE * SCALE; ++i) {
         const ivec2 pixel = first + ivec2(i % SCALE, i / SCALE);
         if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size)))
-            reconstruct(pixel, ivec2(0));
+            reconstruct(pixel, ivec2(0), ivec2(0), WINDOW);
     }
 }

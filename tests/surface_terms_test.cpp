@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
@@ -123,8 +124,11 @@ TEST(SurfaceTermsGpu, OcclusionDarkensTheDiffuseIndirectLightWithGiOn) {
 }
 
 // The HDR read back after the frames (composite run again, with the HDR store) is the frame's image: tone-mapped
-// and encoded it gives the 8-bit image the frame wrote, to its rounding. And the target itself, which the frames
-// leave unwritten, is refused by readFloatImage.
+// and encoded it gives the 8-bit image the frame wrote, to its rounding. Vulkan lets the conversion to an 8-bit
+// UNORM value return either of the two nearest integers ("should" round to nearest): lavapipe rounds to nearest
+// (largest difference ≤ 0.51 of a level), an NVIDIA H200 did not in 0.3 % of the channels (up to 0.53). So every
+// channel must be one of the two nearest levels, and at most 1 % of them the farther one. And the target itself,
+// which the frames leave unwritten, is refused by readFloatImage.
 TEST(SurfaceTermsGpu, FinalHdrIsTheFramesImage) {
     const std::optional<Scene> scene = makeBuiltinScene("cornell");
     ASSERT_TRUE(scene);
@@ -138,15 +142,21 @@ TEST(SurfaceTermsGpu, FinalHdrIsTheFramesImage) {
     const std::vector<uint8_t> ldr = renderer.readLdr();
     ASSERT_EQ(hdr.size(), ldr.size());
     double mean = 0.0;
+    size_t notNearest = 0;
     for (size_t p = 0; p < hdr.size() / 4; ++p) {
         const glm::vec3 c(hdr[4 * p], hdr[4 * p + 1], hdr[4 * p + 2]);
         const glm::vec3 display = glsl::linearToSrgb(glsl::toneMapAces(c, settings.exposure));
         for (int k = 0; k < 3; ++k) {
             ASSERT_TRUE(std::isfinite(c[k]));
-            EXPECT_NEAR(display[k] * 255.0f, float(ldr[4 * p + size_t(k)]), 0.51f) << "pixel " << p;
+            // 0.01 of a level for the device's float arithmetic (its pow, its division) against ours.
+            const float difference = std::abs(display[k] * 255.0f - float(ldr[4 * p + size_t(k)]));
+            EXPECT_LT(difference, 1.01f) << "pixel " << p << ": not one of the two nearest levels";
+            notNearest += difference > 0.51f;
         }
         mean += (c.r + c.g + c.b) / 3.0;
     }
+    std::printf("channels not rounded to nearest: %zu of %zu\n", notNearest, hdr.size() / 4 * 3);
+    EXPECT_LE(double(notNearest), 0.01 * double(hdr.size() / 4 * 3));
     EXPECT_GT(mean / double(hdr.size() / 4), 0.05) << "a dark final image";
     EXPECT_THROW(renderer.readFloatImage(renderer.targets().hdr), Error);
 }
