@@ -74,7 +74,7 @@ EOF
         # vct reference of the static camera's last frame (the scene camera: no --camera-path), reused from
         # REPORT_WORK when it was rendered with the same settings.
         cached_reference "$reference" --scene "$scene" --size "$wxh" --frame "$frame" --spp "$spp" \
-            --exposure "$exposure" "${reference_flags[@]}"
+            --bounces 1 --exposure "$exposure" "${reference_flags[@]}"
         configs="$("$PYTHON" -c 'import json, sys
 for s in json.load(open(sys.argv[1]))["scenes"]:
     if s["dir"] == sys.argv[2]:

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "io/image_io.h"
@@ -62,6 +64,9 @@ TEST(MaterialPipelinesGpu, EveryMaterialIsDrawnWithItsOwnTextures) {
     r = test::runVct(
         {"reference", "--scene", "cornell", "--size", "160x90", "--spp", "1", "--out", ref.string()});
     ASSERT_TRUE(r.exited() && r.exitCode == 0) << r.describe();
+    // Without --bounces the reference is the truth of vct's default: every bounce.
+    std::ifstream referenceJson(ref / "reference.json");
+    EXPECT_EQ(nlohmann::json::parse(referenceJson).at("bounces"), "all");
     const ImageRgba32f ids = readExr(ref / "surface_id.exr");
     const ImageRgba32f roughness = readExr(dir / "roughness.exr");
     ASSERT_EQ(ids.width, roughness.width);

@@ -49,7 +49,7 @@ const CommandSpec& referenceSpec() {
          {"bounces", "0|1|N|all",
           "indirect bounces: 0 direct only, 1 what vct's cones estimate (vct --bounces 1), N, all (full GI, "
           "Russian roulette: what vct's default converges to)",
-          "1"},
+          "all"},
          {"secondary", "full|diffuse",
           "how surfaces hit by indirect rays reflect: the full BRDF (the truth) or its Lambert part only "
           "(what "
