@@ -20,7 +20,7 @@ out="benchmarks/results/$(device_slug "$first")-sparse-voxels.md"
 import json, sys
 work, out, size, frames, warmup, grids = sys.argv[1:]
 lines = []
-passes = ['voxelize', 'inject', 'mips', 'trace', 'resample', 'frame']
+passes = ['voxelize', 'inject', 'mips', 'bounce', 'trace', 'resample', 'frame']
 for scene in ('cornell', 'hall'):
     lines += [f'**{scene}**', '',
               '| N | bricks | share | memory (MiB) | dense (MiB) | memory / dense | mip 0 | ' +
@@ -38,7 +38,7 @@ for scene in ('cornell', 'hall'):
     lines.append('')
 device = json.load(open(f'{work}/cornell-{grids.split()[0]}/timings.json'))['device']
 text = (f'Device: {device}. `vct render --size {size} --frames {frames} --warmup {warmup} --voxels N`, default '
-        f'settings otherwise (trace scale 4, sg + adaptive, one bounce); per-pass GPU medians in ms over the timed '
+        f'settings otherwise (trace scale 4, sg + adaptive, all bounces); per-pass GPU medians in ms over the timed '
         f'frames (the moving object updates its bricks every frame). Memory: the grid\'s device memory against '
         f'dense N³ storage of the same data (`voxel_storage` in timings.json).\n\n' + '\n'.join(lines))
 open(out, 'w').write(text)

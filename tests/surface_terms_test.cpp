@@ -124,11 +124,11 @@ TEST(SurfaceTermsGpu, OcclusionDarkensTheDiffuseIndirectLightWithGiOn) {
 }
 
 // The HDR read back after the frames (composite run again, with the HDR store) is the frame's image: tone-mapped
-// and encoded it gives the 8-bit image the frame wrote, to its rounding. Vulkan lets the conversion to an 8-bit
-// UNORM value return either of the two nearest integers ("should" round to nearest): lavapipe rounds to nearest
-// (largest difference ≤ 0.51 of a level), an NVIDIA H200 did not in 0.3 % of the channels (up to 0.53). So every
-// channel must be one of the two nearest levels, and at most 1 % of them the farther one. And the target itself,
-// which the frames leave unwritten, is refused by readFloatImage.
+// and encoded it gives the 8-bit image the frame wrote, to its rounding. lavapipe rounds to the nearest level
+// (every channel within 0.51 of a level). An NVIDIA H200 did not quite: 341 of 15 552 channels were up to 0.561
+// of a level away (round 12; its float arithmetic or its conversion, which Vulkan lets return either neighbouring
+// level). So every channel must be within 0.6 of a level, and at most 3 % of them beyond 0.51. And the target
+// itself, which the frames leave unwritten, is refused by readFloatImage.
 TEST(SurfaceTermsGpu, FinalHdrIsTheFramesImage) {
     const std::optional<Scene> scene = makeBuiltinScene("cornell");
     ASSERT_TRUE(scene);
@@ -148,15 +148,14 @@ TEST(SurfaceTermsGpu, FinalHdrIsTheFramesImage) {
         const glm::vec3 display = glsl::linearToSrgb(glsl::toneMapAces(c, settings.exposure));
         for (int k = 0; k < 3; ++k) {
             ASSERT_TRUE(std::isfinite(c[k]));
-            // 0.01 of a level for the device's float arithmetic (its pow, its division) against ours.
             const float difference = std::abs(display[k] * 255.0f - float(ldr[4 * p + size_t(k)]));
-            EXPECT_LT(difference, 1.01f) << "pixel " << p << ": not one of the two nearest levels";
+            EXPECT_LT(difference, 0.6f) << "pixel " << p;
             notNearest += difference > 0.51f;
         }
         mean += (c.r + c.g + c.b) / 3.0;
     }
     std::printf("channels not rounded to nearest: %zu of %zu\n", notNearest, hdr.size() / 4 * 3);
-    EXPECT_LE(double(notNearest), 0.01 * double(hdr.size() / 4 * 3));
+    EXPECT_LE(double(notNearest), 0.03 * double(hdr.size() / 4 * 3));
     EXPECT_GT(mean / double(hdr.size() / 4), 0.05) << "a dark final image";
     EXPECT_THROW(renderer.readFloatImage(renderer.targets().hdr), Error);
 }
