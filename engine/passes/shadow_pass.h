@@ -1,7 +1,12 @@
-// shadow: light-space depth of the main (shadow-casting) light, for the direct and (later) inject passes.
+// shadow: light-space depth of the main (shadow-casting) light, for the direct and inject passes. When only instances
+// moved since the map was drawn, it redraws only the texels their move can change (render/shadow_update.h).
 #pragma once
 
+#include <glm/glm.hpp>
+#include <optional>
+
 #include "render/pass.h"
+#include "render/shadow_update.h"
 #include "vk/pipeline.h"
 
 namespace vct {
@@ -12,10 +17,23 @@ class ShadowPass : public Pass {
     const char* name() const override { return "shadow"; }
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
     void execute(const FrameContext& frame) override;
+    // Texels the last run cleared and redrew: the whole map, a rectangle where only instances moved, 0 where they
+    // moved outside it.
+    uint64_t redrawnTexels() const { return redrawnTexels_; }
 
   private:
+    // The texels this frame must redraw, or nullopt for the whole map: a rectangle only when the map holds a whole
+    // drawing of the scene as it was before instances moved (the same image, light, projection and biases).
+    std::optional<ShadowRect> updateRect(const FrameContext& frame, const vk::Image& shadowMap) const;
+
     ResourceTable resources_;
     vk::Pipeline pipeline_;
+    // What the map holds: drawn into `drawnImage_` with this light, projection and biases (none yet: null).
+    VkImage drawnImage_ = VK_NULL_HANDLE;
+    int drawnLight_ = -1;
+    glm::mat4 drawnLightViewProj_{0.0f};
+    glm::vec2 drawnBiases_{0.0f};
+    uint64_t redrawnTexels_ = 0;
 };
 
 }  // namespace vct

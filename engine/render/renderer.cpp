@@ -60,7 +60,9 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     // draws them; a scene without any has no skin pass.
     if (gpuScene_.deform().active())
         passes_.push_back(std::make_unique<SkinPass>(context, gpuScene_.deform()));
-    passes_.push_back(std::make_unique<ShadowPass>(context));
+    auto shadow = std::make_unique<ShadowPass>(context);
+    shadowPass_ = shadow.get();
+    passes_.push_back(std::move(shadow));
     if (settings.gi) {
         // The voxel grid and its light (docs/design.md §5.1–5.2); inject reads the shadow map drawn just before.
         const uint32_t n = chooseVoxelResolution(context, settings);
@@ -300,10 +302,12 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
                 (reuse == PassReuse::WhileVoxelLightSettled && !sceneChanged && voxelLightFramesLeft_ == 0) ||
                 (reuse == PassReuse::WhileViewUnchanged && reuseView)) {
                 timer_.skipScope(pass->name());  // timed as 0 ms, with a run count (vk/timer.h)
+                if (pass.get() == shadowPass_) shadowTexelsRedrawn_ = 0;
                 continue;
             }
             timer_.beginScope(cmd, pass->name());
             pass->execute(frame);  // its barriers first, from its resource table
+            if (pass.get() == shadowPass_) shadowTexelsRedrawn_ = shadowPass_->redrawnTexels();
             timer_.endScope(cmd);
         }
         if (submit.afterPasses) submit.afterPasses(cmd);
@@ -439,6 +443,10 @@ std::vector<float> Renderer::readImage(vk::Image& image) {
         }
     }
     return rgba;
+}
+
+uint64_t Renderer::shadowTexels() const {
+    return uint64_t(targets_.shadowMap.width()) * targets_.shadowMap.height();
 }
 
 float Renderer::resampledFraction() const {

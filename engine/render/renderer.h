@@ -46,6 +46,7 @@ struct FrameSubmit {
 };
 
 class CompositePass;
+class ShadowPass;
 class VoxelViewPass;
 
 class Renderer {
@@ -96,6 +97,9 @@ class Renderer {
     // Fraction of the pixels the resample pass re-traced in the last finished frame (0 without adaptive
     // re-tracing).
     float resampledFraction() const;
+    // Shadow-map texels the last frame redrew (0 when the map was kept whole: nothing moved), and the map's size.
+    uint64_t shadowTexelsRedrawn() const { return shadowTexelsRedrawn_; }
+    uint64_t shadowTexels() const;
 
     // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones); not
     // FrameTargets::hdr, which the frames do not write (readFinalHdr).
@@ -153,6 +157,8 @@ class Renderer {
     std::unique_ptr<DfgLut> dfg_;
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
+    ShadowPass* shadowPass_ = nullptr;  // one of passes_, for its redrawn texels
+    uint64_t shadowTexelsRedrawn_ = 0;
     CompositePass* composite_ = nullptr;        // in passes_; readFinalHdr runs it again
     std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_
     glm::mat4 previousViewProj_{1.0f};

@@ -47,6 +47,8 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                                  {"brick_slots", report.voxels.brickSlots},
                                  {"bytes", report.voxels.bytes},
                                  {"dense_bytes", report.voxels.denseBytes}};
+    json["shadow_map"] = {{"texels", report.shadowTexels},
+                          {"redrawn_texels_last_frame", report.shadowTexelsRedrawn}};
     writeTextReplacing(path, json.dump(2) + "\n");  // replaces a planted symlink instead of following it
 }
 

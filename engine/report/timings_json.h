@@ -27,6 +27,9 @@ struct TimingReport {
         uint32_t bricks = 0, brickSlots = 0;  // allocated, and (N / VCT_VOXEL_BRICK)³
         uint64_t bytes = 0, denseBytes = 0;   // device memory, and what dense N³ storage would take
     } voxels;
+    // The shadow map (docs/design.md §5.8): its texels, and how many of them the last frame redrew (all, a
+    // rectangle where only instances moved, or 0 when nothing did).
+    uint64_t shadowTexels = 0, shadowTexelsRedrawn = 0;
 };
 
 // The renderer's voxel storage for the report (all zero without a grid).

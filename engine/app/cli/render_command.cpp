@@ -117,6 +117,8 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.frame = renderer.timer().frameStats();
         report.resampledFraction = renderer.resampledFraction();
         report.voxels = voxelStorageReport(renderer);
+        report.shadowTexels = renderer.shadowTexels();
+        report.shadowTexelsRedrawn = renderer.shadowTexelsRedrawn();
         writeTimingsJson(outDir / "timings.json", report);
         if (args.has("aux"))
             for (const std::string& name : writeAuxImages(renderer, outDir))
