@@ -16,6 +16,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/tangents.h"
+#include "test_util.h"
 
 namespace vct {
 namespace {
@@ -322,16 +323,10 @@ TEST(GltfLoad, BrokenFilesFailWithOneLine) {
 
 // ---- the sample models in shared/scenes ----
 
-fs::path sharedModel(const std::string& name) {
-    return fs::path(VCT_SHARED_SCENES) / name / "glTF" / (name + ".gltf");
-}
-
-#define REQUIRE_SHARED(name)            \
-    if (!fs::exists(sharedModel(name))) \
-    GTEST_SKIP() << "no " << sharedModel(name) << " (shared scenes not available)"
+using test::sharedModel;
 
 TEST(GltfSamples, DamagedHelmet) {
-    REQUIRE_SHARED("DamagedHelmet");
+    VCT_REQUIRE_SHARED("DamagedHelmet");
     Scene s = loadScene(sharedModel("DamagedHelmet").string());
     EXPECT_EQ(s.meshes.size(), 1u);
     EXPECT_GT(s.vertices.size(), 10000u);
@@ -349,7 +344,7 @@ TEST(GltfSamples, DamagedHelmet) {
 }
 
 TEST(GltfSamples, MetalRoughSpheresNoTextures) {
-    REQUIRE_SHARED("MetalRoughSpheresNoTextures");
+    VCT_REQUIRE_SHARED("MetalRoughSpheresNoTextures");
     Scene s = loadScene(sharedModel("MetalRoughSpheresNoTextures").string());
     EXPECT_GT(s.instances(0.0f).size(), 50u);
     EXPECT_GT(s.materials.size(), 50u);
@@ -358,7 +353,7 @@ TEST(GltfSamples, MetalRoughSpheresNoTextures) {
 }
 
 TEST(GltfSamples, BoxAnimated) {
-    REQUIRE_SHARED("BoxAnimated");
+    VCT_REQUIRE_SHARED("BoxAnimated");
     Scene s = loadScene(sharedModel("BoxAnimated").string());
     ASSERT_EQ(s.animations.size(), 1u);
     EXPECT_GT(s.animations[0].duration, 0.0f);
@@ -369,7 +364,7 @@ TEST(GltfSamples, BoxAnimated) {
 }
 
 TEST(GltfSamples, NormalTangentMirrorTestTangentsMatchOurGenerator) {
-    REQUIRE_SHARED("NormalTangentMirrorTest");
+    VCT_REQUIRE_SHARED("NormalTangentMirrorTest");
     Scene s = loadScene(sharedModel("NormalTangentMirrorTest").string());
     ASSERT_EQ(s.primitives.size(), 1u);
     const Primitive& p = s.primitives[0];

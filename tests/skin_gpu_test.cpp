@@ -24,9 +24,7 @@ using namespace skin_test;
 
 constexpr uint32_t kWidth = 96, kHeight = 54;
 
-fs::path sharedModel(const std::string& name) {
-    return fs::path(VCT_SHARED_SCENES) / name / "glTF" / (name + ".gltf");
-}
+using test::sharedModel;
 
 Scene sceneNamed(const std::string& name) {
     if (name == "strip" || name == "morph" || name == "coloredStrip") {

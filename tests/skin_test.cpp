@@ -181,16 +181,10 @@ TEST(SkinHostile, NegativeWeightIsRefused) {
 
 // ---- the shared sample models ----
 
-fs::path sharedModel(const std::string& name) {
-    return fs::path(VCT_SHARED_SCENES) / name / "glTF" / (name + ".gltf");
-}
-
-#define REQUIRE_SHARED(name)            \
-    if (!fs::exists(sharedModel(name))) \
-    GTEST_SKIP() << "no " << sharedModel(name) << " (shared scenes not available)"
+using test::sharedModel;
 
 TEST(SkinSamples, SimpleMorphFollowsItsWeights) {
-    REQUIRE_SHARED("SimpleMorph");
+    VCT_REQUIRE_SHARED("SimpleMorph");
     const Scene scene = loadScene(sharedModel("SimpleMorph").string());
     // The file: base (0,0,0), (1,0,0), (0.5,0.5,0); targets move vertex 2 by (-1,1,0) and (1,1,0); weights
     // (0,0), (0,1), (1,1), (1,0), (0,0) at t = 0..4 s (LINEAR).
@@ -206,7 +200,7 @@ TEST(SkinSamples, SimpleMorphFollowsItsWeights) {
 }
 
 TEST(SkinSamples, RiggedSimpleBendsItsUpperHalf) {
-    REQUIRE_SHARED("RiggedSimple");
+    VCT_REQUIRE_SHARED("RiggedSimple");
     const Scene scene = loadScene(sharedModel("RiggedSimple").string());
     ASSERT_EQ(scene.skins.size(), 1u);
     EXPECT_EQ(scene.skins[0].joints.size(), 2u);

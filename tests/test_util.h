@@ -188,6 +188,12 @@ inline RunResult runVct(const std::vector<std::string>& args,
     return runProcess(VCT_BINARY, args, timeout);
 }
 
+// A sample model of the shared scenes (VCT_SHARED_SCENES: ../shared/scenes), NAME/glTF/NAME.gltf. The project runs
+// without them: a test that needs one begins with VCT_REQUIRE_SHARED(NAME) and is skipped where it is absent.
+inline std::filesystem::path sharedModel(const std::string& name) {
+    return std::filesystem::path(VCT_SHARED_SCENES) / name / "glTF" / (name + ".gltf");
+}
+
 // A fresh directory under VCT_TEST_OUTPUT (emptied first).
 inline std::filesystem::path freshOutputDir(const std::string& relative) {
     std::filesystem::path dir = std::filesystem::path(VCT_TEST_OUTPUT) / relative;
@@ -223,3 +229,8 @@ inline size_t countNonFinite(const std::vector<float>& values) {
 }
 
 }  // namespace vct::test
+
+// Skips the test where the shared sample model NAME is absent (test::sharedModel).
+#define VCT_REQUIRE_SHARED(name)                                  \
+    if (!std::filesystem::exists(::vct::test::sharedModel(name))) \
+    GTEST_SKIP() << "no " << ::vct::test::sharedModel(name) << " (shared scenes not available)"
