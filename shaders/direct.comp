@@ -28,6 +28,7 @@ layout(set = 0, binding = 5) uniform sampler2D emissiveOcclusionTexture;
 layout(set = 0, binding = 6) uniform sampler2DShadow shadowMap;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D outputImage;
 layout(set = 0, binding = 8) uniform sampler2D environmentMap;  // lib/environment_sample.glsl
+layout(push_constant) uniform Push { DirectPushConstants push; };
 
 #include "lib/environment_sample.glsl"
 
@@ -38,22 +39,28 @@ void main() {
     const ivec2 size = ivec2(frame.imageSize);
     if (any(greaterThanEqual(pixel, size))) return;
 
+    // Only instances moved since the last frame (push constants): a pixel outside where they project keeps its
+    // last value unless its shadow lookup reads texels the shadow pass redrew (below, once p and n are known).
+    const bool keepable = push.params.x != 0u && !(all(greaterThanEqual(pixel, push.changedPixels.xy)) &&
+                                                   all(lessThan(pixel, push.changedPixels.zw)));
     const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     if (isBackground(depth)) {
+        if (keepable) return;
         const vec3 farPoint = worldFromDepth(frame.invViewProj, uv, 1.0);
         imageStore(outputImage, pixel,
                    vec4(environmentRadiance(normalize(farPoint - frame.cameraPosition)), 1.0));
         return;
     }
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
+    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
+    const vec3 n = gbufferNormal(normalRoughness);  // never NaN: a zero-length normal reads as +y
+    if (keepable && !shadowLookupReads(p, n, push.changedShadowTexels)) return;
     const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
     // Occlusion is read only with GI off (composite applies it to the indirect light).
     const vec4 emissiveOcclusion = EMISSION || (OCCLUSION && !GI)
                                        ? texelFetch(emissiveOcclusionTexture, pixel, 0)
                                        : vec4(0.0, 0.0, 0.0, 1.0);
-    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
-    const vec3 n = gbufferNormal(normalRoughness);  // never NaN: a zero-length normal reads as +y
     const vec3 v = viewDirection(frame.cameraPosition - p, n);
 
     vec3 radiance = emissiveOcclusion.rgb;

@@ -28,7 +28,8 @@ constexpr uint32_t kFrames = 6, kWarmup = 1;  // 5 timed frames, all after the f
 struct Render {
     fs::path dir;
     std::map<std::string, nlohmann::json> passes;  // timings.json's passes by name
-    nlohmann::json shadowMap;  // timings.json's shadow_map: texels, redrawn in the last frame
+    nlohmann::json shadowMap;    // timings.json's shadow_map: texels, redrawn in the last frame
+    bool directPartial = false;  // timings.json's direct.partial_last_frame
 };
 
 // `vct render` of `scene` at 160x90 with a 32³ grid under validation, frames 1..5 timed.
@@ -60,6 +61,7 @@ Render render(const std::string& name, const std::string& scene, const std::vect
     for (const nlohmann::json& pass : timings.at("passes"))
         r.passes[pass.at("name").get<std::string>()] = pass;
     r.shadowMap = timings.at("shadow_map");
+    r.directPartial = timings.at("direct").at("partial_last_frame").get<bool>();
     return r;
 }
 
@@ -203,6 +205,9 @@ TEST(StaticScene, MovingObjectsUpdateOnlyTheirVoxelsWithTheSameImages) {
                     texels);
         EXPECT_GT(redrawn, 0.0) << scene;
         EXPECT_LE(redrawn, 0.01 * texels) << scene;
+        // And the direct light only where the object projects and where its shadow lookup reads those texels.
+        EXPECT_TRUE(region.directPartial) << scene;
+        EXPECT_FALSE(whole.directPartial) << scene;
     }
 }
 

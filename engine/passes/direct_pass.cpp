@@ -1,5 +1,7 @@
 #include "passes/direct_pass.h"
 
+#include "render/moved_rect.h"
+
 namespace vct {
 
 namespace {
@@ -21,20 +23,52 @@ ResourceTable directResources(const EnvironmentSource& environment) {
 }  // namespace
 
 DirectPass::DirectPass(const vk::Context& context, const EnvironmentSource& environment,
-                       const GpuScene& scene, bool gi)
-    : resources_(directResources(environment)) {
+                       const GpuScene& scene, bool gi, const ShadowPass& shadow)
+    : resources_(directResources(environment)), shadow_(shadow) {
     std::vector<uint32_t> specialization(VCT_DIRECT_SPEC_OCCLUSION + 1);
     specialization[VCT_DIRECT_SPEC_GI] = gi ? 1u : 0u;
     specialization[VCT_DIRECT_SPEC_EMISSION] = scene.hasEmission() ? 1u : 0u;
     specialization[VCT_DIRECT_SPEC_OCCLUSION] = scene.hasOcclusion() ? 1u : 0u;
-    pipeline_ =
-        vk::Pipeline::compute(context, name(), "direct.comp", resources_.bindings(), 0, specialization);
+    pipeline_ = vk::Pipeline::compute(context, name(), "direct.comp", resources_.bindings(),
+                                      sizeof(gpu::DirectPushConstants), specialization);
+}
+
+DirectPass::Inputs DirectPass::inputsOf(const FrameContext& frame) const {
+    Inputs inputs;
+    std::memset(&inputs, 0, sizeof(inputs));  // compared bytewise, padding included
+    const gpu::FrameUniforms& u = frame.uniforms;
+    inputs.invViewProj = u.invViewProj;
+    inputs.lightViewProj = u.lightViewProj;
+    inputs.cameraPosition = glm::vec4(u.cameraPosition, 0.0f);
+    inputs.imageSize = glm::vec4(u.imageSize, u.texelSize);
+    inputs.lighting = u.lighting;
+    inputs.flags = u.flags;
+    inputs.image = frame.targets.direct.handle();
+    return inputs;
 }
 
 void DirectPass::execute(const FrameContext& frame) {
     pipeline_.bind(frame.cmd);
     resources_.bind(frame, pipeline_);
+    // Only instances moved, and the last run computed every pixel's light from the same camera, lights and
+    // settings: what can differ is where they project (the G-buffer) and what the shadow pass redrew.
+    gpu::DirectPushConstants push{};
+    const Inputs inputs = inputsOf(frame);
+    const std::optional<TexelRect>& shadowRect = shadow_.lastRect();
+    if (last_ && *last_ == inputs && shadowRect && !frame.settings.recomputeEveryFrame &&
+        frame.scene.onlyInstancesMovedInLastUpdate()) {
+        const std::optional<TexelRect> pixels = movedRect(frame.uniforms.viewProj, frame.scene.movedBounds(),
+                                                          {frame.targets.width, frame.targets.height});
+        if (pixels) {
+            push.changedPixels = glm::ivec4(pixels->min, pixels->max);
+            push.changedShadowTexels = glm::ivec4(shadowRect->min, shadowRect->max);
+            push.params.x = 1u;
+        }
+    }
+    lastRunPartial_ = push.params.x != 0u;
+    pipeline_.pushConstants(frame.cmd, &push, sizeof(push));
     vkCmdDispatch(frame.cmd, tileCount(frame.targets.width), tileCount(frame.targets.height), 1);
+    last_ = inputs;
 }
 
 }  // namespace vct

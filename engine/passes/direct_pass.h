@@ -1,8 +1,15 @@
 // direct: full-resolution direct light (GGX + height-correlated Smith + Schlick, docs/design.md §3.2) from every
 // punctual light, the main light shadow-mapped, plus emission; the environment for the background and, with GI
-// off, its light reflected by the surface (lib/environment_sample.glsl).
+// off, its light reflected by the surface (lib/environment_sample.glsl). When only instances moved since the last
+// frame it recomputes only the pixels where they project and those whose shadow lookup reads texels the shadow
+// pass redrew (docs/design.md §5.8).
 #pragma once
 
+#include <cstring>
+#include <glm/glm.hpp>
+#include <optional>
+
+#include "passes/shadow_pass.h"
 #include "render/gpu_environment.h"
 #include "render/gpu_scene.h"
 #include "render/pass.h"
@@ -14,15 +21,36 @@ class DirectPass : public Pass {
   public:
     // `environment`: the background, and the ambient light with GI off (`gi`: RenderSettings::gi). Whether
     // `scene` has emission and occlusion, and `gi`, are specialization constants (lib/shared.h).
+    // `shadow`: the pass that draws the shadow map before this one (what it redrew).
     DirectPass(const vk::Context& context, const EnvironmentSource& environment, const GpuScene& scene,
-               bool gi);
+               bool gi, const ShadowPass& shadow);
     const char* name() const override { return "direct"; }
     PassReuse reuse() const override { return PassReuse::WhileViewUnchanged; }
     void execute(const FrameContext& frame) override;
+    // Whether the last run recomputed only what moved instances can change (false: every pixel).
+    bool lastRunPartial() const { return lastRunPartial_; }
+    // A frame that skipped the pass (nothing it depends on changed): nothing recomputed.
+    void kept() { lastRunPartial_ = false; }
 
   private:
+    // What the direct light depends on besides the G-buffer, the shadow map and the lights (which stay the same
+    // while only instances move): the frame uniforms it reads, and the image it writes.
+    struct Inputs {
+        glm::mat4 invViewProj, lightViewProj;
+        glm::vec4 cameraPosition;
+        glm::vec4 imageSize;
+        gpu::LightingUniforms lighting;
+        uint32_t flags;
+        VkImage image;
+        bool operator==(const Inputs& other) const { return std::memcmp(this, &other, sizeof(Inputs)) == 0; }
+    };
+    Inputs inputsOf(const FrameContext& frame) const;
+
     ResourceTable resources_;
     vk::Pipeline pipeline_;
+    const ShadowPass& shadow_;
+    std::optional<Inputs> last_;  // of the last run (none yet)
+    bool lastRunPartial_ = false;
 };
 
 }  // namespace vct

@@ -26,8 +26,7 @@ ShadowPass::ShadowPass(const vk::Context& context) : resources_(shadowResources(
     pipeline_ = vk::Pipeline::graphics(context, desc);
 }
 
-std::optional<ShadowRect> ShadowPass::updateRect(const FrameContext& frame,
-                                                 const vk::Image& shadowMap) const {
+std::optional<TexelRect> ShadowPass::updateRect(const FrameContext& frame, const vk::Image& shadowMap) const {
     const GpuScene& scene = frame.scene;
     const bool sameDrawing =
         drawnImage_ == shadowMap.handle() && drawnLight_ == scene.shadowLightIndex() &&
@@ -35,13 +34,13 @@ std::optional<ShadowRect> ShadowPass::updateRect(const FrameContext& frame,
         drawnBiases_ == glm::vec2(frame.settings.shadowDepthBias, frame.settings.shadowSlopeBias);
     if (!sameDrawing || frame.settings.recomputeEveryFrame || !scene.onlyInstancesMovedInLastUpdate())
         return std::nullopt;
-    return shadowUpdateRect(scene.lightViewProj(), scene.movedBounds(), shadowMap.width());
+    return movedRect(scene.lightViewProj(), scene.movedBounds(), {shadowMap.width(), shadowMap.height()});
 }
 
 void ShadowPass::execute(const FrameContext& frame) {
     resources_.barriers(frame);
     const vk::Image& shadowMap = *resources_.depthAttachment(frame.targets);
-    const std::optional<ShadowRect> rect = updateRect(frame, shadowMap);
+    const std::optional<TexelRect> rect = updateRect(frame, shadowMap);
     if (!rect || !rect->empty()) {
         VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         depth.imageView = shadowMap.view();
@@ -72,8 +71,8 @@ void ShadowPass::execute(const FrameContext& frame) {
         }
         vkCmdEndRendering(frame.cmd);
     }
-    redrawnTexels_ = rect ? uint64_t(rect->max.x - rect->min.x) * uint64_t(rect->max.y - rect->min.y)
-                          : uint64_t(shadowMap.width()) * shadowMap.height();
+    redrawnTexels_ = rect ? rect->area() : uint64_t(shadowMap.width()) * shadowMap.height();
+    lastRect_ = rect;
     drawnImage_ = shadowMap.handle();
     drawnLight_ = frame.scene.shadowLightIndex();
     drawnLightViewProj_ = frame.scene.lightViewProj();

@@ -1,12 +1,12 @@
 // shadow: light-space depth of the main (shadow-casting) light, for the direct and inject passes. When only instances
-// moved since the map was drawn, it redraws only the texels their move can change (render/shadow_update.h).
+// moved since the map was drawn, it redraws only the texels their move can change (render/moved_rect.h).
 #pragma once
 
 #include <glm/glm.hpp>
 #include <optional>
 
+#include "render/moved_rect.h"
 #include "render/pass.h"
-#include "render/shadow_update.h"
 #include "vk/pipeline.h"
 
 namespace vct {
@@ -20,11 +20,19 @@ class ShadowPass : public Pass {
     // Texels the last run cleared and redrew: the whole map, a rectangle where only instances moved, 0 where they
     // moved outside it.
     uint64_t redrawnTexels() const { return redrawnTexels_; }
+    // What the last frame redrew: nullopt the whole map, else a rectangle (empty: nothing). The direct pass keeps
+    // the pixels whose shadow lookup reads none of it.
+    const std::optional<TexelRect>& lastRect() const { return lastRect_; }
+    // A frame that skipped the pass (nothing changed): the map is kept whole.
+    void kept() {
+        lastRect_ = TexelRect{};
+        redrawnTexels_ = 0;
+    }
 
   private:
     // The texels this frame must redraw, or nullopt for the whole map: a rectangle only when the map holds a whole
     // drawing of the scene as it was before instances moved (the same image, light, projection and biases).
-    std::optional<ShadowRect> updateRect(const FrameContext& frame, const vk::Image& shadowMap) const;
+    std::optional<TexelRect> updateRect(const FrameContext& frame, const vk::Image& shadowMap) const;
 
     ResourceTable resources_;
     vk::Pipeline pipeline_;
@@ -34,6 +42,7 @@ class ShadowPass : public Pass {
     glm::mat4 drawnLightViewProj_{0.0f};
     glm::vec2 drawnBiases_{0.0f};
     uint64_t redrawnTexels_ = 0;
+    std::optional<TexelRect> lastRect_;
 };
 
 }  // namespace vct

@@ -90,7 +90,9 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     const bool vertexColors =
         std::any_of(primitives.begin(), primitives.end(), [](const Primitive& p) { return p.hasColors; });
     passes_.push_back(std::make_unique<GBufferPass>(context, scene, vertexColors, settings.textureLod0));
-    passes_.push_back(std::make_unique<DirectPass>(context, environment, gpuScene_, settings.gi));
+    auto direct = std::make_unique<DirectPass>(context, environment, gpuScene_, settings.gi, *shadowPass_);
+    directPass_ = direct.get();
+    passes_.push_back(std::move(direct));
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
         const VoxelSource voxels = VoxelSource::of(*voxelGrid_, environment);
@@ -302,12 +304,12 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
                 (reuse == PassReuse::WhileVoxelLightSettled && !sceneChanged && voxelLightFramesLeft_ == 0) ||
                 (reuse == PassReuse::WhileViewUnchanged && reuseView)) {
                 timer_.skipScope(pass->name());  // timed as 0 ms, with a run count (vk/timer.h)
-                if (pass.get() == shadowPass_) shadowTexelsRedrawn_ = 0;
+                if (pass.get() == shadowPass_) shadowPass_->kept();
+                if (pass.get() == directPass_) directPass_->kept();
                 continue;
             }
             timer_.beginScope(cmd, pass->name());
             pass->execute(frame);  // its barriers first, from its resource table
-            if (pass.get() == shadowPass_) shadowTexelsRedrawn_ = shadowPass_->redrawnTexels();
             timer_.endScope(cmd);
         }
         if (submit.afterPasses) submit.afterPasses(cmd);
@@ -443,6 +445,14 @@ std::vector<float> Renderer::readImage(vk::Image& image) {
         }
     }
     return rgba;
+}
+
+uint64_t Renderer::shadowTexelsRedrawn() const {
+    return shadowPass_->redrawnTexels();
+}
+
+bool Renderer::directLightPartial() const {
+    return directPass_->lastRunPartial();
 }
 
 uint64_t Renderer::shadowTexels() const {

@@ -46,6 +46,7 @@ struct FrameSubmit {
 };
 
 class CompositePass;
+class DirectPass;
 class ShadowPass;
 class VoxelViewPass;
 
@@ -98,8 +99,11 @@ class Renderer {
     // re-tracing).
     float resampledFraction() const;
     // Shadow-map texels the last frame redrew (0 when the map was kept whole: nothing moved), and the map's size.
-    uint64_t shadowTexelsRedrawn() const { return shadowTexelsRedrawn_; }
+    uint64_t shadowTexelsRedrawn() const;
     uint64_t shadowTexels() const;
+    // Whether the last frame's direct light was recomputed only where moving instances can change it (false:
+    // every pixel, or not at all).
+    bool directLightPartial() const;
 
     // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones); not
     // FrameTargets::hdr, which the frames do not write (readFinalHdr).
@@ -157,8 +161,8 @@ class Renderer {
     std::unique_ptr<DfgLut> dfg_;
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
-    ShadowPass* shadowPass_ = nullptr;  // one of passes_, for its redrawn texels
-    uint64_t shadowTexelsRedrawn_ = 0;
+    ShadowPass* shadowPass_ = nullptr;          // one of passes_, for its redrawn texels
+    DirectPass* directPass_ = nullptr;          // one of passes_, for whether it recomputed every pixel
     CompositePass* composite_ = nullptr;        // in passes_; readFinalHdr runs it again
     std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_
     glm::mat4 previousViewProj_{1.0f};

@@ -49,6 +49,7 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                                  {"dense_bytes", report.voxels.denseBytes}};
     json["shadow_map"] = {{"texels", report.shadowTexels},
                           {"redrawn_texels_last_frame", report.shadowTexelsRedrawn}};
+    json["direct"] = {{"partial_last_frame", report.directPartial}};
     writeTextReplacing(path, json.dump(2) + "\n");  // replaces a planted symlink instead of following it
 }
 

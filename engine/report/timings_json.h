@@ -30,6 +30,8 @@ struct TimingReport {
     // The shadow map (docs/design.md §5.8): its texels, and how many of them the last frame redrew (all, a
     // rectangle where only instances moved, or 0 when nothing did).
     uint64_t shadowTexels = 0, shadowTexelsRedrawn = 0;
+    // Whether the last frame recomputed the direct light only where moving instances can change it (§5.8).
+    bool directPartial = false;
 };
 
 // The renderer's voxel storage for the report (all zero without a grid).

@@ -281,6 +281,19 @@ struct VoxelBouncePushConstants {
     uvec4 region;
 };
 
+// Push constants of direct (docs/design.md §5.8): params.x = 1 when only instances moved since the last frame,
+// which direct then computed whole with the same camera, lights and settings; it then keeps the last value (no
+// store) of every pixel outside changedPixels whose shadow lookup reads no texel of changedShadowTexels. Each a
+// rectangle [xy, zw) of pixels or shadow-map texels.
+struct DirectPushConstants {
+    ivec4 changedPixels;
+    ivec4 changedShadowTexels;
+    uvec4 params;
+};
+#ifdef __cplusplus
+static_assert(sizeof(DirectPushConstants) == 48);
+#endif
+
 // Push constants of mips: the region of the level written, its first texel (xyz, per slab) and width in x; params.x
 // = 1 for level 1 (read from the radiance atlas).
 struct VoxelMipsPushConstants {

@@ -119,6 +119,7 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.voxels = voxelStorageReport(renderer);
         report.shadowTexels = renderer.shadowTexels();
         report.shadowTexelsRedrawn = renderer.shadowTexelsRedrawn();
+        report.directPartial = renderer.directLightPartial();
         writeTimingsJson(outDir / "timings.json", report);
         if (args.has("aux"))
             for (const std::string& name : writeAuxImages(renderer, outDir))

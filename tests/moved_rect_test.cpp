@@ -1,7 +1,8 @@
-// The shadow map's update rectangle for moved instances (render/shadow_update.h): it holds the projection of the
-// moved bounds with a texel of margin, is empty when nothing moved or the bounds fall outside the map, and asks
-// for the whole map where a rectangle cannot be trusted (a corner behind a perspective light, NaN) or saves little.
-#include "render/shadow_update.h"
+// The rectangle of a raster target that moved instances can change (render/moved_rect.h): it holds the projection
+// of the moved bounds with a texel of margin, is empty when nothing moved or the bounds fall outside the target,
+// and asks for the whole target where a rectangle cannot be trusted (a corner behind a perspective eye, NaN) or
+// saves little.
+#include "render/moved_rect.h"
 
 #include <gtest/gtest.h>
 
@@ -33,10 +34,10 @@ glm::vec2 texelOf(const glm::mat4& m, glm::vec3 p) {
     return (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * float(kSize);
 }
 
-TEST(ShadowUpdate, RectangleHoldsTheMovedBoundsWithATexelOfMargin) {
+TEST(MovedRect, RectangleHoldsTheMovedBoundsWithATexelOfMargin) {
     const glm::mat4 m = sunDown();
     const Aabb moved = box(glm::vec3(1.0f, 0.0f, 2.0f), glm::vec3(2.0f, 1.0f, 2.5f));
-    const std::optional<ShadowRect> rect = shadowUpdateRect(m, moved, kSize);
+    const std::optional<TexelRect> rect = movedRect(m, moved, glm::uvec2(kSize));
     ASSERT_TRUE(rect);
     ASSERT_FALSE(rect->empty());
     // Every point of the bounds (a grid of them, corners included) lands inside, a texel in from the edge.
@@ -54,20 +55,20 @@ TEST(ShadowUpdate, RectangleHoldsTheMovedBoundsWithATexelOfMargin) {
     EXPECT_LE(rect->max.y - rect->min.y, 56);
 }
 
-TEST(ShadowUpdate, NothingMovedOrMovedOutsideTheMapRedrawsNothing) {
+TEST(MovedRect, NothingMovedOrMovedOutsideTheMapRedrawsNothing) {
     const glm::mat4 m = sunDown();
-    const std::optional<ShadowRect> none = shadowUpdateRect(m, Aabb{}, kSize);
+    const std::optional<TexelRect> none = movedRect(m, Aabb{}, glm::uvec2(kSize));
     ASSERT_TRUE(none);
     EXPECT_TRUE(none->empty());
-    const std::optional<ShadowRect> outside =
-        shadowUpdateRect(m, box(glm::vec3(30.0f, 0.0f, 0.0f), glm::vec3(31.0f, 1.0f, 1.0f)), kSize);
+    const std::optional<TexelRect> outside =
+        movedRect(m, box(glm::vec3(30.0f, 0.0f, 0.0f), glm::vec3(31.0f, 1.0f, 1.0f)), glm::uvec2(kSize));
     ASSERT_TRUE(outside);
     EXPECT_TRUE(outside->empty());
 }
 
-TEST(ShadowUpdate, PartlyOutsideIsClampedToTheMap) {
-    const std::optional<ShadowRect> rect =
-        shadowUpdateRect(sunDown(), box(glm::vec3(9.5f, 0.0f, -1.0f), glm::vec3(12.0f, 1.0f, 0.0f)), kSize);
+TEST(MovedRect, PartlyOutsideIsClampedToTheMap) {
+    const std::optional<TexelRect> rect = movedRect(
+        sunDown(), box(glm::vec3(9.5f, 0.0f, -1.0f), glm::vec3(12.0f, 1.0f, 0.0f)), glm::uvec2(kSize));
     ASSERT_TRUE(rect);
     ASSERT_FALSE(rect->empty());
     EXPECT_GE(rect->min.x, 0);
@@ -76,20 +77,34 @@ TEST(ShadowUpdate, PartlyOutsideIsClampedToTheMap) {
     EXPECT_LE(rect->max.y, int(kSize));
 }
 
-TEST(ShadowUpdate, WholeMapWhereARectangleCannotBeTrustedOrSavesLittle) {
+TEST(MovedRect, WholeMapWhereARectangleCannotBeTrustedOrSavesLittle) {
     // A spot light at the origin looking down −z: a box reaching behind it.
     const glm::mat4 spot = glm::perspective(1.0f, 1.0f, 0.01f, 50.0f) *
                            glm::lookAt(glm::vec3(0.0f), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
-    EXPECT_FALSE(shadowUpdateRect(spot, box(glm::vec3(-1, -1, -2), glm::vec3(1, 1, 1)), kSize));
+    EXPECT_FALSE(movedRect(spot, box(glm::vec3(-1, -1, -2), glm::vec3(1, 1, 1)), glm::uvec2(kSize)));
     // In front of it the rectangle is fine.
-    EXPECT_TRUE(
-        shadowUpdateRect(spot, box(glm::vec3(-0.1f, -0.1f, -5.0f), glm::vec3(0.1f, 0.1f, -4.0f)), kSize));
+    EXPECT_TRUE(movedRect(spot, box(glm::vec3(-0.1f, -0.1f, -5.0f), glm::vec3(0.1f, 0.1f, -4.0f)),
+                          glm::uvec2(kSize)));
     // A NaN projection.
     glm::mat4 broken = sunDown();
     broken[0][0] = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_FALSE(shadowUpdateRect(broken, box(glm::vec3(0.0f), glm::vec3(1.0f)), kSize));
+    EXPECT_FALSE(movedRect(broken, box(glm::vec3(0.0f), glm::vec3(1.0f)), glm::uvec2(kSize)));
     // Bounds over most of the map.
-    EXPECT_FALSE(shadowUpdateRect(sunDown(), box(glm::vec3(-9, 0, -9), glm::vec3(9, 1, 9)), kSize));
+    EXPECT_FALSE(movedRect(sunDown(), box(glm::vec3(-9, 0, -9), glm::vec3(9, 1, 9)), glm::uvec2(kSize)));
+}
+
+TEST(MovedRect, ACameraTargetIsNotSquare) {
+    // A camera at z = 5 looking at the origin, 640×360: a small box at the centre lands at the centre.
+    const glm::mat4 camera = glm::perspective(1.0f, 640.0f / 360.0f, 0.1f, 100.0f) *
+                             glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    const std::optional<TexelRect> rect =
+        movedRect(camera, box(glm::vec3(-0.05f), glm::vec3(0.05f)), glm::uvec2(640, 360));
+    ASSERT_TRUE(rect);
+    ASSERT_FALSE(rect->empty());
+    EXPECT_TRUE(rect->contains(glm::ivec2(320, 180)));
+    EXPECT_FALSE(rect->contains(glm::ivec2(10, 10)));
+    EXPECT_LE(rect->max.x, 640);
+    EXPECT_LE(rect->max.y, 360);
 }
 
 }  // namespace

@@ -1,0 +1,34 @@
+// Which texels of a raster target a frame must recompute when only instances moved (docs/design.md §5.8): the
+// rectangle where their bounds, before and after the move, project. Outside it the target holds what the last
+// frame computed there, the same values a whole recomputation gives. The shadow pass redraws only this rectangle
+// of the shadow map (the light's projection), the direct pass only the pixels in it (the camera's) and those
+// whose shadow lookup reads the shadow map's.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <optional>
+
+#include "scene/scene.h"
+
+namespace vct {
+
+// Texels [min, max) of a target.
+struct TexelRect {
+    glm::ivec2 min{0}, max{0};
+    bool empty() const { return min.x >= max.x || min.y >= max.y; }
+    bool contains(glm::ivec2 texel) const {
+        return texel.x >= min.x && texel.y >= min.y && texel.x < max.x && texel.y < max.y;
+    }
+    uint64_t area() const { return empty() ? 0 : uint64_t(max.x - min.x) * uint64_t(max.y - min.y); }
+};
+
+// The texels of a `size` target drawn with `viewProj` (and the viewport of render/scene_draw.cpp) that the move of
+// `moved` (world bounds, before and after) can change, with a texel of margin: the bounding rectangle of the
+// corners' projections, which holds the projection of everything inside the bounds while every corner is in
+// front of the eye. Empty when nothing moved or the bounds project outside the target; nullopt when the whole
+// target must be recomputed instead: a corner at or behind a perspective eye, a non-finite projection, or a
+// rectangle over half the target (it saves little).
+std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved, glm::uvec2 size);
+
+}  // namespace vct
