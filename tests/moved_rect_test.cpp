@@ -15,13 +15,6 @@ namespace {
 
 constexpr uint32_t kSize = 2048;
 
-Aabb box(glm::vec3 min, glm::vec3 max) {
-    Aabb b;
-    b.extend(min);
-    b.extend(max);
-    return b;
-}
-
 // A sun straight down over a 20 m square: world x, z ∈ [−10, 10] fill the map.
 glm::mat4 sunDown() {
     const glm::mat4 view = glm::lookAt(glm::vec3(0, 20, 0), glm::vec3(0), glm::vec3(0, 0, 1));
@@ -36,7 +29,7 @@ glm::vec2 texelOf(const glm::mat4& m, glm::vec3 p) {
 
 TEST(MovedRect, RectangleHoldsTheMovedBoundsWithATexelOfMargin) {
     const glm::mat4 m = sunDown();
-    const Aabb moved = box(glm::vec3(1.0f, 0.0f, 2.0f), glm::vec3(2.0f, 1.0f, 2.5f));
+    const Aabb moved = Aabb{glm::vec3(1.0f, 0.0f, 2.0f), glm::vec3(2.0f, 1.0f, 2.5f)};
     const std::optional<TexelRect> rect = movedRect(m, moved, glm::uvec2(kSize));
     ASSERT_TRUE(rect);
     ASSERT_FALSE(rect->empty());
@@ -61,14 +54,14 @@ TEST(MovedRect, NothingMovedOrMovedOutsideTheMapRedrawsNothing) {
     ASSERT_TRUE(none);
     EXPECT_TRUE(none->empty());
     const std::optional<TexelRect> outside =
-        movedRect(m, box(glm::vec3(30.0f, 0.0f, 0.0f), glm::vec3(31.0f, 1.0f, 1.0f)), glm::uvec2(kSize));
+        movedRect(m, Aabb{glm::vec3(30.0f, 0.0f, 0.0f), glm::vec3(31.0f, 1.0f, 1.0f)}, glm::uvec2(kSize));
     ASSERT_TRUE(outside);
     EXPECT_TRUE(outside->empty());
 }
 
 TEST(MovedRect, PartlyOutsideIsClampedToTheMap) {
     const std::optional<TexelRect> rect = movedRect(
-        sunDown(), box(glm::vec3(9.5f, 0.0f, -1.0f), glm::vec3(12.0f, 1.0f, 0.0f)), glm::uvec2(kSize));
+        sunDown(), Aabb{glm::vec3(9.5f, 0.0f, -1.0f), glm::vec3(12.0f, 1.0f, 0.0f)}, glm::uvec2(kSize));
     ASSERT_TRUE(rect);
     ASSERT_FALSE(rect->empty());
     EXPECT_GE(rect->min.x, 0);
@@ -81,16 +74,16 @@ TEST(MovedRect, WholeMapWhereARectangleCannotBeTrustedOrSavesLittle) {
     // A spot light at the origin looking down −z: a box reaching behind it.
     const glm::mat4 spot = glm::perspective(1.0f, 1.0f, 0.01f, 50.0f) *
                            glm::lookAt(glm::vec3(0.0f), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
-    EXPECT_FALSE(movedRect(spot, box(glm::vec3(-1, -1, -2), glm::vec3(1, 1, 1)), glm::uvec2(kSize)));
+    EXPECT_FALSE(movedRect(spot, Aabb{glm::vec3(-1, -1, -2), glm::vec3(1, 1, 1)}, glm::uvec2(kSize)));
     // In front of it the rectangle is fine.
-    EXPECT_TRUE(movedRect(spot, box(glm::vec3(-0.1f, -0.1f, -5.0f), glm::vec3(0.1f, 0.1f, -4.0f)),
+    EXPECT_TRUE(movedRect(spot, Aabb{glm::vec3(-0.1f, -0.1f, -5.0f), glm::vec3(0.1f, 0.1f, -4.0f)},
                           glm::uvec2(kSize)));
     // A NaN projection.
     glm::mat4 broken = sunDown();
     broken[0][0] = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_FALSE(movedRect(broken, box(glm::vec3(0.0f), glm::vec3(1.0f)), glm::uvec2(kSize)));
+    EXPECT_FALSE(movedRect(broken, Aabb{glm::vec3(0.0f), glm::vec3(1.0f)}, glm::uvec2(kSize)));
     // Bounds over most of the map.
-    EXPECT_FALSE(movedRect(sunDown(), box(glm::vec3(-9, 0, -9), glm::vec3(9, 1, 9)), glm::uvec2(kSize)));
+    EXPECT_FALSE(movedRect(sunDown(), Aabb{glm::vec3(-9, 0, -9), glm::vec3(9, 1, 9)}, glm::uvec2(kSize)));
 }
 
 TEST(MovedRect, ACameraTargetIsNotSquare) {
@@ -98,7 +91,7 @@ TEST(MovedRect, ACameraTargetIsNotSquare) {
     const glm::mat4 camera = glm::perspective(1.0f, 640.0f / 360.0f, 0.1f, 100.0f) *
                              glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0.0f), glm::vec3(0, 1, 0));
     const std::optional<TexelRect> rect =
-        movedRect(camera, box(glm::vec3(-0.05f), glm::vec3(0.05f)), glm::uvec2(640, 360));
+        movedRect(camera, Aabb{glm::vec3(-0.05f), glm::vec3(0.05f)}, glm::uvec2(640, 360));
     ASSERT_TRUE(rect);
     ASSERT_FALSE(rect->empty());
     EXPECT_TRUE(rect->contains(glm::ivec2(320, 180)));

@@ -30,7 +30,7 @@ class DirectPass : public Pass {
     // Whether the last run recomputed only what moved instances can change (false: every pixel).
     bool lastRunPartial() const { return lastRunPartial_; }
     // A frame that skipped the pass (nothing it depends on changed): nothing recomputed.
-    void kept() { lastRunPartial_ = false; }
+    void skipped() override { lastRunPartial_ = false; }
 
   private:
     // What the direct light depends on besides the G-buffer, the shadow map and the lights (which stay the same

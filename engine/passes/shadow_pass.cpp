@@ -71,7 +71,6 @@ void ShadowPass::execute(const FrameContext& frame) {
         }
         vkCmdEndRendering(frame.cmd);
     }
-    redrawnTexels_ = rect ? rect->area() : uint64_t(shadowMap.width()) * shadowMap.height();
     lastRect_ = rect;
     drawnImage_ = shadowMap.handle();
     drawnLight_ = frame.scene.shadowLightIndex();

@@ -17,17 +17,11 @@ class ShadowPass : public Pass {
     const char* name() const override { return "shadow"; }
     PassReuse reuse() const override { return PassReuse::WhileSceneUnchanged; }
     void execute(const FrameContext& frame) override;
-    // Texels the last run cleared and redrew: the whole map, a rectangle where only instances moved, 0 where they
-    // moved outside it.
-    uint64_t redrawnTexels() const { return redrawnTexels_; }
-    // What the last frame redrew: nullopt the whole map, else a rectangle (empty: nothing). The direct pass keeps
-    // the pixels whose shadow lookup reads none of it.
-    const std::optional<TexelRect>& lastRect() const { return lastRect_; }
     // A frame that skipped the pass (nothing changed): the map is kept whole.
-    void kept() {
-        lastRect_ = TexelRect{};
-        redrawnTexels_ = 0;
-    }
+    void skipped() override { lastRect_ = TexelRect{}; }
+    // What the last frame redrew: nullopt the whole map, else a rectangle (empty: nothing, also where instances
+    // moved outside the map). The direct pass keeps the pixels whose shadow lookup reads none of it.
+    const std::optional<TexelRect>& lastRect() const { return lastRect_; }
 
   private:
     // The texels this frame must redraw, or nullopt for the whole map: a rectangle only when the map holds a whole
@@ -41,7 +35,6 @@ class ShadowPass : public Pass {
     int drawnLight_ = -1;
     glm::mat4 drawnLightViewProj_{0.0f};
     glm::vec2 drawnBiases_{0.0f};
-    uint64_t redrawnTexels_ = 0;
     std::optional<TexelRect> lastRect_;
 };
 

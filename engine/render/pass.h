@@ -49,6 +49,9 @@ class Pass {
     // What the pass's output depends on, so that the runner can skip it in frames where that did not change
     // (its output persists from the frame that made it): "a pass that has nothing to do" does not run.
     virtual PassReuse reuse() const { return PassReuse::Never; }
+    // Called instead of execute() in a frame the runner skips the pass in (its output kept as it is), for passes
+    // that report what the last frame recomputed.
+    virtual void skipped() {}
 };
 
 // Dispatch size for a full-image compute pass in VCT_TILE_SIZE tiles.

@@ -304,8 +304,7 @@ void Renderer::render(const FrameInput& input, const FrameSubmit& submit) {
                 (reuse == PassReuse::WhileVoxelLightSettled && !sceneChanged && voxelLightFramesLeft_ == 0) ||
                 (reuse == PassReuse::WhileViewUnchanged && reuseView)) {
                 timer_.skipScope(pass->name());  // timed as 0 ms, with a run count (vk/timer.h)
-                if (pass.get() == shadowPass_) shadowPass_->kept();
-                if (pass.get() == directPass_) directPass_->kept();
+                pass->skipped();
                 continue;
             }
             timer_.beginScope(cmd, pass->name());
@@ -448,7 +447,8 @@ std::vector<float> Renderer::readImage(vk::Image& image) {
 }
 
 uint64_t Renderer::shadowTexelsRedrawn() const {
-    return shadowPass_->redrawnTexels();
+    const std::optional<TexelRect>& rect = shadowPass_->lastRect();
+    return rect ? rect->area() : shadowTexels();
 }
 
 bool Renderer::directLightPartial() const {
