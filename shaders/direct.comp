@@ -35,7 +35,9 @@ layout(push_constant) uniform Push { DirectPushConstants push; };
 #include "lib/shadow_lookup.glsl"
 
 void main() {
-    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    // The dispatch covers a rectangle from params.yz on (direct_pass.cpp: in a partial run, the pixels that can
+    // change; else the whole image).
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(push.params.yz);
     const ivec2 size = ivec2(frame.imageSize);
     if (any(greaterThanEqual(pixel, size))) return;
 

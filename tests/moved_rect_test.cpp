@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
+#include <random>
 
 namespace vct {
 namespace {
@@ -98,6 +100,70 @@ TEST(MovedRect, ACameraTargetIsNotSquare) {
     EXPECT_FALSE(rect->contains(glm::ivec2(10, 10)));
     EXPECT_LE(rect->max.x, 640);
     EXPECT_LE(rect->max.y, 360);
+}
+
+// lib/shadow_lookup.glsl's test, on the CPU: whether the lookup at p (normal n) reads a texel of `rect`.
+bool lookupReads(const glm::mat4& light, glm::vec3 p, glm::vec3 n, float offset, const TexelRect& rect) {
+    const glm::vec4 clip = light * glm::vec4(p + n * offset * 1.5f, 1.0f);
+    if (clip.w <= 0.0f) return false;
+    const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+    const glm::vec2 uv = glm::vec2(ndc) * 0.5f + 0.5f;
+    if (uv.x < 0.0f || uv.y < 0.0f || uv.x > 1.0f || uv.y > 1.0f || ndc.z >= 1.0f) return false;
+    const glm::vec2 t = uv * float(kSize) - 0.5f;
+    const glm::ivec2 first = glm::ivec2(glm::floor(t)) - 1, last = first + 3;
+    return first.x < rect.max.x && first.y < rect.max.y && last.x >= rect.min.x && last.y >= rect.min.y;
+}
+
+// Every surface point whose shadow lookup reads the redrawn texels projects into the rectangle: points drawn at
+// random in the surfaces' bounds with random normals, under the sun and under a spot light, the camera looking on.
+// The rectangle is no larger than needed by more than the column's slant: measured below.
+TEST(ShadowReadersRect, HoldsEveryPixelWhoseLookupReadsTheTexels) {
+    const glm::mat4 camera = glm::perspective(1.0f, 640.0f / 360.0f, 0.1f, 100.0f) *
+                             glm::lookAt(glm::vec3(0, 6, 14), glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    const glm::uvec2 size(640, 360);
+    const glm::mat4 spot = glm::perspective(1.2f, 1.0f, 0.5f, 40.0f) *
+                           glm::lookAt(glm::vec3(2, 12, 1), glm::vec3(0.0f), glm::vec3(0, 0, 1));
+    const Aabb low{glm::vec3(-5, 0, -5), glm::vec3(5, 3, 5)};
+    // A room whose ceiling is above the spot light: the column is the pyramid from the light's eye.
+    const Aabb room{glm::vec3(-5, 0, -5), glm::vec3(5, 14, 5)};
+    const TexelRect texels{glm::ivec2(1000, 980), glm::ivec2(1060, 1050)};
+    const float offset = 20.0f / kSize;
+    for (const auto& [light, surfaces] :
+         {std::pair{sunDown(), low}, std::pair{spot, low}, std::pair{spot, room}}) {
+        const std::optional<TexelRect> rect =
+            shadowReadersRect(camera, size, light, texels, glm::uvec2(kSize), surfaces, offset);
+        ASSERT_TRUE(rect);
+        ASSERT_FALSE(rect->empty());
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        int reading = 0;
+        for (int i = 0; i < 400000; ++i) {
+            const glm::vec3 p =
+                glm::mix(surfaces.min, surfaces.max, glm::vec3(unit(rng), unit(rng), unit(rng)));
+            const float z = 2.0f * unit(rng) - 1.0f, phi = 6.2831853f * unit(rng);
+            const float s = std::sqrt(1.0f - z * z);
+            const glm::vec3 n(s * std::cos(phi), z, s * std::sin(phi));
+            if (!lookupReads(light, p, n, offset, texels)) continue;
+            const glm::vec4 clip = camera * glm::vec4(p, 1.0f);
+            const glm::ivec2 pixel(glm::floor((glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(size)));
+            if (!TexelRect{glm::ivec2(0), glm::ivec2(size)}.contains(pixel)) continue;  // off the image
+            ++reading;
+            EXPECT_TRUE(rect->contains(pixel)) << pixel.x << " " << pixel.y;
+        }
+        std::printf("%d points in the image read the texels; rectangle %d..%d × %d..%d\n", reading,
+                    rect->min.x, rect->max.x, rect->min.y, rect->max.y);
+        EXPECT_GT(reading, 100);  // the test sees points that read the texels
+        // A column of 60 × 70 texels (0.6 × 0.7 m under the sun) over 3 m of height: a narrow part of the image.
+        EXPECT_LE(double(rect->area()), 0.12 * size.x * size.y);
+    }
+    // Nothing redrawn, or every surface behind the light: nothing to recompute.
+    for (const auto& [redrawn, surfaces] :
+         {std::pair{TexelRect{}, low}, std::pair{texels, Aabb{glm::vec3(-5, 13, -5), glm::vec3(5, 14, 5)}}}) {
+        const std::optional<TexelRect> none =
+            shadowReadersRect(camera, size, spot, redrawn, glm::uvec2(kSize), surfaces, offset);
+        ASSERT_TRUE(none);
+        EXPECT_TRUE(none->empty());
+    }
 }
 
 }  // namespace

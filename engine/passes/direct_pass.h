@@ -30,7 +30,12 @@ class DirectPass : public Pass {
     // Whether the last run recomputed only what moved instances can change (false: every pixel).
     bool lastRunPartial() const { return lastRunPartial_; }
     // A frame that skipped the pass (nothing it depends on changed): nothing recomputed.
-    void skipped() override { lastRunPartial_ = false; }
+    void skipped() override {
+        lastRunPartial_ = false;
+        lastDispatched_ = 0;
+    }
+    // The pixels the last run dispatched (all of them, or a rectangle in a partial run; 0 when skipped).
+    uint64_t lastDispatched() const { return lastDispatched_; }
 
   private:
     // What the direct light depends on besides the G-buffer, the shadow map and the lights (which stay the same
@@ -51,6 +56,7 @@ class DirectPass : public Pass {
     const ShadowPass& shadow_;
     std::optional<Inputs> last_;  // of the last run (none yet)
     bool lastRunPartial_ = false;
+    uint64_t lastDispatched_ = 0;
 };
 
 }  // namespace vct

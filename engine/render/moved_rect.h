@@ -31,4 +31,15 @@ struct TexelRect {
 // rectangle over half the target (it saves little).
 std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved, glm::uvec2 size);
 
+// The pixels of a `size` target drawn with `viewProj` whose shadow lookup (lib/shadow_lookup.glsl: the point
+// pushed `normalOffset` along its normal, projected with `lightViewProj`, its 3×3 PCF reading the 4×4 texels from
+// ⌊t⌋ − 1) can read a texel of `texels` in a `shadowSize` map, for surface points within `surfaces`: where the
+// column of the light's clip space over those texels, cut to the surfaces' depth range in it, projects, widened
+// by the offset (surfaces reaching behind a perspective light: the pyramid from its eye). Empty when `texels` is
+// or no surface is in front of the light; nullopt when that cannot be bounded (a non-finite projection, the
+// column reaching behind the camera) or is over half the target (movedRect).
+std::optional<TexelRect> shadowReadersRect(const glm::mat4& viewProj, glm::uvec2 size,
+                                           const glm::mat4& lightViewProj, const TexelRect& texels,
+                                           glm::uvec2 shadowSize, const Aabb& surfaces, float normalOffset);
+
 }  // namespace vct

@@ -89,7 +89,9 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     const std::vector<Primitive>& primitives = scene.primitives;
     const bool vertexColors =
         std::any_of(primitives.begin(), primitives.end(), [](const Primitive& p) { return p.hasColors; });
-    passes_.push_back(std::make_unique<GBufferPass>(context, scene, vertexColors, settings.textureLod0));
+    auto gbuffer = std::make_unique<GBufferPass>(context, scene, vertexColors, settings.textureLod0);
+    gbufferPass_ = gbuffer.get();
+    passes_.push_back(std::move(gbuffer));
     auto direct = std::make_unique<DirectPass>(context, environment, gpuScene_, settings.gi, *shadowPass_);
     directPass_ = direct.get();
     passes_.push_back(std::move(direct));
@@ -449,6 +451,15 @@ std::vector<float> Renderer::readImage(vk::Image& image) {
 uint64_t Renderer::shadowTexelsRedrawn() const {
     const std::optional<TexelRect>& rect = shadowPass_->lastRect();
     return rect ? rect->area() : shadowTexels();
+}
+
+uint64_t Renderer::gbufferPixelsRedrawn() const {
+    const std::optional<TexelRect>& rect = gbufferPass_->lastRect();
+    return rect ? rect->area() : uint64_t(settings_.width) * settings_.height;
+}
+
+uint64_t Renderer::directPixelsDispatched() const {
+    return directPass_->lastDispatched();
 }
 
 bool Renderer::directLightPartial() const {

@@ -47,6 +47,7 @@ struct FrameSubmit {
 
 class CompositePass;
 class DirectPass;
+class GBufferPass;
 class ShadowPass;
 class VoxelViewPass;
 
@@ -104,6 +105,9 @@ class Renderer {
     // Whether the last frame's direct light was recomputed only where moving instances can change it (false:
     // every pixel, or not at all).
     bool directLightPartial() const;
+    uint64_t directPixelsDispatched() const;
+    // G-buffer pixels the last frame redrew (0 when it was reused: scene and camera unchanged).
+    uint64_t gbufferPixelsRedrawn() const;
 
     // Copies an image of this frame to the host (RGBA32F for float images, RGBA8 for 8-bit ones); not
     // FrameTargets::hdr, which the frames do not write (readFinalHdr).
@@ -162,6 +166,7 @@ class Renderer {
     std::unique_ptr<VoxelGrid> voxelGrid_;  // before passes_: the passes that use it are destroyed first
     std::vector<std::unique_ptr<Pass>> passes_;
     ShadowPass* shadowPass_ = nullptr;          // one of passes_, for its redrawn texels
+    GBufferPass* gbufferPass_ = nullptr;        // one of passes_, for its redrawn pixels
     DirectPass* directPass_ = nullptr;          // one of passes_, for whether it recomputed every pixel
     CompositePass* composite_ = nullptr;        // in passes_; readFinalHdr runs it again
     std::unique_ptr<VoxelViewPass> voxelView_;  // made by the first renderVoxelView; never in passes_

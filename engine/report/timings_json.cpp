@@ -49,7 +49,10 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                                  {"dense_bytes", report.voxels.denseBytes}};
     json["shadow_map"] = {{"texels", report.shadowTexels},
                           {"redrawn_texels_last_frame", report.shadowTexelsRedrawn}};
-    json["direct"] = {{"partial_last_frame", report.directPartial}};
+    json["gbuffer"] = {{"pixels", uint64_t(report.width) * report.height},
+                       {"redrawn_pixels_last_frame", report.gbufferPixelsRedrawn}};
+    json["direct"] = {{"partial_last_frame", report.directPartial},
+                      {"dispatched_pixels_last_frame", report.directPixelsDispatched}};
     writeTextReplacing(path, json.dump(2) + "\n");  // replaces a planted symlink instead of following it
 }
 

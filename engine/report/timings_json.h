@@ -32,6 +32,9 @@ struct TimingReport {
     uint64_t shadowTexels = 0, shadowTexelsRedrawn = 0;
     // Whether the last frame recomputed the direct light only where moving instances can change it (§5.8).
     bool directPartial = false;
+    uint64_t directPixelsDispatched = 0;  // in the last frame: all, a rectangle when partial, 0 when skipped
+    // The G-buffer's pixels the last frame redrew (all, a rectangle where only instances moved, 0 when reused).
+    uint64_t gbufferPixelsRedrawn = 0;
 };
 
 // The renderer's voxel storage for the report (all zero without a grid).

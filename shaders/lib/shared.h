@@ -284,7 +284,8 @@ struct VoxelBouncePushConstants {
 // Push constants of direct (docs/design.md §5.8): params.x = 1 when only instances moved since the last frame,
 // which direct then computed whole with the same camera, lights and settings; it then keeps the last value (no
 // store) of every pixel outside changedPixels whose shadow lookup reads no texel of changedShadowTexels. Each a
-// rectangle [xy, zw) of pixels or shadow-map texels.
+// rectangle [xy, zw) of pixels or shadow-map texels. params.yz: the first pixel the dispatch covers (0 unless
+// partial: then only the pixels that can change are dispatched).
 struct DirectPushConstants {
     ivec4 changedPixels;
     ivec4 changedShadowTexels;

@@ -120,6 +120,8 @@ int runRenderCommand(int argc, char** argv, int first) {
         report.shadowTexels = renderer.shadowTexels();
         report.shadowTexelsRedrawn = renderer.shadowTexelsRedrawn();
         report.directPartial = renderer.directLightPartial();
+        report.directPixelsDispatched = renderer.directPixelsDispatched();
+        report.gbufferPixelsRedrawn = renderer.gbufferPixelsRedrawn();
         writeTimingsJson(outDir / "timings.json", report);
         if (args.has("aux"))
             for (const std::string& name : writeAuxImages(renderer, outDir))
