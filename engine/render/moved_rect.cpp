@@ -6,14 +6,8 @@
 
 namespace vct {
 
-namespace {
-
-// Above this share of the target a rectangle saves little and the whole target is recomputed.
-constexpr double kMaxRectShare = 0.5;
-
-}  // namespace
-
-std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved, glm::uvec2 size) {
+std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved, glm::uvec2 size,
+                                   double maxShare) {
     if (moved.empty()) return TexelRect{};
     const glm::vec2 extent(size);
     glm::vec2 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
@@ -34,7 +28,7 @@ std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved,
     const glm::vec2 to = glm::clamp(glm::ceil(high) + 1.0f, glm::vec2(0.0f), extent);
     const TexelRect rect{glm::ivec2(from), glm::ivec2(to)};
     if (rect.empty()) return TexelRect{};
-    if (double(rect.area()) > kMaxRectShare * double(size.x) * double(size.y)) return std::nullopt;
+    if (double(rect.area()) > maxShare * double(size.x) * double(size.y)) return std::nullopt;
     return rect;
 }
 
@@ -87,7 +81,7 @@ std::optional<TexelRect> shadowReadersRect(const glm::mat4& viewProj, glm::uvec2
         if (!add(lightToWorld * ndc)) return std::nullopt;
     }
     if (behind && !add(lightToWorld * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f))) return std::nullopt;
-    return movedRect(viewProj, Aabb{column.min - reach, column.max + reach}, size);
+    return movedRect(viewProj, Aabb{column.min - reach, column.max + reach}, size, 1.0);
 }
 
 }  // namespace vct

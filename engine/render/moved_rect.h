@@ -28,8 +28,9 @@ struct TexelRect {
 // corners' projections, which holds the projection of everything inside the bounds while every corner is in
 // front of the eye. Empty when nothing moved or the bounds project outside the target; nullopt when the whole
 // target must be recomputed instead: a corner at or behind a perspective eye, a non-finite projection, or a
-// rectangle over half the target (it saves little).
-std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved, glm::uvec2 size);
+// rectangle over `maxShare` of the target (a redraw under a rectangle over half of it saves little).
+std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved, glm::uvec2 size,
+                                   double maxShare = 0.5);
 
 // The pixels of a `size` target drawn with `viewProj` whose shadow lookup (lib/shadow_lookup.glsl: the point
 // pushed `normalOffset` along its normal, projected with `lightViewProj`, its 3×3 PCF reading the 4×4 texels from
@@ -37,7 +38,7 @@ std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved,
 // column of the light's clip space over those texels, cut to the surfaces' depth range in it, projects, widened
 // by the offset (surfaces reaching behind a perspective light: the pyramid from its eye). Empty when `texels` is
 // or no surface is in front of the light; nullopt when that cannot be bounded (a non-finite projection, the
-// column reaching behind the camera) or is over half the target (movedRect).
+// column reaching behind the camera). A dispatch over any part of the image saves the rest: no share is too large.
 std::optional<TexelRect> shadowReadersRect(const glm::mat4& viewProj, glm::uvec2 size,
                                            const glm::mat4& lightViewProj, const TexelRect& texels,
                                            glm::uvec2 shadowSize, const Aabb& surfaces, float normalOffset);
