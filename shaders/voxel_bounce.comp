@@ -14,7 +14,9 @@
 #include "lib/gbuffer_read.glsl"
 #include "lib/voxel_bricks.glsl"
 
-layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
+// Invocations per brick (VCT_BOUNCE_SPEC_LANES, a divisor of 64): 64 on a GPU, one per voxel; the subgroup size
+// on a CPU device, one SIMD batch a brick (lib/voxel_packing.glsl: why).
+layout(local_size_x_id = VCT_BOUNCE_SPEC_LANES) in;
 
 // Resources: bound by engine/passes/voxel_bounce_pass.cpp (its resource table gives these binding numbers and is
 // checked against them when the pipeline is made).
@@ -36,17 +38,8 @@ layout(push_constant) uniform Push { VoxelBouncePushConstants push; };
 // Below this |n̄| a voxel's surfaces face both ways about equally: gather both hemispheres.
 const float BOUNCE_ONE_SIDED = 0.5;
 
-void main() {
-    uint k;
-    ivec3 brick;
-    // Uniform over the workgroup (one brick each): all of it or none reaches the packing's barriers.
-    if (!workgroupBrick(push.region.w != 0u, push.region.xyz, k, brick)) return;
-    const ivec3 own = ivec3(gl_LocalInvocationID);
-    const ivec3 ownTexel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, own);
-    const bool occupied = imageLoad(albedoImage, ownTexel).a > 0.0;
-    if (!occupied) imageStore(bounceImage, ownTexel, vec4(0.0));
-    ivec3 local;
-    if (!packOccupiedVoxels(occupied, local)) return;
+// The light voxel `local` of brick k (at `brick`) receives through the grid.
+vec3 gather(uint k, ivec3 brick, ivec3 local) {
     const ivec3 voxel = brick * VOXEL_BRICK + local;
     const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, local);
     const vec3 nbar = imageLoad(normalImage, texel).xyz;
@@ -62,5 +55,29 @@ void main() {
     const float lift = frame.voxels.voxelSize;
     vec3 gathered = traceDiffuse(voxels, p + lift * axis, axis);
     if (r < BOUNCE_ONE_SIDED) gathered = 0.5 * (gathered + traceDiffuse(voxels, p - lift * axis, -axis));
-    imageStore(bounceImage, texel, vec4(gathered, 0.0));
+    return gathered;
+}
+
+void main() {
+    uint k;
+    ivec3 brick;
+    // Uniform over the workgroup (one brick each): all of it or none reaches the packing's barriers.
+    if (!workgroupBrick(push.region.w != 0u, push.region.xyz, k, brick)) return;
+    const uint lanes = gl_WorkGroupSize.x;
+    // Every voxel of the brick: empty ones store no light, occupied ones are listed.
+    clearOccupancy();
+    for (uint voxel = gl_LocalInvocationIndex; voxel < 64u; voxel += lanes) {
+        const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, brickVoxel(voxel));
+        if (imageLoad(albedoImage, texel).a > 0.0)
+            markOccupied(voxel);
+        else
+            imageStore(bounceImage, texel, vec4(0.0));
+    }
+    const uint count = listOccupiedVoxels(lanes);
+    // The listed voxels, neighbours in neighbouring lanes.
+    for (uint i = gl_LocalInvocationIndex; i < count; i += lanes) {
+        const ivec3 local = brickVoxel(packedVoxels[i]);
+        imageStore(bounceImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local),
+                   vec4(gather(k, brick, local), 0.0));
+    }
 }

@@ -8,6 +8,12 @@
 // the voxels' own order (each one's place is the number of occupied voxels before it), so neighbouring lanes take
 // neighbouring voxels, whose cones run alike: the bounce gather measured 5 % faster than with the arbitrary order
 // of an atomic counter. Each voxel's result depends on that voxel alone, so the images are the same either way.
+//
+// On a CPU device a workgroup of 64 invocations is 8 SIMD batches (lavapipe: 8 lanes at 256 bits), and lavapipe
+// runs every batch through the code, masked, even one none of whose lanes has a voxel: the gather's cone loops ran
+// at least once per cone for each of them. voxel_bounce.comp therefore runs one batch a brick there (its `lanes`
+// the device's subgroup size), each invocation marking 64 / lanes voxels and then taking every lanes-th listed
+// one.
 #ifndef VCT_VOXEL_PACKING_GLSL
 #define VCT_VOXEL_PACKING_GLSL
 
@@ -15,30 +21,47 @@
 #error "occupiedMask holds 64 voxels: one bit per invocation of a 4×4×4 workgroup"
 #endif
 
-shared uint occupiedMask[2];  // bit i: voxel (invocation) i is occupied
+shared uint occupiedMask[2];  // bit i: voxel i of the brick (x fastest, then y, z) is occupied
 shared uint packedVoxels[VCT_VOXEL_TILE * VCT_VOXEL_TILE * VCT_VOXEL_TILE];
 
-// Called by every invocation of the workgroup, in uniform control flow (barriers), each saying whether its own
-// voxel (gl_LocalInvocationID) is occupied. True for as many invocations as there are occupied voxels, with
-// `local` the voxel the invocation takes.
-bool packOccupiedVoxels(bool occupied, out ivec3 local) {
-    const uint own = gl_LocalInvocationIndex;
-    if (own < 2u) occupiedMask[own] = 0u;
+// Voxel i of a brick (x fastest, then y, z): its place in the brick.
+ivec3 brickVoxel(uint i) {
+    return ivec3(i % VCT_VOXEL_TILE, (i / VCT_VOXEL_TILE) % VCT_VOXEL_TILE,
+                 i / (VCT_VOXEL_TILE * VCT_VOXEL_TILE));
+}
+
+// The list in three steps, for a workgroup of `lanes` invocations (a divisor of 64), every invocation calling each
+// in uniform control flow (barriers): clear the mask; mark the occupied voxels (an invocation may mark several);
+// list them: packedVoxels[0 .. count) holds the occupied voxels in their own order, count returned.
+void clearOccupancy() {
+    if (gl_LocalInvocationIndex < 2u) occupiedMask[gl_LocalInvocationIndex] = 0u;
     barrier();
-    if (occupied) atomicOr(occupiedMask[own >> 5u], 1u << (own & 31u));
+}
+void markOccupied(uint voxel) { atomicOr(occupiedMask[voxel >> 5u], 1u << (voxel & 31u)); }
+uint listOccupiedVoxels(uint lanes) {
     barrier();
     const uint low = occupiedMask[0], high = occupiedMask[1];
-    if (occupied) {
-        const uint before = own < 32u ? uint(bitCount(low & ((1u << own) - 1u)))
-                                      : uint(bitCount(low) + bitCount(high & ((1u << (own - 32u)) - 1u)));
-        packedVoxels[before] = own;
+    for (uint voxel = gl_LocalInvocationIndex; voxel < 64u; voxel += lanes) {
+        const bool occupied = ((voxel < 32u ? low >> voxel : high >> (voxel - 32u)) & 1u) != 0u;
+        // Its place: the number of occupied voxels before it.
+        if (occupied)
+            packedVoxels[voxel < 32u ? uint(bitCount(low & ((1u << voxel) - 1u)))
+                                     : uint(bitCount(low) + bitCount(high & ((1u << (voxel - 32u)) - 1u)))] =
+                voxel;
     }
     barrier();
+    return uint(bitCount(low) + bitCount(high));
+}
+
+// A workgroup of 64 invocations, one per voxel (gl_LocalInvocationID), each saying whether its own voxel is
+// occupied. True for as many invocations as there are occupied voxels, with `local` the voxel the invocation takes.
+bool packOccupiedVoxels(bool occupied, out ivec3 local) {
+    clearOccupancy();
+    if (occupied) markOccupied(gl_LocalInvocationIndex);
+    const uint count = listOccupiedVoxels(64u);
     local = ivec3(0);
-    if (own >= uint(bitCount(low) + bitCount(high))) return false;
-    const uint i = packedVoxels[own];
-    local = ivec3(i % VCT_VOXEL_TILE, (i / VCT_VOXEL_TILE) % VCT_VOXEL_TILE,
-                  i / (VCT_VOXEL_TILE * VCT_VOXEL_TILE));
+    if (gl_LocalInvocationIndex >= count) return false;
+    local = brickVoxel(packedVoxels[gl_LocalInvocationIndex]);
     return true;
 }
 
