@@ -17,7 +17,9 @@
 #include "lib/cone.glsl"
 #include "lib/voxel_specular.glsl"
 
-layout(local_size_x = VCT_VOXEL_TILE, local_size_y = VCT_VOXEL_TILE, local_size_z = VCT_VOXEL_TILE) in;
+// Invocations per brick (VCT_VOXEL_SPEC_LANES, a divisor of 64): 64 on a GPU, one per voxel; the subgroup size on
+// a CPU device, one SIMD batch a brick (lib/voxel_packing.glsl: why).
+layout(local_size_x_id = VCT_VOXEL_SPEC_LANES) in;
 
 // Resources: bound by engine/passes/inject_pass.cpp (its resource table gives these binding numbers and is checked
 // against them when the pipeline is made).
@@ -82,24 +84,9 @@ void storeRadiance(uint k, ivec3 brick, ivec3 local, const vec4 slabs[VOXEL_SLAB
     }
 }
 
-void main() {
-    uint k;
-    ivec3 brick;
-    const bool region = push.region.w != 0u;
-    // Uniform over the workgroup (one brick each): all of it or none reaches the packing's barriers.
-    if (!workgroupBrick(region, push.region.xyz, k, brick)) return;
+// The light occupied voxel `local` of brick k (at `brick`) sends to each side, stored.
+void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     const uint side = frame.voxels.brickAtlasSide;
-    const ivec3 own = ivec3(gl_LocalInvocationID);
-    const bool occupied = imageLoad(albedoImage, materialAtlasTexel(k, side, own)).a > 0.0;
-    // Empty: left as the clear before the dispatch made it (inject_pass.cpp), or, in a region (the atlas was not
-    // cleared), stored as zero here.
-    if (!occupied && region) {
-        vec4 zero[VOXEL_SLAB_COUNT];
-        for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) zero[slab] = vec4(0.0);
-        storeRadiance(k, brick, own, zero);
-    }
-    ivec3 local;
-    if (!packOccupiedVoxels(occupied, local)) return;
     const ivec3 voxel = brick * VOXEL_BRICK + local;
     const ivec3 texel = materialAtlasTexel(k, side, local);
     const vec4 albedoOpacity = imageLoad(albedoImage, texel);
@@ -178,4 +165,30 @@ void main() {
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
         slabs[slab] = vec4((radiance * facing[slab] + specular[slab]) * albedoOpacity.a, albedoOpacity.a);
     storeRadiance(k, brick, local, slabs);
+}
+
+void main() {
+    uint k;
+    ivec3 brick;
+    const bool region = push.region.w != 0u;
+    // Uniform over the workgroup (one brick each): all of it or none reaches the packing's barriers.
+    if (!workgroupBrick(region, push.region.xyz, k, brick)) return;
+    const uint lanes = gl_WorkGroupSize.x;
+    // Every voxel of the brick: occupied ones are listed; empty ones are left as the clear before the dispatch made
+    // them (inject_pass.cpp), or, in a region (the atlas was not cleared), stored as zero here.
+    clearOccupancy();
+    for (uint voxel = gl_LocalInvocationIndex; voxel < 64u; voxel += lanes) {
+        const ivec3 own = brickVoxel(voxel);
+        if (imageLoad(albedoImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, own)).a > 0.0) {
+            markOccupied(voxel);
+        } else if (region) {
+            vec4 zero[VOXEL_SLAB_COUNT];
+            for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) zero[slab] = vec4(0.0);
+            storeRadiance(k, brick, own, zero);
+        }
+    }
+    const uint count = listOccupiedVoxels(lanes);
+    // The listed voxels, neighbours in neighbouring lanes.
+    for (uint i = gl_LocalInvocationIndex; i < count; i += lanes)
+        injectVoxel(k, brick, brickVoxel(packedVoxels[i]));
 }

@@ -14,9 +14,9 @@
 #include "lib/gbuffer_read.glsl"
 #include "lib/voxel_bricks.glsl"
 
-// Invocations per brick (VCT_BOUNCE_SPEC_LANES, a divisor of 64): 64 on a GPU, one per voxel; the subgroup size
+// Invocations per brick (VCT_VOXEL_SPEC_LANES, a divisor of 64): 64 on a GPU, one per voxel; the subgroup size
 // on a CPU device, one SIMD batch a brick (lib/voxel_packing.glsl: why).
-layout(local_size_x_id = VCT_BOUNCE_SPEC_LANES) in;
+layout(local_size_x_id = VCT_VOXEL_SPEC_LANES) in;
 
 // Resources: bound by engine/passes/voxel_bounce_pass.cpp (its resource table gives these binding numbers and is
 // checked against them when the pipeline is made).

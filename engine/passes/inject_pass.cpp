@@ -23,7 +23,8 @@ InjectPass::InjectPass(const vk::Context& context, VoxelGrid& grid, DfgLut& dfg,
       clear_("inject clear",
              {{kNoBinding, Resource::image("mip0", grid.mip0Image()), Access::TransferWrite}}) {
     pipeline_ = vk::Pipeline::compute(context, name(), "inject.comp", resources_.bindings(),
-                                      sizeof(gpu::InjectPushConstants), grid.specialization());
+                                      sizeof(gpu::InjectPushConstants),
+                                      grid.specialization({voxelPassLanes(context)}));
 }
 
 void InjectPass::execute(const FrameContext& frame) {

@@ -47,23 +47,6 @@ ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environm
 // pay: there a slab stays a whole layer.
 constexpr uint32_t kCpuSlabBrickPlaces = 16 * 16;
 
-// Invocations per brick (VCT_BOUNCE_SPEC_LANES). A GPU runs a warp none of whose lanes has a voxel not at all, so
-// one invocation per voxel (64) costs it nothing. lavapipe runs every SIMD batch of a workgroup through the code,
-// masked, also one without a voxel: each cone's loop at least once. One batch a brick (the subgroup size, 8 lanes
-// at 256 bits) took the gather at cornell's default frame (640×360, 64³) from 11.7 to 5.9 ms, the images bit for
-// bit the same (benchmarks/README.md, round 13).
-uint32_t VoxelBouncePass::lanesPerBrick(const vk::Context& context) {
-    constexpr uint32_t kVoxelsPerBrick = VCT_VOXEL_BRICK * VCT_VOXEL_BRICK * VCT_VOXEL_BRICK;
-    if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return kVoxelsPerBrick;
-    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-    properties.pNext = &subgroup;
-    vkGetPhysicalDeviceProperties2(context.physicalDevice(), &properties);
-    // A power of two from 1 to 64 divides the brick's 64 voxels; anything else gets one invocation per voxel.
-    const uint32_t size = subgroup.subgroupSize;
-    return size >= 1 && size <= kVoxelsPerBrick && (size & (size - 1)) == 0 ? size : kVoxelsPerBrick;
-}
-
 uint32_t VoxelBouncePass::bandsPerLayer(uint32_t resolution, bool cpuDevice) {
     const uint32_t side = std::max(resolution / VCT_VOXEL_BRICK, 1u);
     return cpuDevice ? std::max(side * side / kCpuSlabBrickPlaces, 1u) : 1u;
@@ -95,7 +78,7 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
       resources_(bounceResources(grid, environment)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(),
                                       sizeof(gpu::VoxelBouncePushConstants),
-                                      grid.specialization({lanesPerBrick(context)}));
+                                      grid.specialization({voxelPassLanes(context)}));
     if (amortised()) {
         // Every frame's inject reads the gathers, the first one before any gather ran: none yet.
         context.submitAndWait([&](VkCommandBuffer cmd) {

@@ -35,8 +35,6 @@ class VoxelBouncePass : public Pass {
     // device only), the slabs the grid is cut into (one gathers per frame), the slab `i` covers, and the frames the
     // gathers go on after the grid last changed (kSettleRounds rounds of every slab).
     static uint32_t bandsPerLayer(uint32_t resolution, bool cpuDevice);
-    // Invocations per brick of the gather (VCT_BOUNCE_SPEC_LANES): 64 on a GPU, the subgroup size on a CPU device.
-    static uint32_t lanesPerBrick(const vk::Context& context);
     static uint32_t slabCount(uint32_t resolution, uint32_t bands);
     static VoxelRegion slab(uint32_t resolution, uint32_t bands, uint32_t i);
     uint32_t settleFrames() const;

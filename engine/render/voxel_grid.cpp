@@ -15,6 +15,18 @@
 
 namespace vct {
 
+uint32_t voxelPassLanes(const vk::Context& context) {
+    constexpr uint32_t kVoxelsPerBrick = VCT_VOXEL_BRICK * VCT_VOXEL_BRICK * VCT_VOXEL_BRICK;
+    if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return kVoxelsPerBrick;
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(context.physicalDevice(), &properties);
+    // A power of two from 1 to 64 divides the brick's 64 voxels; anything else gets one invocation per voxel.
+    const uint32_t size = subgroup.subgroupSize;
+    return size >= 1 && size <= kVoxelsPerBrick && (size & (size - 1)) == 0 ? size : kVoxelsPerBrick;
+}
+
 namespace {
 
 constexpr VkDeviceSize kAccumVoxelBytes = VCT_VOXEL_ACCUM_STRIDE * sizeof(uint32_t);

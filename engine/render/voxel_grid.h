@@ -70,6 +70,12 @@ inline void dispatchBricks(VkCommandBuffer cmd, uint32_t bricks) {
                   (bricks + VCT_BRICK_DISPATCH_ROW - 1) / VCT_BRICK_DISPATCH_ROW, 1);
 }
 
+// Invocations per brick of the inject and bounce passes (VCT_VOXEL_SPEC_LANES, lib/voxel_packing.glsl): 64, one per
+// voxel, on a GPU, which does not run a warp none of whose lanes has a voxel; the subgroup size (lavapipe: 8 lanes
+// at 256 bits) on a CPU device, whose lavapipe runs every SIMD batch of a workgroup through the code, masked, also
+// those without a voxel (benchmarks/README.md, round 13).
+uint32_t voxelPassLanes(const vk::Context& context);
+
 // A voxel pass over a region: one workgroup per brick of its (brick-aligned) box (lib/voxel_workgroup.glsl).
 inline void dispatchRegionBricks(VkCommandBuffer cmd, const VoxelRegion& region) {
     if (region.empty()) return;

@@ -275,9 +275,9 @@ struct InjectPushConstants {
     uvec4 region;
 };
 
-// bounce's specialization constant (then VCT_SPEC_SPARSE_MIP0): its invocations per brick, a divisor of 64 (64 on a
-// GPU; the subgroup size on a CPU device, engine/passes/voxel_bounce_pass.cpp).
-#define VCT_BOUNCE_SPEC_LANES 0
+// inject's and bounce's specialization constant (then VCT_SPEC_SPARSE_MIP0): their invocations per brick, a divisor
+// of 64 (64 on a GPU; the subgroup size on a CPU device: voxelPassLanes, engine/render/voxel_grid.h).
+#define VCT_VOXEL_SPEC_LANES 0
 
 // Push constants of bounce: region.xyz the first voxel of the region the dispatch covers and w = 1 (`--bounces
 // all`: one slab of the grid a frame); w = 0: one workgroup per allocated brick.

@@ -1,5 +1,6 @@
 // Packs a voxel workgroup's invocations onto the occupied voxels of its brick (inject.comp, voxel_bounce.comp).
-// GLSL only, compute shaders with VCT_VOXEL_TILE³ = 64 invocations per workgroup.
+// GLSL only, compute shaders of one workgroup per brick, `lanes` invocations each (a divisor of the brick's 64
+// voxels; VCT_VOXEL_SPEC_LANES).
 //
 // A thread per voxel leaves most lanes of a SIMD batch idle: a wall across a brick fills a quarter of its
 // voxels, the floor half of the batches it crosses. lavapipe runs a batch's code as long as any lane of it is
@@ -11,14 +12,14 @@
 //
 // On a CPU device a workgroup of 64 invocations is 8 SIMD batches (lavapipe: 8 lanes at 256 bits), and lavapipe
 // runs every batch through the code, masked, even one none of whose lanes has a voxel: the gather's cone loops ran
-// at least once per cone for each of them. voxel_bounce.comp therefore runs one batch a brick there (its `lanes`
-// the device's subgroup size), each invocation marking 64 / lanes voxels and then taking every lanes-th listed
-// one.
+// at least once per cone for each of them. inject and bounce therefore run one batch a brick there (`lanes` the
+// device's subgroup size), each invocation marking 64 / lanes voxels and then taking every lanes-th listed one; on
+// a GPU, whose warps without an active lane do not run, one invocation per voxel.
 #ifndef VCT_VOXEL_PACKING_GLSL
 #define VCT_VOXEL_PACKING_GLSL
 
 #if VCT_VOXEL_TILE != 4
-#error "occupiedMask holds 64 voxels: one bit per invocation of a 4×4×4 workgroup"
+#error "occupiedMask holds 64 voxels: one bit per voxel of a 4×4×4 brick"
 #endif
 
 shared uint occupiedMask[2];  // bit i: voxel i of the brick (x fastest, then y, z) is occupied
@@ -34,7 +35,7 @@ ivec3 brickVoxel(uint i) {
 // in uniform control flow (barriers): clear the mask; mark the occupied voxels (an invocation may mark several);
 // list them: packedVoxels[0 .. count) holds the occupied voxels in their own order, count returned.
 void clearOccupancy() {
-    if (gl_LocalInvocationIndex < 2u) occupiedMask[gl_LocalInvocationIndex] = 0u;
+    for (uint i = gl_LocalInvocationIndex; i < 2u; i += gl_WorkGroupSize.x) occupiedMask[i] = 0u;
     barrier();
 }
 void markOccupied(uint voxel) { atomicOr(occupiedMask[voxel >> 5u], 1u << (voxel & 31u)); }
@@ -51,18 +52,6 @@ uint listOccupiedVoxels(uint lanes) {
     }
     barrier();
     return uint(bitCount(low) + bitCount(high));
-}
-
-// A workgroup of 64 invocations, one per voxel (gl_LocalInvocationID), each saying whether its own voxel is
-// occupied. True for as many invocations as there are occupied voxels, with `local` the voxel the invocation takes.
-bool packOccupiedVoxels(bool occupied, out ivec3 local) {
-    clearOccupancy();
-    if (occupied) markOccupied(gl_LocalInvocationIndex);
-    const uint count = listOccupiedVoxels(64u);
-    local = ivec3(0);
-    if (gl_LocalInvocationIndex >= count) return false;
-    local = brickVoxel(packedVoxels[gl_LocalInvocationIndex]);
-    return true;
 }
 
 #endif  // VCT_VOXEL_PACKING_GLSL
