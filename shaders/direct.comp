@@ -16,6 +16,8 @@ layout(constant_id = VCT_DIRECT_SPEC_GI) const bool GI = true;  // --gi (VCT_FLA
 // emission and occlusion 1, and is not read for them (shared.h).
 layout(constant_id = VCT_DIRECT_SPEC_EMISSION) const bool EMISSION = true;
 layout(constant_id = VCT_DIRECT_SPEC_OCCLUSION) const bool OCCLUSION = true;
+// Only the pixels direct_select.comp listed (a partial run, an indirect dispatch of VCT_TILE_SIZE² per group).
+layout(constant_id = VCT_DIRECT_SPEC_LIST) const bool LIST = false;
 
 // Resources: bound by engine/passes/direct_pass.cpp (its resource table gives these binding numbers and is checked
 // against them when the pipeline is made).
@@ -28,27 +30,30 @@ layout(set = 0, binding = 5) uniform sampler2D emissiveOcclusionTexture;
 layout(set = 0, binding = 6) uniform sampler2DShadow shadowMap;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D outputImage;
 layout(set = 0, binding = 8) uniform sampler2D environmentMap;  // lib/environment_sample.glsl
-layout(push_constant) uniform Push { DirectPushConstants push; };
+// clang-format off
+layout(set = 0, binding = 10, std430) readonly buffer DirectList {
+    ResampleListHeader header;
+    uint pixels[];
+} directList;
+// clang-format on
 
 #include "lib/environment_sample.glsl"
 
 #include "lib/shadow_lookup.glsl"
 
 void main() {
-    // The dispatch covers a rectangle from params.yz on (direct_pass.cpp: in a partial run, the pixels that can
-    // change; else the whole image).
-    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(push.params.yz);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (LIST) {
+        const uint index = gl_WorkGroupID.x * uint(VCT_TILE_SIZE * VCT_TILE_SIZE) + gl_LocalInvocationIndex;
+        if (index >= directList.header.counts.x) return;
+        const uint packed = directList.pixels[index];
+        pixel = ivec2(packed & 0xffffu, packed >> 16);
+    }
     const ivec2 size = ivec2(frame.imageSize);
     if (any(greaterThanEqual(pixel, size))) return;
-
-    // Only instances moved since the last frame (push constants): a pixel outside where they project keeps its
-    // last value unless its shadow lookup reads texels the shadow pass redrew (below, once p and n are known).
-    const bool keepable = push.params.x != 0u && !(all(greaterThanEqual(pixel, push.changedPixels.xy)) &&
-                                                   all(lessThan(pixel, push.changedPixels.zw)));
     const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
     const float depth = texelFetch(depthTexture, pixel, 0).r;
     if (isBackground(depth)) {
-        if (keepable) return;
         const vec3 farPoint = worldFromDepth(frame.invViewProj, uv, 1.0);
         imageStore(outputImage, pixel,
                    vec4(environmentRadiance(normalize(farPoint - frame.cameraPosition)), 1.0));
@@ -57,7 +62,6 @@ void main() {
     const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
     const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
     const vec3 n = gbufferNormal(normalRoughness);  // never NaN: a zero-length normal reads as +y
-    if (keepable && !shadowLookupReads(p, n, push.changedShadowTexels)) return;
     const vec4 baseColorMetallic = texelFetch(baseColorMetallicTexture, pixel, 0);
     // Occlusion is read only with GI off (composite applies it to the indirect light).
     const vec4 emissiveOcclusion = EMISSION || (OCCLUSION && !GI)

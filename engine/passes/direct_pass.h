@@ -52,7 +52,10 @@ class DirectPass : public Pass {
     Inputs inputsOf(const FrameContext& frame) const;
 
     ResourceTable resources_;
-    vk::Pipeline pipeline_;
+    ResourceTable selectResources_;  // direct_select.comp's
+    vk::Pipeline pipeline_;          // every pixel
+    vk::Pipeline listPipeline_;      // the listed pixels (VCT_DIRECT_SPEC_LIST)
+    vk::Pipeline selectPipeline_;
     const ShadowPass& shadow_;
     std::optional<Inputs> last_;  // of the last run (none yet)
     bool lastRunPartial_ = false;

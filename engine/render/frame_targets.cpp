@@ -72,6 +72,10 @@ void FrameTargets::create(const vk::Context& context, uint32_t w, uint32_t h, ui
         desc.usage = usageFlags(row.usage);
         target = vk::Image(context, desc);
     }
+    directList = vk::Buffer(context, sizeof(gpu::ResampleListHeader) + VkDeviceSize(w) * h * sizeof(uint32_t),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            vk::MemoryUsage::DeviceLocal);
     if (gi) {
         resampleList =
             vk::Buffer(context, sizeof(gpu::ResampleListHeader) + VkDeviceSize(w) * h * sizeof(uint32_t),

@@ -125,6 +125,9 @@ struct FrameTargets {
     // With GI only.
     vk::Buffer resampleList;
     vk::Buffer resampleCount;
+    // Pixels a partial run of direct recomputes (the same header + packed pixels), written by its selection,
+    // read by its indirect dispatch (docs/design.md §5.8).
+    vk::Buffer directList;
 
     uint32_t width = 0, height = 0;
     uint32_t traceScale = 1;

@@ -1,6 +1,7 @@
 // The main light's shadow at a surface point: 3×3 PCF on its shadow map (lib/shadow_pcf.glsl's four bilinear
 // compare taps). Shared by direct.comp (opaque pixels) and blend.frag (blended fragments). GLSL only.
-// Expects before inclusion: `frame` (FrameUniforms), `shadowMap` (sampler2DShadow), lib/shadow_pcf.
+// Expects before inclusion: `frame` (FrameUniforms), `shadowMap` (sampler2DShadow), lib/shadow_pcf; with
+// VCT_SHADOW_COORDINATES_ONLY defined (direct_select.comp, which reads no texel), `frame` alone.
 #ifndef VCT_SHADOW_LOOKUP_GLSL
 #define VCT_SHADOW_LOOKUP_GLSL
 
@@ -27,6 +28,7 @@ ShadowCoordinate shadowCoordinate(vec3 worldPosition, vec3 normal) {
     return c;
 }
 
+#ifndef VCT_SHADOW_COORDINATES_ONLY
 float shadowVisibility(vec3 worldPosition, vec3 normal) {
     const ShadowCoordinate c = shadowCoordinate(worldPosition, normal);
     if (!c.reads) return 1.0;
@@ -40,6 +42,7 @@ float shadowVisibility(vec3 worldPosition, vec3 normal) {
         taps.lastWeight.x * taps.lastWeight.y * texture(shadowMap, vec3(last, c.depth));
     return visible / 9.0;
 }
+#endif
 
 // Whether shadowVisibility at this point reads a texel of `rect` ([xy, zw)): the 3×3 PCF's taps read the 4×4
 // texels from floor(t) − 1 on (lib/shadow_pcf.glsl).

@@ -69,6 +69,8 @@ using glm::vec4;
 // or not it matters (about 1.5 ms a read at 640×360).
 #define VCT_DIRECT_SPEC_EMISSION 1
 #define VCT_DIRECT_SPEC_OCCLUSION 2
+// bool: recompute the pixels of the list direct_select.comp made (an indirect dispatch), not every pixel
+#define VCT_DIRECT_SPEC_LIST 3
 // composite.comp: whether GI is on (the indirect light's reads) and whether the scene has blended surfaces (the
 // blend pass's layer, put over the frame). Constants for the same reason: as flags, lavapipe read the layer
 // on every pixel of every scene.
@@ -285,11 +287,11 @@ struct VoxelBouncePushConstants {
     uvec4 region;
 };
 
-// Push constants of direct (docs/design.md §5.8): params.x = 1 when only instances moved since the last frame,
-// which direct then computed whole with the same camera, lights and settings; it then keeps the last value (no
-// store) of every pixel outside changedPixels whose shadow lookup reads no texel of changedShadowTexels. Each a
-// rectangle [xy, zw) of pixels or shadow-map texels. params.yz: the first pixel the dispatch covers (0 unless
-// partial: then only the pixels that can change are dispatched).
+// Push constants of direct_select (docs/design.md §5.8), when only instances moved since the last frame, which
+// direct then computed whole with the same camera, lights and settings: it lists the pixels in changedPixels and
+// those whose shadow lookup reads a texel of changedShadowTexels (each a rectangle [xy, zw) of pixels or shadow-map
+// texels) for direct to recompute; the others keep their last value. params.yz: the first pixel its dispatch
+// covers (only the pixels that can change are dispatched).
 struct DirectPushConstants {
     ivec4 changedPixels;
     ivec4 changedShadowTexels;
