@@ -117,7 +117,7 @@ void DirectPass::execute(const FrameContext& frame) {
         gpu::DirectPushConstants push{};
         push.changedPixels = glm::ivec4(pixels->min, pixels->max);
         push.changedShadowTexels = glm::ivec4(shadowRect->min, shadowRect->max);
-        push.params = glm::uvec4(1u, uint32_t(dispatched.min.x), uint32_t(dispatched.min.y), 0u);
+        push.params = glm::uvec4(0u, uint32_t(dispatched.min.x), uint32_t(dispatched.min.y), 0u);
         selectPipeline_.bind(frame.cmd);
         selectResources_.bind(frame, selectPipeline_);
         selectPipeline_.pushConstants(frame.cmd, &push, sizeof(push));

@@ -291,7 +291,7 @@ struct VoxelBouncePushConstants {
 // direct then computed whole with the same camera, lights and settings: it lists the pixels in changedPixels and
 // those whose shadow lookup reads a texel of changedShadowTexels (each a rectangle [xy, zw) of pixels or shadow-map
 // texels) for direct to recompute; the others keep their last value. params.yz: the first pixel its dispatch
-// covers (only the pixels that can change are dispatched).
+// covers (only the pixels that can change are dispatched); x, w: unused.
 struct DirectPushConstants {
     ivec4 changedPixels;
     ivec4 changedShadowTexels;
