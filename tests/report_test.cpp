@@ -58,12 +58,16 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // 40.35). The upsampling is the same code in both; the margins above hold on the Lambertian signal, and the
     // default's are its own measurement less 0.25 dB. With round 11's cone samples (lifted clear of the surface's
     // coarser mip and read within the grid, docs/design.md §5.3): 37.86 / 41.38 / 39.16 dB (Lambertian 39.51 /
-    // 38.52 / 40.94; before them on this machine 38.10 / 41.05 / 39.21 and 39.70 / 39.39 / 40.95).
+    // 38.52 / 40.94; before them on this machine 38.10 / 41.05 / 39.21 and 39.70 / 39.39 / 40.95). Round 14 clears the
+    // coarser mip's whole reach at any blend weight (a lit surface no longer lights itself through it): the every-pixel
+    // trace keeps more detail (the back wall's reflections; its specular part against the path tracer 1.17 → 0.95 at
+    // 64³), which the same upsampling converges to less closely: 36.35 / 39.82 / 37.26 dB (Lambertian 39.66 / 37.68 /
+    // 40.89). The margins are each measurement less about 0.25 dB.
     struct Case {
         const char* glossy;
         double diffuse, specular, display;  // lowest PSNRs allowed
     };
-    for (const Case& c : {Case{"off", 38.5, 38.25, 40.0}, Case{"on", 37.6, 40.2, 38.9}}) {
+    for (const Case& c : {Case{"off", 39.4, 37.4, 40.6}, Case{"on", 36.1, 39.55, 37.0}}) {
         const std::string suffix = std::string("_glossy_") + c.glossy;
         const fs::path reference = render("converge_s1" + suffix, {"--trace-scale", "1", "--cone-rotation",
                                                                    "off", "--voxel-glossy", c.glossy});

@@ -81,22 +81,20 @@ VCT_INLINE float coneSurfaceFootprint(float diameter, float height, float voxelS
 // How far a trilinear read at mip m reaches, in that mip's voxels: it weighs the texels whose centres lie within
 // one texel of it, and each texel is the mean of half a texel either side.
 const float CONE_MIP_REACH = 1.5f;
-// The blend weight of the coarser level from which its whole reach is kept clear (below it, in proportion): the
-// lift then grows continuously along a cone instead of doubling where the mip crosses an integer (which drew
-// bands on cornell's floor at 32³).
-const float CONE_MIP_REACH_FULL_WEIGHT = 0.25f;
 
 // How far to lift a sample at `height` above the surface its cone leaves (along that surface's normal) so that
 // the coarser level of its fractional `mip` keeps the surface out as well. coneSurfaceFootprint bounds the finer
 // level's voxels by clearance × height, but the trilinear blend between levels also reads the next one, whose
 // voxels are twice as wide: at clearance 0.5 it reached the surface, whose own voxels then shadowed or lit the
-// cone, even at a small weight, over many steps. A black face of a closed emissive box gathered 0.970 / 0.934 /
-// 0.855 of its light at 32³ / 64³ / 128³ this way, lifted 0.979 / 0.974 / 0.974, with coneSampleAt's reads past
-// the grid 0.981 at each (docs/design.md §5.3).
-// 0 once the cone has risen clear.
+// cone over many steps. So the lift clears the whole reach of the coarsest level the blend reads: level ⌈m⌉
+// whenever it weighs anything. A black face of a closed emissive box gathers 1.000 of its light at 32³, 64³ and
+// 128³ (0.970 / 0.934 / 0.855 unlifted), an emissive face under black ones lights itself with 0.001 (0.010 with
+// the coarser level's reach counted only in proportion below a quarter of its weight, round 11: a lit floor's
+// sideways voxels, read through that level, gave it 1.2 % of its own radiance back; docs/design.md §5.3).
+// 0 once the cone has risen clear. The lift doubles where m passes an integer; measured, that draws no bands.
 VCT_INLINE float coneCoarseMipLift(float height, float mip, float voxelSize) {
-    const float coarser = saturate(fract(mip) / CONE_MIP_REACH_FULL_WEIGHT);
-    const float reach = CONE_MIP_REACH * voxelSize * exp2(floor(mip)) * (1.0f + coarser);
+    const float level = fract(mip) > 0.0f ? floor(mip) + 1.0f : mip;  // the coarsest level read
+    const float reach = CONE_MIP_REACH * voxelSize * exp2(level);
     return max(reach - height, 0.0f);
 }
 
