@@ -5,17 +5,23 @@ padded so that the grid fit puts a room's bounding walls mid-voxel.
 
 Usage:
   edit_glb.py drop IN.glb OUT.glb NODE...           without the root nodes named NODE (and their animation channels)
-  edit_glb.py black IN.glb OUT.glb KEEP...          every material black (base colour 0) but those named KEEP
-  edit_glb.py pad IN.glb OUT.glb MESH HALF DELTA    four copies of mesh MESH, scaled to nothing, at x = ±(HALF +
-                                                    DELTA) and z = ±(HALF + DELTA) (y at the bounds' middle is not
-                                                    needed: they only widen the bounds)
+  edit_glb.py black IN.glb OUT.glb KEEP...          every material's base colour black but those named KEEP
+                                                    (emission and the dielectric F0 stay: with --voxel-glossy off
+                                                    and a --secondary diffuse reference they light nothing)
+  edit_glb.py pad IN.glb OUT.glb MESH HALF DELTA    four nodes of mesh MESH scaled to 1/1000, at x = ±(HALF + DELTA)
+                                                    and z = ±(HALF + DELTA), y = 0, in the first scene: they widen
+                                                    the bounds of a room centred on x = z = 0 whose walls stand at
+                                                    x, z = ±HALF (cornell: 2)
+A name that matches nothing is an error.
 
 Example (cornell's room alone, Lambertian, against `vct reference --secondary diffuse`):
   build/vct export-scene --scene cornell --out /tmp/cornell.glb
   benchmarks/edit_glb.py drop /tmp/cornell.glb /tmp/empty.glb "gold sphere" "tall box" "moving cube"
   TRUTH_REFERENCES=diffuse TRUTH_VOXELS="64 128" TRUTH_SCALES=1 TRUTH_FRAMES=8 benchmarks/truth.sh /tmp/empty.glb
-The grid fit (lib/voxel.glsl's voxelGridFit) leaves one voxel free at each end of the bounds' longest side, so a
-wall on the bounds lies on a voxel face; DELTA = 2 / (N − 3) for a side of 4 puts it mid-voxel at N³.
+The grid fit (lib/voxel.glsl's voxelGridFit) gives the bounds' longest side S to N − 2 voxels, one voxel free at each
+end, so a wall on the bounds lies on a voxel face. Padded by DELTA at each end, the voxel is (S + 2·DELTA)/(N − 2)
+and the wall lies (1 + DELTA/voxel) voxels from the grid's edge: mid-voxel for DELTA = S / (2(N − 3)), i.e.
+2 / (N − 3) for cornell's S = 4. Each grid size needs its own file.
 """
 import json
 import struct
@@ -26,7 +32,9 @@ def read(path):
     data = open(path, 'rb').read()
     if data[:4] != b'glTF':
         sys.exit(f'edit_glb.py: {path}: not a binary glTF file')
-    length = struct.unpack('<I', data[12:16])[0]
+    length, kind = struct.unpack('<I4s', data[12:20])
+    if kind != b'JSON':
+        sys.exit(f'edit_glb.py: {path}: the first chunk is not JSON')
     return json.loads(data[20:20 + length]), data[20 + length:]
 
 
@@ -39,6 +47,9 @@ def write(path, document, rest):
 
 def drop(document, names):
     removed = {i for i, node in enumerate(document['nodes']) if node.get('name') in names}
+    missing = names - {document['nodes'][i].get('name') for i in removed}
+    if missing:
+        sys.exit(f'edit_glb.py: no node named {", ".join(sorted(missing))}')
     for scene in document['scenes']:
         scene['nodes'] = [n for n in scene['nodes'] if n not in removed]
     animations = []
@@ -53,6 +64,9 @@ def drop(document, names):
 
 
 def black(document, keep):
+    missing = keep - {material.get('name') for material in document.get('materials', [])}
+    if missing:
+        sys.exit(f'edit_glb.py: no material named {", ".join(sorted(missing))}')
     for material in document.get('materials', []):
         if material.get('name') not in keep:
             material.setdefault('pbrMetallicRoughness', {})['baseColorFactor'] = [0.0, 0.0, 0.0, 1.0]

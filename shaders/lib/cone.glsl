@@ -88,10 +88,11 @@ const float CONE_MIP_REACH = 1.5f;
 // voxels are twice as wide: at clearance 0.5 it reached the surface, whose own voxels then shadowed or lit the
 // cone over many steps. So the lift clears the whole reach of the coarsest level the blend reads: level ⌈m⌉
 // whenever it weighs anything. A black face of a closed emissive box gathers 1.000 of its light at 32³, 64³ and
-// 128³ (0.970 / 0.934 / 0.855 unlifted), an emissive face under black ones lights itself with 0.001 (0.010 with
+// 128³ (0.970 / 0.934 / 0.843 unlifted), an emissive face under black ones lights itself with 0.001 (0.010 with
 // the coarser level's reach counted only in proportion below a quarter of its weight, round 11: a lit floor's
 // sideways voxels, read through that level, gave it 1.2 % of its own radiance back; docs/design.md §5.3).
-// 0 once the cone has risen clear. The lift doubles where m passes an integer; measured, that draws no bands.
+// 0 once the cone has risen clear. The lift doubles where m passes an integer (round 11 had seen bands from that at
+// 32³; cornell's diffuse view at 32³ and 64³ showed none in round 14).
 VCT_INLINE float coneCoarseMipLift(float height, float mip, float voxelSize) {
     const float level = fract(mip) > 0.0f ? floor(mip) + 1.0f : mip;  // the coarsest level read
     const float reach = CONE_MIP_REACH * voxelSize * exp2(level);
