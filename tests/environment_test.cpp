@@ -312,10 +312,11 @@ TEST(EnvironmentGpu, WhiteEnvironmentOverAnOpenWhitePlaneGivesTheAnalyticRadianc
         // the floor's own voxels): the cones passed 0.28 of the open sky, because a cone that left the grid read
         // the edge texels at its coarse mip, whose texel held the whole grid, this floor among it, opaque along
         // the normal (lib/cone.glsl's coneSampleAt now reads them at a mip that keeps the surface out;
-        // docs/design.md §5.3, §5.9). The bounds hold this measurement.
+        // docs/design.md §5.3, §5.9). Round 14 (the coarser mip's whole reach cleared at any blend weight): 0.9987
+        // and 0.9988, none of it the floor's own voxels. The bounds hold this measurement, and 1 with rounding.
         std::printf("white floor, scale %s: vct %.4f (exact 1)\n", scale, vctDiffuse);
-        EXPECT_GT(vctDiffuse, 0.94) << scale;
-        EXPECT_LT(vctDiffuse, 1.0) << scale;
+        EXPECT_GT(vctDiffuse, 0.98) << scale;
+        EXPECT_LE(vctDiffuse, 1.0 + 1e-3) << scale;
         // The indirect light leaving the floor is albedo (1) × that, and the white sky its dielectric specular lobe
         // reflects: final − direct. Measured 0.979, 0.018 above the diffuse.
         const vct::ImageRgba32f final = vct::readExr(dir / "final.exr");
