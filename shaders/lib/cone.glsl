@@ -94,7 +94,7 @@ const float CONE_MIP_REACH = 1.5f;
 // 0 once the cone has risen clear. The lift doubles where m passes an integer (round 11 had seen bands from that at
 // 32³; cornell's diffuse view at 32³ and 64³ showed none in round 14).
 VCT_INLINE float coneCoarseMipLift(float height, float mip, float voxelSize) {
-    const float level = fract(mip) > 0.0f ? floor(mip) + 1.0f : mip;  // the coarsest level read
+    const float level = ceil(mip);  // the coarsest level read: ⌊m⌋ + 1 in a blend, m itself at an integer
     const float reach = CONE_MIP_REACH * voxelSize * exp2(level);
     return max(reach - height, 0.0f);
 }
