@@ -61,10 +61,8 @@ DirectPass::Inputs DirectPass::inputsOf(const FrameContext& frame) const {
     const gpu::FrameUniforms& u = frame.uniforms;
     inputs.invViewProj = u.invViewProj;
     inputs.lightViewProj = u.lightViewProj;
-    inputs.cameraPosition = glm::vec4(u.cameraPosition, 0.0f);
-    inputs.imageSize = glm::vec4(u.imageSize, u.texelSize);
+    inputs.view = viewInputsOf(u);
     inputs.lighting = u.lighting;
-    inputs.flags = u.flags;
     inputs.image = frame.targets.direct.handle();
     return inputs;
 }

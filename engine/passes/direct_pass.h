@@ -12,6 +12,7 @@
 #include "passes/shadow_pass.h"
 #include "render/gpu_environment.h"
 #include "render/gpu_scene.h"
+#include "render/moved_rect.h"
 #include "render/pass.h"
 #include "vk/pipeline.h"
 
@@ -42,10 +43,8 @@ class DirectPass : public Pass {
     // while only instances move): the frame uniforms it reads, and the image it writes.
     struct Inputs {
         glm::mat4 invViewProj, lightViewProj;
-        glm::vec4 cameraPosition;
-        glm::vec4 imageSize;
+        ViewInputs view;
         gpu::LightingUniforms lighting;
-        uint32_t flags;
         VkImage image;
         bool operator==(const Inputs& other) const { return std::memcmp(this, &other, sizeof(Inputs)) == 0; }
     };

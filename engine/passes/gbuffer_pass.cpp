@@ -58,9 +58,7 @@ GBufferPass::Inputs GBufferPass::inputsOf(const FrameContext& frame) const {
     const gpu::FrameUniforms& u = frame.uniforms;
     inputs.viewProj = u.viewProj;
     inputs.prevViewProj = u.prevViewProj;
-    inputs.cameraPosition = glm::vec4(u.cameraPosition, 0.0f);
-    inputs.imageSize = glm::vec4(u.imageSize, u.texelSize);
-    inputs.flags = u.flags;
+    inputs.view = viewInputsOf(u);
     return inputs;
 }
 

@@ -35,10 +35,7 @@ class GBufferPass : public Pass {
     // its scene update.
     struct Inputs {
         glm::mat4 viewProj, prevViewProj;
-        glm::vec4 cameraPosition;
-        glm::vec4 imageSize;
-        uint32_t flags;
-        uint32_t padding[3];
+        ViewInputs view;
         bool operator==(const Inputs& other) const { return std::memcmp(this, &other, sizeof(Inputs)) == 0; }
     };
     struct Run {

@@ -6,6 +6,14 @@
 
 namespace vct {
 
+ViewInputs viewInputsOf(const gpu::FrameUniforms& u) {
+    ViewInputs view{};
+    view.cameraPosition = glm::vec4(u.cameraPosition, 0.0f);
+    view.imageSize = glm::vec4(u.imageSize, u.texelSize);
+    view.flags = u.flags;
+    return view;
+}
+
 std::optional<TexelRect> movedRect(const glm::mat4& viewProj, const Aabb& moved, glm::uvec2 size,
                                    double maxShare) {
     if (moved.empty()) return TexelRect{};

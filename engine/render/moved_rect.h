@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 #include <optional>
 
+#include "lib/shared.h"
 #include "scene/scene.h"
 
 namespace vct {
@@ -22,6 +23,17 @@ struct TexelRect {
     }
     uint64_t area() const { return empty() ? 0 : uint64_t(max.x - min.x) * uint64_t(max.y - min.y); }
 };
+
+// The view a pass's last run used, as the frame uniforms hold it: a run that keeps that run's results outside a
+// rectangle needs the same. Part of each pass's own record of what it read (compared bytewise): no implicit
+// padding, and viewInputsOf zeroes the rest.
+struct ViewInputs {
+    glm::vec4 cameraPosition;  // w: 0
+    glm::vec4 imageSize;       // xy: the size, zw: the texel size
+    uint32_t flags;            // VCT_FLAG_*
+    uint32_t padding[3];
+};
+ViewInputs viewInputsOf(const gpu::FrameUniforms& u);
 
 // The texels of a `size` target drawn with `viewProj` (and the viewport of render/scene_draw.cpp) that the move of
 // `moved` (world bounds, before and after) can change, with a texel of margin: the bounding rectangle of the
