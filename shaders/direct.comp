@@ -7,6 +7,7 @@
 #include "lib/brdf.glsl"
 #include "lib/gbuffer_read.glsl"
 #include "lib/lights.glsl"
+#include "lib/pixel_list.glsl"
 #include "lib/cone.glsl"
 #include "lib/shadow_pcf.glsl"
 
@@ -46,8 +47,7 @@ void main() {
     if (LIST) {
         const uint index = gl_WorkGroupID.x * uint(VCT_TILE_SIZE * VCT_TILE_SIZE) + gl_LocalInvocationIndex;
         if (index >= directList.header.counts.x) return;
-        const uint packed = directList.pixels[index];
-        pixel = ivec2(packed & 0xffffu, packed >> 16);
+        pixel = unpackListedPixel(directList.pixels[index]);
     }
     const ivec2 size = ivec2(frame.imageSize);
     if (any(greaterThanEqual(pixel, size))) return;

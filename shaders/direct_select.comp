@@ -10,6 +10,7 @@
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
 #include "lib/gbuffer_read.glsl"
+#include "lib/pixel_list.glsl"
 
 layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
 
@@ -44,7 +45,7 @@ void main() {
     }
     if (!recompute) return;
     const uint index = atomicAdd(directList.header.counts.x, 1u);
-    directList.pixels[index] = uint(pixel.x) | (uint(pixel.y) << 16);
+    directList.pixels[index] = packListedPixel(pixel);
     // One more workgroup of direct for every VCT_TILE_SIZE² entries.
     if (index % uint(VCT_TILE_SIZE * VCT_TILE_SIZE) == 0u) atomicAdd(directList.header.dispatch.x, 1u);
 }

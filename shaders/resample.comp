@@ -10,6 +10,7 @@
 #include "lib/cone.glsl"
 #include "lib/gbuffer_read.glsl"
 #include "lib/indirect_pack.glsl"
+#include "lib/pixel_list.glsl"
 #include "lib/upsample_weights.glsl"
 
 layout(local_size_x = VCT_RESAMPLE_GROUP_SIZE) in;
@@ -36,8 +37,7 @@ layout(set = 0, binding = 9) uniform sampler2D environmentMap;
 void main() {
     const uint index = gl_GlobalInvocationID.x;
     if (index >= resampleList.header.counts.x) return;
-    const uint packed = resampleList.pixels[index];
-    const ivec2 pixel = ivec2(packed & 0xffffu, packed >> 16);
+    const ivec2 pixel = unpackListedPixel(resampleList.pixels[index]);
     const IndirectSample s = tracePixel(voxels, depthTexture, normalRoughnessTexture, pixel);
     imageStore(indirectImage, pixel,
                packIndirect(vec4(s.diffuse, EXACT_SAMPLE_WEIGHT), vec4(s.specular, EXACT_SAMPLE_WEIGHT)));

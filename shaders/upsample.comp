@@ -35,6 +35,7 @@
 #include "lib/upsample_weights.glsl"
 #include "lib/upsample_guide.glsl"
 #include "lib/indirect_pack.glsl"
+#include "lib/pixel_list.glsl"
 
 #extension GL_EXT_control_flow_attributes : require
 
@@ -290,7 +291,7 @@ void writePixel(ivec2 pixel, bool background, WeightedLight spatial, WeightedLig
 
     if (resample) {
         const uint index = atomicAdd(resampleList.header.counts.x, 1u);
-        resampleList.pixels[index] = uint(pixel.x) | (uint(pixel.y) << 16);
+        resampleList.pixels[index] = packListedPixel(pixel);
         // One more workgroup of the resample pass for every VCT_RESAMPLE_GROUP_SIZE entries.
         if (index % uint(VCT_RESAMPLE_GROUP_SIZE) == 0u) atomicAdd(resampleList.header.dispatch.x, 1u);
     }

@@ -225,7 +225,7 @@ struct SkinPushConstants {
 // resample (full-res cone tracing of the listed pixels)
 #define VCT_RESAMPLE_GROUP_SIZE 64
 
-// The compacted list of pixels to re-trace: header, then one packed pixel (x | y << 16) per entry. The
+// The compacted list of pixels to re-trace: header, then one packed pixel per entry (lib/pixel_list.glsl). The
 // header's dispatch is the resample pass's indirect dispatch, counted up as entries are appended.
 struct ResampleListHeader {
     uvec4 counts;    // x: entries, yzw: unused

@@ -1,0 +1,10 @@
+// An entry of the compacted pixel lists (shared.h's ResampleListHeader and its entries: the resample pass's list
+// of pixels to re-trace, the direct pass's of pixels to shade): x | y << 16, for images up to 65535 pixels a side.
+// Written by upsample.comp and direct_select.comp, read by resample.comp and direct.comp. GLSL only.
+#ifndef VCT_PIXEL_LIST_GLSL
+#define VCT_PIXEL_LIST_GLSL
+
+uint packListedPixel(ivec2 pixel) { return uint(pixel.x) | (uint(pixel.y) << 16); }
+ivec2 unpackListedPixel(uint entry) { return ivec2(entry & 0xffffu, entry >> 16); }
+
+#endif  // VCT_PIXEL_LIST_GLSL
