@@ -27,7 +27,8 @@
 //   samples, so the invocation loads them once into registers (5 texel fetches per sample: 80 per cell,
 //   5 per pixel at s = 4, instead of 80 per pixel) and then reconstructs its s×s pixels.
 // - The inner loops have no branches: an invalid sample (outside the image, background) gets weight 0, and
-//   the weights multiply in the log domain (one exp per sample and lobe: plane × lobe = exp(sum of logs)).
+//   the weights multiply in the log domain (one exp per sample and lobe: plane × lobe = exp(sum of logs); the
+//   SG ratio term, at a whole β/2, is a power made of multiplies instead: lib/upsample_weights.glsl).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
@@ -50,6 +51,8 @@ layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;
 // The layout (--upsample-layout): false, one invocation per low-res cell, its samples in registers (CPU devices);
 // true, one invocation per pixel, the workgroup's samples in shared memory (GPUs). See main().
 layout(constant_id = VCT_UPSAMPLE_SPEC_PER_PIXEL) const bool PER_PIXEL = false;
+// sgRatioPower(β) (lib/upsample_weights.glsl): the SG ratio term's power, made of multiplies when β/2 is whole.
+layout(constant_id = VCT_UPSAMPLE_SPEC_RATIO_POWER) const int RATIO_POWER = 10;
 
 // Resources: bound by engine/passes/upsample_pass.cpp (its resource table gives these binding numbers and is
 // checked against them when the pipeline is made).
@@ -99,7 +102,7 @@ struct Sample {
     vec3 p;
     float valid;  // 1, or 0 outside the image and on the background
     vec3 n;
-    FoldedLobe specularLobe;  // axis ξ and λ̄, prepared for lobeLogWeightFolded (lib/upsample_weights.glsl)
+    FoldedLobe specularLobe;  // axis ξ and λ̄, prepared for lobePairWeightFolded (lib/upsample_weights.glsl)
     vec3 diffuse;
     vec3 specular;
     vec2 at;  // the full-res pixel it was traced at
@@ -138,26 +141,28 @@ struct PixelGuide {
     FoldedLobe specularLobe;
 };
 
-// ln of the (diffuse, specular) lobe weight of a surface with normal nq and specular lobe q seen from pixel
-// `a`, by the chosen guide; bilinear has none (0 = ln 1). The diffuse lobes share one sharpness, so their lobe
-// weight is the angle term alone (equalLobeLogWeight). The specular lobes come folded (foldedLobe: β and the
-// logarithm of λ̄ per lobe, non-finite lobes replaced), once per pixel and once per sample, so that a pair
-// costs one log2 and one division (lobeLogWeightFolded).
-vec2 lobeLogWeights(PixelGuide a, vec3 nq, FoldedLobe q) {
-    if (WEIGHTS == VCT_WEIGHTS_BILINEAR) return vec2(0.0);
+// The (diffuse, specular) guide weight of a surface with normal nq and specular lobe q seen from pixel `a`,
+// times its plane weight exp(logPlane), by the chosen guide; bilinear has no guide (1). The diffuse lobes share
+// one sharpness, so their lobe weight is the angle term alone (equalLobeLogWeight). The specular lobes come
+// folded (foldedLobe, once per pixel and once per sample), so that a pair costs one division and, at a whole
+// β/2, a few multiplies for the ratio term (lobePairWeightFolded). Both exponents are summed first and taken in
+// one vec2 exp.
+vec2 guideWeights(PixelGuide a, vec3 nq, FoldedLobe q, float logPlane) {
+    if (WEIGHTS == VCT_WEIGHTS_BILINEAR) return vec2(1.0);
     if (WEIGHTS == VCT_WEIGHTS_NORMAL)
-        return vec2(normalLogWeight(a.guide.n, nq, frame.upsample.normalVariance));
+        return exp(vec2(logPlane + normalLogWeight(a.guide.n, nq, frame.upsample.normalVariance)));
     const float beta = frame.upsample.beta;
     const float diffuseSharpness =
         smoothedSharpness(1.0 / frame.upsample.diffuseSharpness, frame.upsample.kappa);
-    return vec2(equalLobeLogWeight(a.guide.n, nq, diffuseSharpness, beta),
-                lobeLogWeightFolded(a.specularLobe, q, beta * 0.6931472));
+    const vec2 specular = lobePairWeightFolded(a.specularLobe, q, beta, RATIO_POWER);
+    return exp(vec2(logPlane + equalLobeLogWeight(a.guide.n, nq, diffuseSharpness, beta),
+                    logPlane + specular.x)) *
+           vec2(1.0, specular.y);
 }
 
-// The folded specular lobe of a guide (FOLDED_SENTINEL_PIXEL for the pixel's own, _SAMPLE for the others).
-FoldedLobe foldedSpecularLobe(vec3 axis, float sharpness, float sentinel) {
-    return WEIGHTS == VCT_WEIGHTS_SG ? foldedLobe(axis, sharpness, frame.upsample.beta, sentinel)
-                                     : FoldedLobe(vec3(0.0), vec3(0.0));
+// The folded specular lobe of a guide (none without the SG weights).
+FoldedLobe foldedSpecularLobe(vec3 axis, float sharpness) {
+    return WEIGHTS == VCT_WEIGHTS_SG ? foldedLobe(axis, sharpness) : FoldedLobe(vec3(0.0), vec2(0.0));
 }
 
 // ln of the plane-distance weight of point q against a pixel's scaledTangentPlane (none for bilinear).
@@ -187,9 +192,8 @@ WeightedLight spatialLight(ivec2 pixel, PixelGuide here, ivec2 cellInGroup, ivec
         const vec2 offset = (vec2(pixel) - j.at) / float(SCALE);
         const float f =
             (WEIGHTS == VCT_WEIGHTS_BILINEAR ? tentKernel(offset, 1.0) : bsplineKernel(offset)) * j.valid;
-        const vec2 w =
-            f * (exp(planeLogWeightFrom(here.plane, j.p) + lobeLogWeights(here, j.n, j.specularLobe)) +
-                 FALLBACK_SHARE);
+        const vec2 w = f * (guideWeights(here, j.n, j.specularLobe, planeLogWeightFrom(here.plane, j.p)) +
+                            FALLBACK_SHARE);
         const float share = WEIGHTS != VCT_WEIGHTS_BILINEAR && all(equal(j.at, vec2(pixel)))
                                 ? EXACT_SAMPLE_WEIGHT / BSPLINE_CENTRE
                                 : 1.0;
@@ -247,13 +251,11 @@ WeightedLight historyLight(ivec2 pixel, vec2 uv, PixelGuide here) {
         const Guide then = guideFromGBuffer(texelFetch(prevNormalRoughnessTexture, at, 0),
                                             worldFromDepth(frame.prevInvViewProj, atUv, prevDepth),
                                             frame.prevCameraPosition, frame.upsample.kappa);
-        const FoldedLobe thenLobe =
-            foldedSpecularLobe(then.specularAxis, then.specularSharpness, FOLDED_SENTINEL_SAMPLE);
+        const FoldedLobe thenLobe = foldedSpecularLobe(then.specularAxis, then.specularSharpness);
         const uvec4 historyTexel = texelFetch(indirectHistory, at, 0);
         const vec4 diffuseTexel = unpackIndirectDiffuse(historyTexel);
         const vec4 specularTexel = unpackIndirectSpecular(historyTexel);
-        const vec2 guide =
-            exp(planeLogWeightFrom(here.plane, then.p) + lobeLogWeights(here, then.n, thenLobe));
+        const vec2 guide = guideWeights(here, then.n, thenLobe, planeLogWeightFrom(here.plane, then.p));
         // Outside last frame's image or on its background: no history (the select also keeps the garbage
         // guide of a far-plane position out of the sums).
         sum.weight = inside && !isBackground(prevDepth) && !isDegeneratePosition(then.p)
@@ -311,8 +313,7 @@ void reconstruct(ivec2 pixel, ivec2 cellInGroup, ivec2 first, int reach) {
     here.guide = guideFromGBuffer(texelFetch(normalRoughnessTexture, pixel, 0), position,
                                   frame.cameraPosition, frame.upsample.kappa);
     here.plane = scaledTangentPlane(here.guide.n, here.guide.p, here.guide.cameraDistance);
-    here.specularLobe =
-        foldedSpecularLobe(here.guide.specularAxis, here.guide.specularSharpness, FOLDED_SENTINEL_PIXEL);
+    here.specularLobe = foldedSpecularLobe(here.guide.specularAxis, here.guide.specularSharpness);
     writePixel(pixel, background, spatialLight(pixel, here, cellInGroup, first, reach),
                historyLight(pixel, uv, here));
 }
@@ -338,8 +339,7 @@ Sample loadSample(ivec2 low, ivec2 size, ivec2 lowSize, ivec2 jitter) {
     j.p = valid ? j.p : vec3(0.0);
     j.n = valid ? j.n : vec3(0.0, 0.0, 1.0);
     const vec3 axis = WEIGHTS == VCT_WEIGHTS_SG ? texelFetch(guideAxisTexture, at, 0).xyz : vec3(0.0);
-    j.specularLobe = foldedSpecularLobe(valid ? axis : vec3(0.0, 0.0, 1.0), valid ? normalSharpness.w : 1.0,
-                                        FOLDED_SENTINEL_SAMPLE);
+    j.specularLobe = foldedSpecularLobe(valid ? axis : vec3(0.0, 0.0, 1.0), valid ? normalSharpness.w : 1.0);
     j.diffuse = valid ? j.diffuse : vec3(0.0);
     j.specular = valid ? j.specular : vec3(0.0);
     return j;

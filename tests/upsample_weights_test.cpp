@@ -578,47 +578,74 @@ TEST(UpsampleWeights, PreparedLobeWeightMatchesTheDefinition) {
               0.0f);
 }
 
+// The weight upsample.comp takes from lobePairWeightFolded's (ln e, f): e·f.
+static float foldedWeight(vec3 a, float la, vec3 b, float lb, float beta, int power) {
+    const vec2 w = lobePairWeightFolded(foldedLobe(a, la), foldedLobe(b, lb), beta, power);
+    return exp(w.x) * w.y;
+}
+
+TEST(UpsampleWeights, RatioPowerIsHalfBetaWhenWhole) {
+    EXPECT_EQ(sgRatioPower(20.0f), 10);  // the default β: r¹⁰
+    EXPECT_EQ(sgRatioPower(2.0f), 1);
+    EXPECT_EQ(sgRatioPower(254.0f), SG_RATIO_POWER_MAX);
+    for (const float beta :
+         {0.01f, 1.0f, 21.0f, 20.5f, 256.0f, 1000.0f, std::numeric_limits<float>::quiet_NaN()})
+        EXPECT_EQ(sgRatioPower(beta), 0) << beta;
+}
+
 TEST(UpsampleWeights, FoldedLobeWeightMatchesPrepared) {
-    // lobeLogWeightFolded (β and ln λ̄ folded per lobe, what upsample.comp evaluates per pixel and sample)
-    // against lobeLogWeightPrepared (trace.comp's, checked against the definition above), over random lobes
-    // with sharpnesses across [κ/(1+2κ), κ], at the default β and at the ends of the --beta range.
+    // lobePairWeightFolded (the ratio term as the power r^(β/2) of r = 4h/(λ̄a + λ̄b), what upsample.comp evaluates
+    // per pixel and sample) against lobeLogWeightPrepared (trace.comp's, checked against the definition above),
+    // over random lobes with sharpnesses across [κ/(1+2κ), κ]: at the default β by multiplies (power 10) and by
+    // the logarithm (power 0), and at the ends of the --beta range (0.01 and 1000: power 0; 254: the largest
+    // power).
     Rng rng;
-    for (const float beta : {kBeta, 0.01f, 1000.0f}) {
+    for (const auto& [beta, power] : std::vector<std::pair<float, int>>{{kBeta, sgRatioPower(kBeta)},
+                                                                        {kBeta, 0},
+                                                                        {0.01f, 0},
+                                                                        {1000.0f, 0},
+                                                                        {254.0f, SG_RATIO_POWER_MAX}}) {
         double worst = 0.0;
         for (int i = 0; i < 4000; ++i) {
             const vec3 a = rng.unitVector(), b = rng.unitVector();
             const float la = kKappa * rng.uniform(0.005f, 1.0f), lb = kKappa * rng.uniform(0.005f, 1.0f);
             const float prepared =
                 exp(lobeLogWeightPrepared(a, preparedSharpness(la), b, preparedSharpness(lb), beta));
-            const float folded =
-                exp(lobeLogWeightFolded(foldedLobe(a, la, beta, FOLDED_SENTINEL_PIXEL),
-                                        foldedLobe(b, lb, beta, FOLDED_SENTINEL_SAMPLE), beta * 0.6931472f));
+            const float folded = foldedWeight(a, la, b, lb, beta, power);
             ASSERT_TRUE(isWeight(folded));
             worst = std::max(worst, double(std::abs(folded - prepared)) / (1e-6 + prepared));
         }
-        // Relative difference (of weights above 1e-6), measured: 1.9e-5 at β 20, 2.1e-7 at β 0.01, 4e-17 at
-        // β 1000 (whose random pairs weigh about 0 either way): float rounding of the terms regrouped.
-        EXPECT_LT(worst, 4e-5) << "beta " << beta;
+        // Relative difference (of weights above 1e-6), measured: 7.1e-6 (power 10) and 1.1e-5 (power 0) at β 20,
+        // 2.4e-7 at β 0.01, 1.3e-5 at β 1000, 2.8e-6 at β 254 (power 127): float rounding of the terms regrouped.
+        EXPECT_LT(worst, 4e-5) << "beta " << beta << " power " << power;
     }
-    // Identical lobes: exactly 1.
+    // The power and the logarithm agree on pairs with real weight (axes 0–20° apart, sharpnesses up to 4× apart):
+    // measured 8.5e-7.
+    double worst = 0.0;
+    for (int i = 0; i < 4000; ++i) {
+        const vec3 a = rng.unitVector();
+        const vec3 b = normalize(a + rng.unitVector() * rng.uniform(0.0f, 0.35f));
+        const float la = rng.uniform(1.0f, kKappa), lb = la * rng.uniform(0.25f, 4.0f);
+        const float byPower = foldedWeight(a, la, b, lb, kBeta, 10),
+                    byLog = foldedWeight(a, la, b, lb, kBeta, 0);
+        worst = std::max(worst, double(std::abs(byPower - byLog)) / (1e-6 + byLog));
+    }
+    EXPECT_LT(worst, 2e-6);
+    // Identical lobes: exactly 1, either way.
     const vec3 z(0, 0, 1);
-    const float betaLn2 = kBeta * 0.6931472f;
-    EXPECT_EQ(exp(lobeLogWeightFolded(foldedLobe(z, 3.0f, kBeta, FOLDED_SENTINEL_PIXEL),
-                                      foldedLobe(z, 3.0f, kBeta, FOLDED_SENTINEL_SAMPLE), betaLn2)),
-              1.0f);
+    EXPECT_EQ(foldedWeight(z, 3.0f, z, 3.0f, kBeta, 10), 1.0f);
+    EXPECT_EQ(foldedWeight(z, 3.0f, z, 3.0f, kBeta, 0), 1.0f);
+    EXPECT_EQ(foldedWeight(z, 1e-30f, z, 1e-30f, kBeta, 10), 1.0f);  // floored λ̄: still equal lobes
     // A NaN or infinite axis or sharpness on either side, or on both: exactly 0, never NaN or 1.
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    const FoldedLobe good =
-        foldedLobe(normalize(vec3(0.2f, 0.1f, 1.0f)), 30.0f, kBeta, FOLDED_SENTINEL_SAMPLE);
-    const FoldedLobe goodPixel = foldedLobe(z, 3.0f, kBeta, FOLDED_SENTINEL_PIXEL);
-    for (const auto& [axis, sharpness] : std::vector<std::pair<vec3, float>>{
-             {z, nan}, {z, inf}, {vec3(nan), 3.0f}, {vec3(inf, 0, 0), 3.0f}, {vec3(nan), nan}}) {
-        const FoldedLobe badPixel = foldedLobe(axis, sharpness, kBeta, FOLDED_SENTINEL_PIXEL);
-        const FoldedLobe badSample = foldedLobe(axis, sharpness, kBeta, FOLDED_SENTINEL_SAMPLE);
-        EXPECT_EQ(exp(lobeLogWeightFolded(badPixel, good, betaLn2)), 0.0f) << sharpness;
-        EXPECT_EQ(exp(lobeLogWeightFolded(goodPixel, badSample, betaLn2)), 0.0f) << sharpness;
-        EXPECT_EQ(exp(lobeLogWeightFolded(badPixel, badSample, betaLn2)), 0.0f) << sharpness;
-    }
+    const vec3 tilted = normalize(vec3(0.2f, 0.1f, 1.0f));
+    for (const int power : {10, 0})
+        for (const auto& [axis, sharpness] : std::vector<std::pair<vec3, float>>{
+                 {z, nan}, {z, inf}, {vec3(nan), 3.0f}, {vec3(inf, 0, 0), 3.0f}, {vec3(nan), nan}}) {
+            EXPECT_EQ(foldedWeight(axis, sharpness, tilted, 30.0f, kBeta, power), 0.0f) << sharpness;
+            EXPECT_EQ(foldedWeight(z, 3.0f, axis, sharpness, kBeta, power), 0.0f) << sharpness;
+            EXPECT_EQ(foldedWeight(axis, sharpness, axis, sharpness, kBeta, power), 0.0f) << sharpness;
+        }
 }
 
 TEST(UpsampleWeights, ScaledPlaneMatchesPlaneWeight) {

@@ -1,5 +1,7 @@
 #include "passes/upsample_pass.h"
 
+#include "render/shader_math.h"
+
 namespace vct {
 
 UpsamplePass::UpsamplePass(const vk::Context& context)
@@ -34,11 +36,15 @@ const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
     const uint32_t weights = settings.weights == RenderSettings::Weights::Bilinear ? VCT_WEIGHTS_BILINEAR
                              : settings.weights == RenderSettings::Weights::Normal ? VCT_WEIGHTS_NORMAL
                                                                                    : VCT_WEIGHTS_SG;
+    // The SG ratio term's power (sgRatioPower: β/2 when whole, else 0), 0 for the other weights so that β does
+    // not multiply their pipelines. A live β slider lands mostly on the power-0 pipeline.
+    const uint32_t ratioPower = weights == VCT_WEIGHTS_SG ? uint32_t(glsl::sgRatioPower(settings.beta)) : 0u;
     // Indexed by constant_id (VCT_SPEC_TRACE_SCALE, VCT_UPSAMPLE_SPEC_*).
-    const std::vector<uint32_t> constants = {settings.traceScale, weights, settings.temporal ? 1u : 0u,
-                                             settings.writeWeightSum ? 1u : 0u, perPixel(settings) ? 1u : 0u};
-    const uint32_t key =
-        constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17 | constants[4] << 18;
+    const std::vector<uint32_t> constants = {settings.traceScale,          weights,
+                                             settings.temporal ? 1u : 0u,  settings.writeWeightSum ? 1u : 0u,
+                                             perPixel(settings) ? 1u : 0u, ratioPower};
+    const uint32_t key = constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17 |
+                         constants[4] << 18 | constants[5] << 19;
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
     vk::Pipeline pipeline =
         vk::Pipeline::compute(context_, name(), "upsample.comp", resources_.bindings(), 0, constants);

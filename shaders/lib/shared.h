@@ -217,10 +217,11 @@ struct SkinPushConstants {
 #define VCT_BINDING_VOXEL_ATLAS 21  // mip 0 of the radiance (the radiance atlas), where cones are traced
 
 // upsample's specialization constants (one pipeline per configuration), after VCT_SPEC_TRACE_SCALE (2 or 4)
-#define VCT_UPSAMPLE_SPEC_WEIGHTS 1     // VCT_WEIGHTS_*
-#define VCT_UPSAMPLE_SPEC_TEMPORAL 2    // bool: reproject the history
-#define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 3  // bool: write the sum-of-weights image (views, --aux)
-#define VCT_UPSAMPLE_SPEC_PER_PIXEL 4   // bool: one invocation per pixel (GPUs), not per low-res cell
+#define VCT_UPSAMPLE_SPEC_WEIGHTS 1      // VCT_WEIGHTS_*
+#define VCT_UPSAMPLE_SPEC_TEMPORAL 2     // bool: reproject the history
+#define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 3   // bool: write the sum-of-weights image (views, --aux)
+#define VCT_UPSAMPLE_SPEC_PER_PIXEL 4    // bool: one invocation per pixel (GPUs), not per low-res cell
+#define VCT_UPSAMPLE_SPEC_RATIO_POWER 5  // int: sgRatioPower(β) (lib/upsample_weights.glsl)
 
 // resample (full-res cone tracing of the listed pixels)
 #define VCT_RESAMPLE_GROUP_SIZE 64

@@ -81,39 +81,66 @@ VCT_INLINE float lobeLogWeightPrepared(vec3 axisA, vec3 a, vec3 axisB, vec3 b, f
     return isnan(result) || result < -1e30f ? -1e30f : result;
 }
 
-// The form upsample.comp evaluates for every (pixel, sample) pair (docs/design.md §6.3): the same terms as
-// lobeLogWeightPrepared, grouped per lobe with β folded in, so that a pair costs one log2 and one division and
-// no NaN check:
-//   ln w = min(y_a + y_b − β·ln 2·log2(λ̄a + λ̄b), 0) − ‖ξa − ξb‖² / (z_a + z_b),
-//   y = ½β(ln 2 + ln λ̄),  z = 2/(β·λ̄)   (foldedLobe, once per lobe: per low-res sample, per pixel).
-// The NaN check moves to foldedLobe: a lobe that is not finite (NaN or infinite axis or sharpness) becomes a
-// sentinel (sharpness `sentinel`, y = −1e30, axis +z) whose ln w against any lobe is about −1e30 (exp gives 0),
-// as lobeLogWeightPrepared gives. The two sides of a pair take different sentinels (FOLDED_SENTINEL_PIXEL,
-// FOLDED_SENTINEL_SAMPLE), so that two sentinels never count as equal lobes (weight 1). With finite lobes
-// min() sees no NaN, so it is the same on every device.
+// The form upsample.comp evaluates for every (pixel, sample) pair (docs/design.md §6.3): the same weight with
+// the ratio term as a power instead of a logarithm. With h = λ̄a λ̄b/(λ̄a + λ̄b) and the ratio term's square
+//   r = (2√(λ̄a λ̄b)/(λ̄a + λ̄b))² = 4h/(λ̄a + λ̄b)  (≤ 1; exactly 1 for equal λ̄),
+//   w = r^(β/2) · exp(−(β/2)·h·‖ξa − ξb‖²):
+// one division per pair. When β/2 is a whole number (the default β = 20: r¹⁰; sgRatioPower) the power is a few
+// multiplies by repeated squaring; upsample.comp makes it a specialization constant, so the bit loop unrolls
+// into exactly those multiplies. Otherwise (power 0) (β/2)·ln r joins the exponent, which the caller evaluates
+// with its plane weight in one exp. A log per pair was a quarter of the SG upsample's cost on lavapipe (§6.8).
+// The NaN check is done once per lobe (foldedLobe): a lobe that is not finite (NaN or infinite axis or
+// sharpness) becomes a finite stand-in with `valid` 0, and every pair it takes part in weighs exactly 0.
 struct FoldedLobe {
     vec3 axis;
-    vec3 sharpness;  // (λ̄, y, z)
+    vec2 sharpness;  // (λ̄ floored at SG_FOLDED_MIN_SHARPNESS, valid: 1, or 0 for a lobe that is not finite)
 };
-const float FOLDED_SENTINEL_PIXEL = 2e30f;
-const float FOLDED_SENTINEL_SAMPLE = 1e30f;
-VCT_INLINE FoldedLobe foldedLobe(vec3 axis, float smoothed, float beta, float sentinel) {
+// λ̄ ≥ 1e-6 keeps λ̄a λ̄b (≥ 1e-12) from underflowing to 0, which would give two equal tiny lobes no weight.
+// Within the settings' ranges λ̄ ≥ 0.0098 (κ ≥ 0.01, and λ ≥ 0.5: α = 1 seen head-on), so it changes no lobe's
+// weight.
+const float SG_FOLDED_MIN_SHARPNESS = 1e-6f;
+// The largest whole β/2 taken as a power (7 bits: at most 6 squarings and 7 multiplies).
+const int SG_RATIO_POWER_MAX = 127;
+
+VCT_INLINE FoldedLobe foldedLobe(vec3 axis, float smoothed) {
     // NaN < x is false: a NaN stays, and is caught by the finiteness test.
-    const float l = smoothed < 1e-30f ? 1e-30f : smoothed;
+    const float l = smoothed < SG_FOLDED_MIN_SHARPNESS ? SG_FOLDED_MIN_SHARPNESS : smoothed;
     const bool finite = all(lessThan(abs(vec4(axis, l)), vec4(1e30f)));  // false for NaN and ±inf
     FoldedLobe lobe;
     lobe.axis = finite ? axis : vec3(0.0f, 0.0f, 1.0f);
-    lobe.sharpness = finite ? vec3(l, 0.5f * beta * (0.6931472f + log(l)), 2.0f / (beta * l))
-                            : vec3(sentinel, -1e30f, 1.0f);
+    lobe.sharpness = finite ? vec2(l, 1.0f) : vec2(1.0f, 0.0f);
     return lobe;
 }
 
-// ln w of the lobe-aware weight between two folded lobes; betaLn2 = β·ln 2.
-VCT_INLINE float lobeLogWeightFolded(FoldedLobe a, FoldedLobe b, float betaLn2) {
-    const float ratioTerm = a.sharpness.y + b.sharpness.y - betaLn2 * log2(a.sharpness.x + b.sharpness.x);
-    const float logRatio = a.sharpness.x == b.sharpness.x ? 0.0f : min(ratioTerm, 0.0f);
+// β/2 when it is a whole number in 1 .. SG_RATIO_POWER_MAX (the power lobePairWeightFolded raises r to by
+// multiplies), else 0 (r's logarithm).
+VCT_INLINE int sgRatioPower(float beta) {
+    const float halfBeta = 0.5f * beta;
+    return halfBeta >= 1.0f && halfBeta <= float(SG_RATIO_POWER_MAX) && halfBeta == floor(halfBeta)
+               ? int(halfBeta)
+               : 0;
+}
+
+// The lobe-aware weight of two folded lobes as (ln e, f), w = e·f: ln e the angle term (with (β/2)·ln r when
+// `power` is 0), f the ratio term r^power (1 when `power` is 0) times both lobes' validity. `power` =
+// sgRatioPower(β).
+VCT_INLINE vec2 lobePairWeightFolded(FoldedLobe a, FoldedLobe b, float beta, int power) {
+    const float inverseSum = 1.0f / (a.sharpness.x + b.sharpness.x);
+    const float harmonic = a.sharpness.x * b.sharpness.x * inverseSum;
+    const float r = a.sharpness.x == b.sharpness.x ? 1.0f : min(4.0f * harmonic * inverseSum, 1.0f);
     const vec3 d = a.axis - b.axis;
-    return logRatio - dot(d, d) / (a.sharpness.z + b.sharpness.z);
+    float logAngle = -0.5f * beta * harmonic * dot(d, d);
+    float factor = a.sharpness.y * b.sharpness.y;
+    if (power > 0) {
+        float p = r;
+        for (int bit = 0; bit < 7; ++bit) {
+            if (((power >> bit) & 1) != 0) factor *= p;
+            p *= p;
+        }
+    } else {
+        logAngle += 0.5f * beta * log(r);  // r = 0: −inf, a weight of exactly 0
+    }
+    return vec2(logAngle, factor);
 }
 
 VCT_INLINE float lobeLogWeightSmoothed(vec3 axisA, float la, vec3 axisB, float lb, float beta) {
