@@ -19,8 +19,8 @@
 #   TRUTH_NOISE_SEED  when set, a second reference of each kind with this seed (another than TRUTH_SEED's, default
 #                1), passed to compare as --second-reference-dir: the reference's own noise in the sRGB PSNRs
 #   TRUTH_TAG    appended to the results directory's name (e.g. t0 for TRUTH_FRAMES=1: the static pose at t = 0)
-#   TRUTH_RENDER_FLAGS  extra `vct render` flags for every vct image (e.g. "--cone-jitter on"; split on spaces)
-#                (default: --bounces 1)
+#   TRUTH_RENDER_FLAGS  extra `vct render` flags for every vct image (e.g. "--cone-jitter on"; split on spaces),
+#                after --bounces 1 unless they name --bounces themselves
 #   VCT          the program [build/vct]
 set -euo pipefail
 # Scene arguments that are files are made absolute before common.sh changes to the repository root.
@@ -61,9 +61,12 @@ fi
 exposure_flags=()
 [ -n "${TRUTH_EXPOSURE:-}" ] && exposure_flags=(--exposure "$TRUTH_EXPOSURE")
 # shellcheck disable=SC2206  # split on purpose: several flags in one variable
-# Without TRUTH_RENDER_FLAGS vct renders one bounce: most references are one-bounce, and the report measures the
-# cone tracer itself (TRUTH_RENDER_FLAGS="--bounces all" TRUTH_REFERENCES=all for the default, docs/design.md §5.7).
-render_flags=(${TRUTH_RENDER_FLAGS:---bounces 1})
+# vct renders one bounce unless TRUTH_RENDER_FLAGS names --bounces: most references are one-bounce, and the report
+# measures the cone tracer itself (TRUTH_RENDER_FLAGS="--bounces all" TRUTH_REFERENCES=all for the default,
+# docs/design.md §5.7). Extra flags used to replace the --bounces 1, and "--cone-jitter on" alone then rendered
+# every bounce against the one-bounce truth (round 15, caught by a wall at 2.5×).
+render_flags=(${TRUTH_RENDER_FLAGS:-})
+[[ " ${render_flags[*]} " == *" --bounces "* ]] || render_flags=(--bounces 1 "${render_flags[@]}")
 reference_flags=("${exposure_flags[@]}")
 [ -n "${TRUTH_SEED:-}" ] && reference_flags+=(--seed "$TRUTH_SEED")
 [ -n "${TRUTH_THREADS:-}" ] && reference_flags+=(--threads "$TRUTH_THREADS")

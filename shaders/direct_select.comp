@@ -44,8 +44,6 @@ void main() {
         recompute = shadowLookupReads(p, n, push.changedShadowTexels);
     }
     if (!recompute) return;
-    const uint index = atomicAdd(directList.header.counts.x, 1u);
-    directList.pixels[index] = packListedPixel(pixel);
-    // One more workgroup of direct for every VCT_TILE_SIZE² entries.
-    if (index % uint(VCT_TILE_SIZE * VCT_TILE_SIZE) == 0u) atomicAdd(directList.header.dispatch.x, 1u);
+    // direct runs a workgroup for every VCT_TILE_SIZE² entries.
+    APPEND_LISTED_PIXEL(directList, pixel, VCT_TILE_SIZE * VCT_TILE_SIZE)
 }

@@ -291,12 +291,8 @@ void writePixel(ivec2 pixel, bool background, WeightedLight spatial, WeightedLig
     imageStore(indirectImage, pixel, packIndirect(diffuseOut, specularOut));
     if (WEIGHT_SUM) imageStore(weightSumImage, pixel, weightOut);
 
-    if (resample) {
-        const uint index = atomicAdd(resampleList.header.counts.x, 1u);
-        resampleList.pixels[index] = packListedPixel(pixel);
-        // One more workgroup of the resample pass for every VCT_RESAMPLE_GROUP_SIZE entries.
-        if (index % uint(VCT_RESAMPLE_GROUP_SIZE) == 0u) atomicAdd(resampleList.header.dispatch.x, 1u);
-    }
+    // The resample pass runs a workgroup for every VCT_RESAMPLE_GROUP_SIZE entries.
+    if (resample) APPEND_LISTED_PIXEL(resampleList, pixel, VCT_RESAMPLE_GROUP_SIZE)
 }
 
 // Reconstructs one full-res pixel from its cell's samples and its history; writes it and lists it for

@@ -7,4 +7,14 @@
 uint packListedPixel(ivec2 pixel) { return uint(pixel.x) | (uint(pixel.y) << 16); }
 ivec2 unpackListedPixel(uint entry) { return ivec2(entry & 0xffffu, entry >> 16); }
 
+// Appends `pixel` to `list` (a buffer block's instance name: a ResampleListHeader `header`, then `pixels[]`) and
+// counts its reader's indirect dispatch up by one workgroup for every `groupSize` entries. A macro because a GLSL
+// function cannot take a buffer block.
+#define APPEND_LISTED_PIXEL(list, pixel, groupSize)                                     \
+    {                                                                                   \
+        const uint listedIndex = atomicAdd(list.header.counts.x, 1u);                   \
+        list.pixels[listedIndex] = packListedPixel(pixel);                              \
+        if (listedIndex % uint(groupSize) == 0u) atomicAdd(list.header.dispatch.x, 1u); \
+    }
+
 #endif  // VCT_PIXEL_LIST_GLSL
