@@ -162,7 +162,7 @@ vec2 guideWeights(PixelGuide a, vec3 nq, FoldedLobe q, float logPlane) {
 
 // The folded specular lobe of a guide (none without the SG weights).
 FoldedLobe foldedSpecularLobe(vec3 axis, float sharpness) {
-    return WEIGHTS == VCT_WEIGHTS_SG ? foldedLobe(axis, sharpness) : FoldedLobe(vec3(0.0), vec2(0.0));
+    return WEIGHTS == VCT_WEIGHTS_SG ? foldedLobe(axis, sharpness) : FoldedLobe(vec3(0.0), 0.0, 0.0);
 }
 
 // ln of the plane-distance weight of point q against a pixel's scaledTangentPlane (none for bilinear).

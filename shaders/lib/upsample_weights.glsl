@@ -93,7 +93,8 @@ VCT_INLINE float lobeLogWeightPrepared(vec3 axisA, vec3 a, vec3 axisB, vec3 b, f
 // sharpness) becomes a finite stand-in with `valid` 0, and every pair it takes part in weighs exactly 0.
 struct FoldedLobe {
     vec3 axis;
-    vec2 sharpness;  // (λ̄ floored at SG_FOLDED_MIN_SHARPNESS, valid: 1, or 0 for a lobe that is not finite)
+    float sharpness;  // λ̄, floored at SG_FOLDED_MIN_SHARPNESS
+    float valid;      // 1, or 0 for a lobe that is not finite
 };
 // λ̄ ≥ 1e-6 keeps λ̄a λ̄b (≥ 1e-12) from underflowing to 0, which would give two equal tiny lobes no weight.
 // Within the settings' ranges λ̄ ≥ 0.0098 (κ ≥ 0.01, and λ ≥ 0.5: α = 1 seen head-on), so it changes no lobe's
@@ -108,7 +109,8 @@ VCT_INLINE FoldedLobe foldedLobe(vec3 axis, float smoothed) {
     const bool finite = all(lessThan(abs(vec4(axis, l)), vec4(1e30f)));  // false for NaN and ±inf
     FoldedLobe lobe;
     lobe.axis = finite ? axis : vec3(0.0f, 0.0f, 1.0f);
-    lobe.sharpness = finite ? vec2(l, 1.0f) : vec2(1.0f, 0.0f);
+    lobe.sharpness = finite ? l : 1.0f;
+    lobe.valid = finite ? 1.0f : 0.0f;
     return lobe;
 }
 
@@ -125,12 +127,12 @@ VCT_INLINE int sgRatioPower(float beta) {
 // `power` is 0), f the ratio term r^power (1 when `power` is 0) times both lobes' validity. `power` =
 // sgRatioPower(β).
 VCT_INLINE vec2 lobePairWeightFolded(FoldedLobe a, FoldedLobe b, float beta, int power) {
-    const float inverseSum = 1.0f / (a.sharpness.x + b.sharpness.x);
-    const float harmonic = a.sharpness.x * b.sharpness.x * inverseSum;
-    const float r = a.sharpness.x == b.sharpness.x ? 1.0f : min(4.0f * harmonic * inverseSum, 1.0f);
+    const float inverseSum = 1.0f / (a.sharpness + b.sharpness);
+    const float harmonic = a.sharpness * b.sharpness * inverseSum;
+    const float r = a.sharpness == b.sharpness ? 1.0f : min(4.0f * harmonic * inverseSum, 1.0f);
     const vec3 d = a.axis - b.axis;
     float logAngle = -0.5f * beta * harmonic * dot(d, d);
-    float factor = a.sharpness.y * b.sharpness.y;
+    float factor = a.valid * b.valid;
     if (power > 0) {
         float p = r;
         for (int bit = 0; bit < 7; ++bit) {
