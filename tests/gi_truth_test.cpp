@@ -128,12 +128,14 @@ TEST(VoxelGi, FurnaceBouncesFollowTheGeometricSeriesAndNeverRunAway) {
 // a gather): --bounces 8's 1.974, the furnace's 1 % deficit, never above 2. (Before the first frame's whole-grid
 // gathers and the lifted samples, round 10: 1.580 after one round of 8 frames, 1.959 after 9.) Round 14 (the coarser
 // mip's whole reach cleared at any blend weight): 1.874 after the first frame (exact 1.875), 1.950 after one round,
-// 1.994 converged and settled.
+// 1.994 converged and settled. The fixed cone set: turned cones keep a pixel history (design §5.5), which
+// lags the grid's light while it grows (1.929 after one round, 1.985 converged) and is not what this measures.
 TEST(VoxelGi, AllBouncesConvergeOverFramesToTheFurnaceLimitAndThenStop) {
     const std::string file = furnaceFile("furnace_grey_all", 0.5f);
     auto render = [&](const std::string& bounces, int frames) {
-        const fs::path dir = renderVct("furnace_grey_" + bounces + "_" + std::to_string(frames), file,
-                                       {"--voxels", "32", "--bounces", bounces, "--warmup", "0"}, frames);
+        const fs::path dir = renderVct(
+            "furnace_grey_" + bounces + "_" + std::to_string(frames), file,
+            {"--voxels", "32", "--bounces", bounces, "--warmup", "0", "--cone-rotation", "off"}, frames);
         const double diffuse = meanLuminance(vct::readExr(dir / "diffuse_indirect.exr"));
         std::printf("furnace rho 0.5, %s bounces, %d frames: diffuse indirect %.4f (limit 2)\n",
                     bounces.c_str(), frames, diffuse);

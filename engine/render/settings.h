@@ -65,11 +65,12 @@ struct RenderSettings {
     uint32_t bounces = kDefaultBounces;
     uint32_t traceScale = 4;  // indirect light traced at 1/traceScale of the pixels per axis (1, 2, 4)
     // Turn each pixel's diffuse cones about its normal, differently every frame (docs/design.md §5.5): the
-    // history averages the cone directions instead of keeping the pattern of one fixed set. Off by default:
-    // +0.7 dB against the truth at trace scale 4 (cornell 64³, 32 frames), but a pixel's own sample comes
-    // every 16 frames there, so a still view keeps some turn noise, and the upsampling's error against the
-    // every-pixel trace (itself then a history) is no longer the figure the report measures.
-    bool coneRotation = false;
+    // history averages the cone directions instead of keeping the blotches of one fixed set. On by default:
+    // +0.7 dB against the path-traced truth at trace scale 4 (cornell 64³ and 128³, 64 frames) for 1.04× the
+    // fixed set's trace; the price is some turn noise in a still view (a pixel's own sample comes every 16
+    // frames at scale 4). The benchmarks that measure the upsampling against the every-pixel trace run the
+    // fixed set (app/bench/benchmark_command.cpp): with turned cones trace scale 1 is a history itself.
+    bool coneRotation = true;
     bool coneJitter = false;
     // Voxels reflect the lights in their specular lobes as well (glossy-to-diffuse transport, docs/design.md
     // §5.11); off: Lambertian voxels of the diffuse albedo, what `vct reference --secondary diffuse` renders, so

@@ -255,13 +255,18 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
     auto parsed = spec.parse(argc, argv, first);
     if (!parsed) return 0;
     const ParsedArgs& args = *parsed;
-    const SessionOptions session = sessionOptions(args);
+    SessionOptions session = sessionOptions(args);
+    const std::string mode = args.get("mode");
+    // The modes that measure the upsampling's error against the every-pixel trace (upsampling, report, study)
+    // run the fixed cone set: with turned cones trace scale 1 keeps a history and is no longer the fresh trace
+    // of the frame, and the low-res configurations' turn noise would count as the upsampling's error
+    // (docs/design.md §5.5, §8.3). scenes and scaling time the default configuration.
+    if (mode == "upsampling" || mode == "report" || mode == "study") session.settings.coneRotation = false;
     BenchmarkFrames timing;
     timing.frames = args.getUint("frames", 2, 100000);
     timing.warmup =
         args.has("warmup") ? args.getUint("warmup", 0, timing.frames - 1) : std::min(10u, timing.frames / 4);
     timing.block = args.getUint("block", 1, 100000);
-    const std::string mode = args.get("mode");
     if (args.has("dump-last") && mode != "report") throw UsageError("--dump-last: only with --mode report");
     const std::filesystem::path outDir = args.get("out");
     prepareOutputDirectory(outDir, "--out");  // before any frame: not only once the report is written
