@@ -241,6 +241,31 @@ TEST(Cone, DiffuseWeightsSumToOneAndDirectionsAreRight) {
     }
 }
 
+// The turned set's central cone (turnedCentralConeDirection): 20.7° off n, where half its cap's cosine-weighted
+// solid angle lies (sin²θ = sin²30°/2), its 30° aperture clear of the surface, and a whole turn about n while
+// the side cones turn their fifth: over the turn its mean lies on n.
+TEST(Cone, TurnedCentralConeHalvesItsCapAndTurnsAboutTheNormal) {
+    // The cap's cosine-weighted solid angle below θ is π·sin²θ: half of π·sin²30° at sin²θ = 1/8.
+    const float sin2Median = 0.5f * 0.25f;
+    EXPECT_FLOAT_EQ(TURNED_CENTRAL_CONE_SIN2_THETA, sin2Median);
+    const float tilt = std::asin(std::sqrt(sin2Median));
+    EXPECT_LT(tilt + std::atan(DIFFUSE_CONE_TAN_HALF), 0.5f * PI - 0.6f)
+        << "the aperture reaches the surface";
+    for (glm::vec3 n : {glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, -2, 0.3f))}) {
+        glm::vec3 mean(0.0f);
+        const int steps = 64;
+        for (int k = 0; k < steps; ++k) {
+            const float rotation = (2.0f * PI / 5.0f) * (float(k) + 0.5f) / float(steps);
+            const glm::vec3 d = turnedCentralConeDirection(n, rotation);
+            EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
+            EXPECT_NEAR(glm::dot(d, n), std::cos(tilt), 1e-5f);
+            mean += d / float(steps);
+        }
+        EXPECT_NEAR(glm::length(glm::cross(mean, n)), 0.0f, 1e-5f) << "not a whole turn";
+        EXPECT_NEAR(glm::dot(mean, n), std::cos(tilt), 1e-5f);
+    }
+}
+
 // Inside a closed box whose walls emit L (opacity 1), the cosine-weighted incoming radiance is L everywhere:
 // irradiance π·L. The grid is emulated exactly: a sample with footprint d is the box-filtered occupancy of a
 // d-cube around p (the fraction outside the unit box's interior), as the mip chain of a voxelized wall gives.

@@ -121,8 +121,9 @@ struct IndirectSample {
 
 // A pixel's cone set in one frame (docs/design.md §5.5). Fixed (`--cone-rotation off`, and the voxel gathers
 // of §5.7): the six diffuse cones of lib/cone.glsl at their tiles' centres, one specular cone along the lobe's
-// axis, footprints of CONE_SURFACE_CLEARANCE. Turned (`--cone-rotation on`): the same with the five side cones
-// turned about n by `rotation` (their set's 2π/5 symmetry), different at every pixel and frame. Jittered
+// axis, footprints of CONE_SURFACE_CLEARANCE. Turned (`--cone-rotation on`, the default): the same with the five
+// side cones turned about n by `rotation` (their set's 2π/5 symmetry), different at every pixel and frame, and
+// the central cone tilted off n and turned with them (lib/cone.glsl's turnedCentralConeDirection). Jittered
 // (`--cone-jitter on`): every cone at a random place of what it stands for, so that the history integrates it:
 //   - the side cones turned as above, each at its own elevation in the band 30°–90° (u.x + golden-ratio steps
 //     per cone, lib/cone.glsl's jitteredDiffuseConeSin2Theta);
@@ -132,12 +133,13 @@ struct IndirectSample {
 // sample; fixed, such narrow cones would be thin rays at six directions, jittered they sample their whole tile
 // over frames.
 struct ConeSet {
+    bool turned;  // turned or jittered: the side cones turned by `rotation`
     bool jittered;
     float rotation;  // radians, [0, 2π/5); 0 for the fixed set
     vec4 u;          // uniform numbers in [0, 1) (jittered only)
 };
 
-const ConeSet FIXED_CONE_SET = ConeSet(false, 0.0, vec4(0.0));
+const ConeSet FIXED_CONE_SET = ConeSet(false, false, 0.0, vec4(0.0));
 
 // Interleaved gradient noise of a pixel (Jimenez 2014): in [0, 1), neighbours far apart.
 float interleavedGradientNoise(vec2 pixel) {
@@ -153,7 +155,7 @@ ConeSet coneSetOf(ivec2 pixel, uint frameIndex) {
     const vec2 xy = vec2(pixel);
     const float r1 = float((frameIndex * 2654435769u) >> 8u) * (1.0 / 16777216.0);
     const float rotation = (2.0 * PI / 5.0) * fract(interleavedGradientNoise(xy) + r1);
-    if ((frame.flags & VCT_FLAG_CONE_JITTER) == 0u) return ConeSet(false, rotation, vec4(0.0));
+    if ((frame.flags & VCT_FLAG_CONE_JITTER) == 0u) return ConeSet(true, false, rotation, vec4(0.0));
     const vec4 steps =
         fract(float(frameIndex % 65536u) * vec4(0.8566748839, 0.7338918566, 0.6287067210, 0.5385972572));
     const vec4 u = fract(vec4(interleavedGradientNoise(xy + vec2(17.0, 5.0)),
@@ -161,12 +163,14 @@ ConeSet coneSetOf(ivec2 pixel, uint frameIndex) {
                               interleavedGradientNoise(xy + vec2(41.0, 11.0)),
                               interleavedGradientNoise(xy + vec2(7.0, 37.0))) +
                          steps);
-    return ConeSet(true, rotation, u);
+    return ConeSet(true, true, rotation, u);
 }
 
 // Diffuse cone i of `set` for unit normal n.
 vec3 diffuseConeDirectionOf(vec3 n, int i, ConeSet set) {
-    if (!set.jittered) return turnedDiffuseConeDirection(n, i, set.rotation);
+    if (!set.jittered)
+        return i == 0 && set.turned ? turnedCentralConeDirection(n, set.rotation)
+                                    : turnedDiffuseConeDirection(n, i, set.rotation);
     const float golden = 0.618034;
     if (i == 0) return coneDirectionAt(n, jitteredDiffuseConeSin2Theta(0, set.u.x), 2.0 * PI * set.u.y);
     return coneDirectionAt(n, jitteredDiffuseConeSin2Theta(i, fract(set.u.x + float(i) * golden)),
