@@ -183,7 +183,9 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = VK_FILTER_LINEAR;
     info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    // One level per read: the diffuse cones read whole mips, the others blend two reads themselves
+    // (lib/cone_trace.glsl's sampleMipSlabs), which lavapipe does at the cost of one read between levels.
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     // Clamped to the edge, not to a transparent border: at coarse mips the outermost texels hold the walls of a
     // room fitted to the grid (the one voxel of padding is a fraction of them), and a border would fade them by
     // up to half, more the coarser the mip. Cones stop where their axis leaves the grid (cone_trace.glsl); the
@@ -193,7 +195,6 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     info.maxLod = float(radianceMips_.desc().mipLevels - 1);
     sampler_ = vk::Sampler(context, info);
     // The atlas: one level, filtered within a block (lib/cone_trace.glsl never reads across one).
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     info.maxLod = 0.0f;
     atlasSampler_ = vk::Sampler(context, info);
 }

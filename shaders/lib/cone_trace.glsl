@@ -21,23 +21,31 @@ layout(set = 0, binding = VCT_BINDING_VOXEL_ATLAS) uniform sampler3D voxelAtlas;
 // read between the two levels of one texture does): the atlas read is the block of the brick holding the
 // sample's lower corner voxel, which its apron makes hold all eight voxels the filter reads; no block there means
 // none of them is occupied.
-// The slabs with weights w read from the mips' texture at level `lod` (fractional: trilinear between levels);
-// `texels` per slab at the coarser level read, to keep u inside each slab.
-vec4 sampleMipSlabs(sampler3D voxels, vec3 uvw, vec3 dir, vec3 w, float lod, float texels) {
+// The slabs with weights w read from the mips' texture at level `lod`; `texels` per slab at the coarser level
+// read, to keep u inside each slab. The sampler picks one level (VoxelGrid: mipmap mode nearest): `wholeMip`, lod
+// is a whole level and one read per slab is all; else lod is fractional and the two levels around it are read and
+// blended, as a trilinear read between levels does. `wholeMip` is a constant at every call, so each cone march
+// compiles with one of the two; lavapipe would run both sides of a branch.
+vec4 sampleMipSlabs(sampler3D voxels, vec3 uvw, vec3 dir, vec3 w, float lod, float texels,
+                    const bool wholeMip) {
     vec4 s = vec4(0.0);
+    const float level = wholeMip ? lod : floor(lod);
     for (int axis = 0; axis < 3; ++axis) {
         if (w[axis] <= 0.0) continue;
         const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
-        s += w[axis] * textureLod(voxels, slabUvw, lod);
+        vec4 v = textureLod(voxels, slabUvw, level);
+        if (!wholeMip) v = mix(v, textureLod(voxels, slabUvw, level + 1.0), lod - level);
+        s += w[axis] * v;
     }
     return s;
 }
 
-vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
+vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip, const bool wholeMip) {
     const vec3 w = voxelSlabWeights(dir);
     const int n = int(frame.voxels.resolution);
     // Mip 0 dense (RenderSettings::sparseMip0From): every mip in the one texture, one read per slab.
-    if (!SPARSE_MIP0) return sampleMipSlabs(voxels, uvw, dir, w, mip, float(max(n >> int(ceil(mip)), 1)));
+    if (!SPARSE_MIP0)
+        return sampleMipSlabs(voxels, uvw, dir, w, mip, float(max(n >> int(ceil(mip)), 1)), wholeMip);
     vec4 s = vec4(0.0);
     const float fine = 1.0 - min(mip, 1.0);
     if (fine > 0.0) {
@@ -59,7 +67,7 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
     // Mip 1 and coarser: the texture's level mip − 1.
     if (mip > 0.0)
         s += min(mip, 1.0) * sampleMipSlabs(voxels, uvw, dir, w, max(mip - 1.0, 0.0),
-                                            float(max(n >> int(ceil(max(mip, 1.0))), 1)));
+                                            float(max(n >> int(ceil(max(mip, 1.0))), 1)), wholeMip);
     return s;
 }
 
@@ -68,8 +76,10 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip) {
 // at the mip whose texels are as wide as the cone, times what the cone left unoccluded (the background shows
 // the same map, so the two agree).
 // The cone leaves the surface at p with unit normal n (coneSurfaceFootprint, with `clearance`, keeps that
-// surface out of it).
-vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle, float clearance) {
+// surface out of it). `wholeMips` (a constant at each call): every sample reads the whole level ⌈m⌉ of its
+// fractional mip m alone (coneWholeMip), not a blend of ⌊m⌋ and ⌈m⌉.
+vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle, float clearance,
+               const bool wholeMips) {
     const vec3 gridOrigin = frame.voxels.origin;
     const float v0 = frame.voxels.voxelSize;
     const float gridSize = float(frame.voxels.resolution) * v0;
@@ -96,9 +106,10 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             if (++stepsPastGrid > CONE_STEPS_PAST_GRID) break;
         }
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
+        const float mip = wholeMips ? coneWholeMip(coneMip(d, v0)) : coneMip(d, v0);
         const ConeSampleAt at =
-            coneSampleAt(x, min(coneMip(d, v0), maxMip), p, n, v0, gridOrigin, gridOrigin + vec3(gridSize));
-        const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip);
+            coneSampleAt(x, min(mip, maxMip), p, n, v0, gridOrigin, gridOrigin + vec3(gridSize));
+        const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips);
         const float dt = coneStep(coneD);
         // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
         acc = coneComposite(acc, s, dt, v0 * exp2(at.mip));
@@ -197,9 +208,19 @@ void diffuseConeDirectionsOf(vec3 n, ConeSet set, out vec3 directions[DIFFUSE_CO
 void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
                        const vec3 directions[DIFFUSE_CONE_COUNT], out vec3 radiance[DIFFUSE_CONE_COUNT]) {
     const vec3 origin = coneOrigin(p, n, set);
-    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        radiance[i] =
-            traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, coneClearance(set)).rgb;
+    // The fixed and turned sets read whole mips (coneWholeMip); the jittered set's narrow footprints stay blended:
+    // two marches, each compiled with its constant, of which a lane runs one.
+    if (set.jittered) {
+        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+            radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF,
+                                    CONE_SURFACE_CLEARANCE_JITTERED, false)
+                              .rgb;
+    } else {
+        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+            radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF,
+                                    CONE_SURFACE_CLEARANCE, true)
+                              .rgb;
+    }
 }
 
 // Their cosine-weighted mean.
@@ -243,7 +264,7 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
         direction = dot(w, n) > 0.02 ? w : xi;
     }
     vec3 specular =
-        traceCone(voxels, p, n, coneOrigin(p, n, set), direction, tanHalf, coneClearance(set)).rgb;
+        traceCone(voxels, p, n, coneOrigin(p, n, set), direction, tanHalf, coneClearance(set), false).rgb;
     const float share = specularConeShare(alpha, dot(n, v));
     if (share < 1.0) {
         vec3 lobe = vec3(0.0);
