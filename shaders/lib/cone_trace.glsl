@@ -77,9 +77,10 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip, const bool wh
 // the same map, so the two agree).
 // The cone leaves the surface at p with unit normal n (coneSurfaceFootprint, with `clearance`, keeps that
 // surface out of it). `wholeMips` (a constant at each call): every sample reads the whole level ⌈m⌉ of its
-// fractional mip m alone (coneWholeMip), not a blend of ⌊m⌋ and ⌈m⌉.
+// fractional mip m alone (coneWholeMip), not a blend of ⌊m⌋ and ⌈m⌉. `stepPhase` in [0, 1): the first sample that
+// part of its step farther out (ConeSet).
 vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle, float clearance,
-               const bool wholeMips) {
+               const bool wholeMips, float stepPhase) {
     const vec3 gridOrigin = frame.voxels.origin;
     const float v0 = frame.voxels.voxelSize;
     const float gridSize = float(frame.voxels.resolution) * v0;
@@ -87,6 +88,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     vec4 acc = vec4(0.0);
     // Start one voxel out along the cone, from an origin one voxel out along the normal (CONE_START_*: why twice).
     float t = v0 * CONE_START_DISTANCE;
+    t += stepPhase * coneStep(coneDiameter(tanHalfAngle, t, v0));
     // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
     const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
     int stepsPastGrid = 0;
@@ -143,14 +145,18 @@ struct IndirectSample {
 // with narrow footprints (CONE_SURFACE_CLEARANCE_JITTERED) that keep the surface's own voxels out of every
 // sample; fixed, such narrow cones would be thin rays at six directions, jittered they sample their whole tile
 // over frames.
+// The turned set's cones also start a random part `stepPhase` of their first step farther out (traceCone), so
+// that the history averages where along the cone the samples fall: every pixel's cones otherwise sample at the
+// same distances, and cornell's error against the truth swung by 1 dB with the step scale (docs/design.md §5.5).
 struct ConeSet {
     bool turned;  // turned or jittered: the side cones turned by `rotation`
     bool jittered;
-    float rotation;  // radians, [0, 2π/5); 0 for the fixed set
-    vec4 u;          // uniform numbers in [0, 1) (jittered only)
+    float rotation;   // radians, [0, 2π/5); 0 for the fixed set
+    float stepPhase;  // [0, 1): the turned set's start within its first step; 0 for the others
+    vec4 u;           // uniform numbers in [0, 1) (jittered only)
 };
 
-const ConeSet FIXED_CONE_SET = ConeSet(false, false, 0.0, vec4(0.0));
+const ConeSet FIXED_CONE_SET = ConeSet(false, false, 0.0, 0.0, vec4(0.0));
 
 // Interleaved gradient noise of a pixel (Jimenez 2014): in [0, 1), neighbours far apart.
 float interleavedGradientNoise(vec2 pixel) {
@@ -166,7 +172,12 @@ ConeSet coneSetOf(ivec2 pixel, uint frameIndex) {
     const vec2 xy = vec2(pixel);
     const float r1 = float((frameIndex * 2654435769u) >> 8u) * (1.0 / 16777216.0);
     const float rotation = (2.0 * PI / 5.0) * fract(interleavedGradientNoise(xy) + r1);
-    if ((frame.flags & VCT_FLAG_CONE_JITTER) == 0u) return ConeSet(true, false, rotation, vec4(0.0));
+    if ((frame.flags & VCT_FLAG_CONE_JITTER) == 0u) {
+        // Its own noise and a step of another irrational (1/1.3247, the plastic number) than the turn's.
+        const float phase = fract(interleavedGradientNoise(xy + vec2(23.0, 13.0)) +
+                                  float(frameIndex % 65536u) * 0.7548776662);
+        return ConeSet(true, false, rotation, phase, vec4(0.0));
+    }
     const vec4 steps =
         fract(float(frameIndex % 65536u) * vec4(0.8566748839, 0.7338918566, 0.6287067210, 0.5385972572));
     const vec4 u = fract(vec4(interleavedGradientNoise(xy + vec2(17.0, 5.0)),
@@ -174,7 +185,7 @@ ConeSet coneSetOf(ivec2 pixel, uint frameIndex) {
                               interleavedGradientNoise(xy + vec2(41.0, 11.0)),
                               interleavedGradientNoise(xy + vec2(7.0, 37.0))) +
                          steps);
-    return ConeSet(true, true, rotation, u);
+    return ConeSet(true, true, rotation, 0.0, u);
 }
 
 // Diffuse cone i of `set` for unit normal n.
@@ -213,12 +224,12 @@ void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
     if (set.jittered) {
         for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
             radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF,
-                                    CONE_SURFACE_CLEARANCE_JITTERED, false)
+                                    CONE_SURFACE_CLEARANCE_JITTERED, false, 0.0)
                               .rgb;
     } else {
         for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
             radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF,
-                                    CONE_SURFACE_CLEARANCE, true)
+                                    CONE_SURFACE_CLEARANCE, true, set.stepPhase)
                               .rgb;
     }
 }
@@ -263,8 +274,9 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
         const vec3 w = coneDirectionAt(xi, 1.0 - cosTheta * cosTheta, 2.0 * PI * set.u.w);
         direction = dot(w, n) > 0.02 ? w : xi;
     }
-    vec3 specular =
-        traceCone(voxels, p, n, coneOrigin(p, n, set), direction, tanHalf, coneClearance(set), false).rgb;
+    vec3 specular = traceCone(voxels, p, n, coneOrigin(p, n, set), direction, tanHalf, coneClearance(set),
+                              false, set.stepPhase)
+                        .rgb;
     const float share = specularConeShare(alpha, dot(n, v));
     if (share < 1.0) {
         vec3 lobe = vec3(0.0);
