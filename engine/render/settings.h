@@ -68,8 +68,9 @@ struct RenderSettings {
     // history averages the cone directions instead of keeping the blotches of one fixed set. On by default:
     // +0.8 dB against the path-traced truth at trace scale 4 (cornell 64³, 64 frames; +0.7 dB at 128³) for
     // 1.06× the fixed set's trace (round 16, before whole mips); the price is some turn noise in a still view
-    // (a pixel's own sample comes every 16 frames at scale 4). The benchmarks that measure the upsampling against the every-pixel trace run the
-    // fixed set (app/bench/benchmark_command.cpp): with turned cones trace scale 1 is a history itself.
+    // (a pixel's own sample comes every 16 frames at scale 4). The benchmarks that measure the upsampling
+    // against the every-pixel trace run the fixed set (app/bench/benchmark_command.cpp): with turned cones
+    // trace scale 1 is a history itself.
     bool coneRotation = true;
     bool coneJitter = false;
     // Voxels reflect the lights in their specular lobes as well (glossy-to-diffuse transport, docs/design.md

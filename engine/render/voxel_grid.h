@@ -11,7 +11,8 @@
 //    level m spans 2^m voxels. mipCount() = log2(N) + 1 (down to 1³).
 //  - Radiance: RGBA16F, rgb = outgoing radiance × opacity, a = opacity (premultiplied), in six direction slabs.
 //    Mip 0 is sparse, in the radiance atlas (docs/design.md §5.10); mips 1.. are dense, in radianceMips()
-//    (its level m − 1 holds mip m), sampled with sampler(): trilinear within a level, the nearest level (reads between levels blend two: lib/cone_trace.glsl), clamped to the edge.
+//    (its level m − 1 holds mip m), sampled with sampler(): trilinear within the nearest level (a read between
+//    levels blends two reads: lib/cone_trace.glsl), clamped to the edge.
 //  - Sparse storage: only the bricks of VCT_VOXEL_BRICK³ voxels the scene can reach have storage (bricks(),
 //    render/voxel_bricks.h): the accumulators, the material atlases and the radiance atlas hold those alone.
 //  - N is a power of two in 32..256. Default (settings.voxelResolution = 0): 64 on a CPU device (lavapipe),
