@@ -241,6 +241,22 @@ TEST(Cone, DiffuseWeightsSumToOneAndDirectionsAreRight) {
     }
 }
 
+// coneWholeMip reads ⌈log2(d / v0)⌉ off the float's exponent: the same as the logarithm, exactly, at powers of
+// two (where a log2 approximation could tip ⌈·⌉ a level up) and between them, and 0 below one voxel.
+TEST(Cone, WholeMipIsTheCeilingOfTheFootprintsLog2) {
+    const float v0 = 0.037f;
+    EXPECT_EQ(coneWholeMip(0.5f * v0, v0), 0.0f);
+    EXPECT_EQ(coneWholeMip(v0, v0), 0.0f);
+    for (int k = 0; k <= 8; ++k) {
+        const float d = std::ldexp(v0, k);
+        EXPECT_EQ(coneWholeMip(d, v0), float(k)) << "2^" << k << " voxels";
+        EXPECT_EQ(coneWholeMip(d * 1.001f, v0), float(k + 1)) << "just above 2^" << k;
+        EXPECT_EQ(coneWholeMip(d * 0.999f, v0), float(std::max(k, 0))) << "just below 2^" << k;
+    }
+    for (float x = 1.0f; x < 300.0f; x *= 1.07f)
+        EXPECT_EQ(coneWholeMip(x * v0, v0), std::ceil(std::log2(x * v0 / v0) - 1e-5f)) << x;
+}
+
 // The turned set's central cone (turnedCentralConeDirection): 20.7° off n, where half its cap's cosine-weighted
 // solid angle lies (sin²θ = sin²30°/2), its 30° aperture clear of the surface, and a whole turn about n while
 // the side cones turn their fifth: over the turn its mean lies on n.

@@ -108,13 +108,13 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             if (++stepsPastGrid > CONE_STEPS_PAST_GRID) break;
         }
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
-        const float mip = wholeMips ? coneWholeMip(coneMip(d, v0)) : coneMip(d, v0);
+        const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);
         const ConeSampleAt at =
             coneSampleAt(x, min(mip, maxMip), p, n, v0, gridOrigin, gridOrigin + vec3(gridSize));
         const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips);
         const float dt = coneStep(coneD);
         // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
-        acc = coneComposite(acc, s, dt, v0 * exp2(at.mip));
+        acc = coneComposite(acc, s, dt, wholeMips ? ldexp(v0, int(at.mip)) : v0 * exp2(at.mip));
         t += dt;
     }
     // Stopped as nearly opaque: what lies behind the last CONE_MAX_OPACITY would add its share of the cone in
