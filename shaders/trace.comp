@@ -111,9 +111,13 @@ void main() {
                                      frame.cameraPosition, frame.upsample.kappa);
     // No grid yet: no indirect light.
     IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
+    // The turned set's noise is that of the low-res sample (of the pixel at trace scale 1): neighbouring samples,
+    // which the upsample combines, then get interleaved gradient noise's far-apart values. Indexed by the traced
+    // pixel, s apart, the noise ran along diagonals: hatching on cornell's walls at 1280×720, and 1485 still
+    // pixels moving by more than 2 of 255 levels from frame 64 to 65 at 320×180 against 991 (docs/design.md §5.5).
     if (frame.voxels.voxelSize > 0.0)
         s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition - g.p, g.n), normalRoughness.w,
-                         coneSetOf(pixel, frame.upsample.frameIndex));
+                         coneSetOf(FULL_RESOLUTION ? pixel : lowPixel, frame.upsample.frameIndex));
     if (FULL_RESOLUTION) {
         // Weight 1: one fresh sample, added to the history as the upsample adds a pixel-own sample
         // (docs/design.md §6.5, the same reprojection, validation, decay γ and cap in own samples).

@@ -163,8 +163,9 @@ float interleavedGradientNoise(vec2 pixel) {
     return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
 }
 
-// Pixel `pixel`'s cone set in frame k. Each number is frac(g(pixel + offset) + k·α): the pixel's interleaved
-// gradient noise, shifted per dimension, plus a low-discrepancy step per frame (the golden ratio φ⁻¹ for the
+// The cone set of `pixel` in frame k: a full-res pixel, or trace.comp's low-res sample (whose neighbours the
+// upsample combines). Each number is frac(g(pixel + offset) + k·α): its interleaved gradient noise, shifted per
+// dimension, plus a low-discrepancy step per frame (the golden ratio φ⁻¹ for the
 // turn, the R-sequence steps 1/g^d of the plastic-like number g = 1.1673 for the others), so that successive
 // frames fill [0, 1) evenly in each. The renderer sets VCT_FLAG_CONE_ROTATION for jittered sets too.
 ConeSet coneSetOf(ivec2 pixel, uint frameIndex) {
