@@ -220,17 +220,18 @@ void diffuseConeDirectionsOf(vec3 n, ConeSet set, out vec3 directions[DIFFUSE_CO
 void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
                        const vec3 directions[DIFFUSE_CONE_COUNT], out vec3 radiance[DIFFUSE_CONE_COUNT]) {
     const vec3 origin = coneOrigin(p, n, set);
+    const float clearance = coneClearance(set);
     // The fixed and turned sets read whole mips (coneWholeMip); the jittered set's narrow footprints stay blended:
     // two marches, each compiled with its constant, of which a lane runs one.
     if (set.jittered) {
         for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-            radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF,
-                                    CONE_SURFACE_CLEARANCE_JITTERED, false, 0.0)
+            radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, clearance,
+                                    false, set.stepPhase)
                               .rgb;
     } else {
         for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-            radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF,
-                                    CONE_SURFACE_CLEARANCE, true, set.stepPhase)
+            radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, clearance,
+                                    true, set.stepPhase)
                               .rgb;
     }
 }
