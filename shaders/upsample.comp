@@ -53,6 +53,10 @@ layout(constant_id = VCT_UPSAMPLE_SPEC_WEIGHT_SUM) const bool WEIGHT_SUM = true;
 layout(constant_id = VCT_UPSAMPLE_SPEC_PER_PIXEL) const bool PER_PIXEL = false;
 // sgRatioPower(β) (lib/upsample_weights.glsl): the SG ratio term's power, made of multiplies when β/2 is whole.
 layout(constant_id = VCT_UPSAMPLE_SPEC_RATIO_POWER) const int RATIO_POWER = 10;
+// The image size is a multiple of s on both axes: no sample is traced at a clamped pixel (REACH), so every pixel's
+// kernel reaches exactly the samples the lattice gives it. Fixed per pipeline because lavapipe pays for the code
+// under a branch that no invocation takes (the per-cell fallback measured 0.9 ms of 13.5 ms at 640×360).
+layout(constant_id = VCT_UPSAMPLE_SPEC_WHOLE_CELLS) const bool WHOLE_CELLS = true;
 
 // Resources: bound by engine/passes/upsample_pass.cpp (its resource table gives these binding numbers and is
 // checked against them when the pipeline is made).
@@ -116,21 +120,23 @@ const int REGION = GROUP_CELLS + WINDOW - 1;    // ≤ 7: 49 samples for 64 invo
 const int MAX_REGION_SAMPLES = VCT_TILE_SIZE * VCT_TILE_SIZE;
 shared Sample groupSamples[MAX_REGION_SAMPLES];
 
-// The samples a pixel weighs, per axis: per cell the whole window (an invocation reconstructs every pixel of its
-// cell from the same registers, and a variable index into them costs more than the weights it saves); per pixel
-// only the ones its kernel reaches. The B-spline (radius 1.5 low-res texels) of a pixel in the first half of its
-// cell reaches window columns 0–2 and gives column 3 an exact 0, and the second half's columns 1–3 (rows
-// alike): 9 of the 16 pairs, the same sums, since the 7 left out add exactly 0 (their log weights are ≤ 0, so
-// f = 0 multiplies a finite number). Bilinear reaches its whole 2×2 window. Not where a sample of the window was
-// traced at a clamped pixel (the last low-res column or row of an image whose size is not a multiple of s): it
-// sits nearer than the lattice says, and main() gives such a workgroup the whole window.
-const int REACH = PER_PIXEL && WEIGHTS != VCT_WEIGHTS_BILINEAR ? WINDOW - 1 : WINDOW;
+// The samples a pixel weighs, per axis: only the ones its kernel reaches. The B-spline (radius 1.5 low-res texels)
+// of a pixel in the first half of its cell reaches window columns 0–2 and gives column 3 an exact 0, and the second
+// half's columns 1–3 (rows alike): 9 of the 16 pairs, the same sums, since the 7 left out add exactly 0 (their log
+// weights are ≤ 0, so f = 0 multiplies a finite number). Bilinear reaches its whole 2×2 window. Not where a sample
+// of the window was traced at a clamped pixel (the last low-res column or row of an image whose size is not a
+// multiple of s): it sits nearer than the lattice says, and such a pixel weighs the whole window (per pixel,
+// main() gives it to the whole workgroup; per cell, to every pipeline of an image that has such samples,
+// WHOLE_CELLS).
+const int REACH = WEIGHTS != VCT_WEIGHTS_BILINEAR ? WINDOW - 1 : WINDOW;
 
-// Sample k (0 .. reach² − 1) of the samples a pixel weighs: per cell window sample k, per pixel the sample of its
-// cell's window from `first` (a window column and row: 0, or 1 for the second half of the cell) in rows of `reach`.
+// Sample k (0 .. reach² − 1) of the samples a pixel weighs: the sample of its cell's window from `first` (a window
+// column and row: 0, or 1 for the second half of the cell) in rows of `reach`. Per cell the index must come out a
+// constant (main() reconstructs each quarter of the cell in a call of its own): a variable index into the
+// invocation's samples measured 3.4× slower on lavapipe than the weights it saves.
 Sample windowSample(int k, ivec2 cellInGroup, ivec2 first, int reach) {
-    if (!PER_PIXEL) return cellSamples[k];
     const ivec2 at = cellInGroup + first + ivec2(k % reach, k / reach);
+    if (!PER_PIXEL) return cellSamples[at.y * WINDOW + at.x];
     return groupSamples[at.y * REGION + at.x];
 }
 
@@ -341,6 +347,18 @@ Sample loadSample(ivec2 low, ivec2 size, ivec2 lowSize, ivec2 jitter) {
     return j;
 }
 
+// Per cell: reconstructs the pixels of one quarter of the cell (`quarter`: 0 or 1 per axis, the half of the cell
+// along x and y), each from the 3×3 samples its kernel reaches (REACH). `quarter` must be a constant at every call,
+// so that the samples' indices are too (windowSample).
+void reconstructQuarter(ivec2 first, ivec2 size, const ivec2 quarter) {
+    const int HALF = SCALE / 2;
+    [[dont_unroll]] for (int i = 0; i < HALF * HALF; ++i) {
+        const ivec2 pixel = first + quarter * HALF + ivec2(i % HALF, i / HALF);
+        if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size)))
+            reconstruct(pixel, ivec2(0), quarter, REACH);
+    }
+}
+
 void main() {
     const ivec2 size = ivec2(frame.imageSize);
     const ivec2 jitter = frame.upsample.traceOffset;
@@ -383,10 +401,18 @@ void main() {
     [[unroll]] for (int k = 0; k < WINDOW * WINDOW; ++k) cellSamples[k] =
         loadSample(cell + ivec2(k % WINDOW, k / WINDOW) - (RADIUS - 1), size, lowSize, jitter);
 
-    // ---- the cell's pixels (a loop, not unrolled: s² copies of the reconstruction would be all code) ----
-    [[dont_unroll]] for (int i = 0; i < SCALE * SCALE; ++i) {
-        const ivec2 pixel = first + ivec2(i % SCALE, i / SCALE);
-        if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size)))
-            reconstruct(pixel, ivec2(0), ivec2(0), WINDOW);
+    // ---- the cell's pixels (loops, not unrolled: s² copies of the reconstruction would be all code) ----
+    if (REACH < WINDOW && WHOLE_CELLS) {
+        // Each quarter from its 3×3 samples: 9 guide weights per pixel instead of 16.
+        reconstructQuarter(first, size, ivec2(0, 0));
+        reconstructQuarter(first, size, ivec2(1, 0));
+        reconstructQuarter(first, size, ivec2(0, 1));
+        reconstructQuarter(first, size, ivec2(1, 1));
+    } else {
+        [[dont_unroll]] for (int i = 0; i < SCALE * SCALE; ++i) {
+            const ivec2 pixel = first + ivec2(i % SCALE, i / SCALE);
+            if (all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, size)))
+                reconstruct(pixel, ivec2(0), ivec2(0), WINDOW);
+        }
     }
 }

@@ -131,12 +131,17 @@ TEST(UpsampleGpu, FirstFrameAndCameraCutHaveNoNaNInfOrHoles) {
 // The two layouts of the upsample pass (--upsample-layout, docs/design.md §6.8) run the same arithmetic per pixel:
 // one invocation per low-res cell (the CPU default) and one per pixel with the samples in shared memory (the GPU
 // default) give bit-identical images, aux images and re-trace masks included, with history and adaptive
-// re-tracing, at both trace scales and for a guided and the unguided configuration.
+// re-tracing, at both trace scales, for a guided and the unguided configuration, and at sizes that are and are not
+// a multiple of the trace scale.
 TEST(UpsampleGpu, CellAndPixelLayoutsGiveTheSameImages) {
     const std::vector<std::vector<std::string>> configurations = {
         {"--trace-scale", "4", "--weights", "sg", "--frames", "5"},
         {"--trace-scale", "2", "--weights", "bilinear", "--frames", "3"},
         {"--trace-scale", "4", "--weights", "normal", "--frames", "4", "--camera-cut", "3"},
+        // Sizes that are a multiple of s: the per-cell layout reconstructs each quarter of a cell from the 3×3
+        // samples its kernel reaches, as the per-pixel layout does (upsample.comp, WHOLE_CELLS).
+        {"--trace-scale", "4", "--weights", "sg", "--frames", "5", "--size", "160x88"},
+        {"--trace-scale", "2", "--weights", "normal", "--frames", "3", "--size", "160x88"},
         // Sizes that are not a multiple of s: the last low-res column and row are traced at clamped pixels (by 2
         // at frame 1's offset (2, 2)), where a pixel's kernel reaches past the 3×3 samples of the pixel layout.
         {"--trace-scale", "4", "--weights", "sg", "--frames", "3", "--size", "161x89"},

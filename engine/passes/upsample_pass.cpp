@@ -32,7 +32,8 @@ bool UpsamplePass::perPixel(const RenderSettings& settings) const {
             context_.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU);
 }
 
-const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
+const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings, uint32_t width,
+                                              uint32_t height) {
     const uint32_t weights = settings.weights == RenderSettings::Weights::Bilinear ? VCT_WEIGHTS_BILINEAR
                              : settings.weights == RenderSettings::Weights::Normal ? VCT_WEIGHTS_NORMAL
                                                                                    : VCT_WEIGHTS_SG;
@@ -40,11 +41,14 @@ const vk::Pipeline& UpsamplePass::pipelineFor(const RenderSettings& settings) {
     // not multiply their pipelines. A live β slider lands mostly on the power-0 pipeline.
     const uint32_t ratioPower = weights == VCT_WEIGHTS_SG ? uint32_t(glsl::sgRatioPower(settings.beta)) : 0u;
     // Indexed by constant_id (VCT_SPEC_TRACE_SCALE, VCT_UPSAMPLE_SPEC_*).
+    // The image size a multiple of s: no sample traced at a clamped pixel (shaders/upsample.comp, WHOLE_CELLS).
+    const bool wholeCells = width % settings.traceScale == 0 && height % settings.traceScale == 0;
     const std::vector<uint32_t> constants = {settings.traceScale,          weights,
                                              settings.temporal ? 1u : 0u,  settings.writeWeightSum ? 1u : 0u,
-                                             perPixel(settings) ? 1u : 0u, ratioPower};
+                                             perPixel(settings) ? 1u : 0u, ratioPower,
+                                             wholeCells ? 1u : 0u};
     const uint32_t key = constants[0] | constants[1] << 8 | constants[2] << 16 | constants[3] << 17 |
-                         constants[4] << 18 | constants[5] << 19;
+                         constants[4] << 18 | constants[5] << 19 | constants[6] << 27;
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
     vk::Pipeline pipeline =
         vk::Pipeline::compute(context_, name(), "upsample.comp", resources_.bindings(), 0, constants);
@@ -59,7 +63,7 @@ void UpsamplePass::execute(const FrameContext& frame) {
     t.resampleList.use(frame.cmd, vk::BufferAccess::TransferWrite);
     vkCmdUpdateBuffer(frame.cmd, t.resampleList.handle(), 0, sizeof(empty), &empty);
 
-    const vk::Pipeline& pipeline = pipelineFor(frame.settings);
+    const vk::Pipeline& pipeline = pipelineFor(frame.settings, t.width, t.height);
     pipeline.bind(frame.cmd);
     resources_.bind(frame, pipeline);
     // Cells from −1 (shaders/upsample.comp): per cell, a workgroup of VCT_TILE_SIZE² cells; per pixel, a workgroup

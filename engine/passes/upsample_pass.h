@@ -18,8 +18,9 @@ class UpsamplePass : public Pass {
 
   private:
     // The pipeline specialized for this frame's trace scale, weights, temporal and adaptive settings
-    // (shaders/upsample.comp), compiled the first time that combination is used.
-    const vk::Pipeline& pipelineFor(const RenderSettings& settings);
+    // and on whether the image size (width × height) is a multiple of the trace scale (shaders/upsample.comp),
+    // compiled the first time that combination is used.
+    const vk::Pipeline& pipelineFor(const RenderSettings& settings, uint32_t width, uint32_t height);
     // One invocation per pixel (--upsample-layout pixel, or auto on a GPU) rather than per low-res cell. Trace
     // scales 2 and 4 only: a workgroup's samples must fit its 64 invocations (7² at scale 2).
     bool perPixel(const RenderSettings& settings) const;

@@ -222,6 +222,7 @@ struct SkinPushConstants {
 #define VCT_UPSAMPLE_SPEC_WEIGHT_SUM 3   // bool: write the sum-of-weights image (views, --aux)
 #define VCT_UPSAMPLE_SPEC_PER_PIXEL 4    // bool: one invocation per pixel (GPUs), not per low-res cell
 #define VCT_UPSAMPLE_SPEC_RATIO_POWER 5  // int: sgRatioPower(β) (lib/upsample_weights.glsl)
+#define VCT_UPSAMPLE_SPEC_WHOLE_CELLS 6  // bool: the image size is a multiple of the trace scale
 
 // resample (full-res cone tracing of the listed pixels)
 #define VCT_RESAMPLE_GROUP_SIZE 64
