@@ -62,12 +62,15 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // coarser mip's whole reach at any blend weight (a lit surface no longer lights itself through it): the every-pixel
     // trace keeps more detail (the back wall's reflections; its specular part against the path tracer 1.17 → 0.95 at
     // 64³), which the same upsampling converges to less closely: 36.35 / 39.82 / 37.26 dB (Lambertian 39.66 / 37.68 /
-    // 40.89). The margins are each measurement less about 0.25 dB.
+    // 40.89). Round 17's specular cone reads whole mips (design §5.3): its every-pixel trace steps where ⌈m⌉ does,
+    // which the upsampling converges to less closely with glossy voxels (specular 39.83 → 38.55 dB, final 39.09 →
+    // 38.83) and more closely without (37.70 → 38.85, final 41.30 → 40.95); diffuse unchanged (41.99 and 39.26).
+    // The margins are each measurement less about 0.25 dB.
     struct Case {
         const char* glossy;
         double diffuse, specular, display;  // lowest PSNRs allowed
     };
-    for (const Case& c : {Case{"off", 39.4, 37.4, 40.6}, Case{"on", 36.1, 39.55, 37.0}}) {
+    for (const Case& c : {Case{"off", 41.7, 38.6, 40.7}, Case{"on", 39.0, 38.3, 38.55}}) {
         const std::string suffix = std::string("_glossy_") + c.glossy;
         const fs::path reference = render("converge_s1" + suffix, {"--trace-scale", "1", "--cone-rotation",
                                                                    "off", "--voxel-glossy", c.glossy});

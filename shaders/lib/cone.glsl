@@ -136,7 +136,8 @@ VCT_INLINE float coneMip(float diameter, float voxelSize) {
     return max(log2(max(diameter, voxelSize) / voxelSize), 0.0f);
 }
 
-// The mip a diffuse cone of the fixed or turned set reads (cone_trace.glsl's traceCone with whole mips): the whole
+// The mip a diffuse cone of the fixed or turned set, and the specular cone, read (cone_trace.glsl's traceCone with
+// whole mips): the whole
 // level ⌈m⌉ of the footprint's fractional mip m, alone. coneCoarseMipLift already lifts every sample clear of
 // level ⌈m⌉'s reach, so that level keeps the surface out as the blend did; read alone it is one texture read per
 // slab instead of a blend of two levels (lavapipe filters a read between two levels at about twice the cost: the

@@ -258,6 +258,9 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 // by the lobe at their directions. A single cone capped at 45° saw only the lobe's centre: on cornell's rough
 // walls (α = 0.81) it reflected the dark front wall and ceiling where the path-traced truth also sees the
 // lit floor.
+// The specular cone reads whole mips (coneWholeMip) with every set, as the fixed and turned diffuse cones do: its
+// footprint grows by up to 2× (a glossy reflection a little blurrier), for 0.86× the default frame's trace
+// (docs/design.md §5.3).
 IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness,
                             ConeSet set) {
     vec3 directions[DIFFUSE_CONE_COUNT];
@@ -277,7 +280,7 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
         direction = dot(w, n) > 0.02 ? w : xi;
     }
     vec3 specular = traceCone(voxels, p, n, coneOrigin(p, n, set), direction, tanHalf, coneClearance(set),
-                              false, set.stepPhase)
+                              true, set.stepPhase)
                         .rgb;
     const float share = specularConeShare(alpha, dot(n, v));
     if (share < 1.0) {
