@@ -93,8 +93,8 @@ const float FALLBACK_SHARE = 1e-6;
 // The spatial kernel (lib/upsample_weights.glsl): bilinear (no guide) the tent over the 2×2 nearest samples;
 // with a guide the quadratic B-spline over the 3×3 nearest, so that the guide has candidates left where it
 // rejects some. A cell's pixels reach 4×4 samples in all (the left half of the cell the first three columns,
-// the right half the last three), which every pixel evaluates: selecting its 3×3 (with selects, as a variable
-// index into the array measured 3.4× slower on lavapipe) cost more than the 7 weights it saves.
+// the right half the last three); each pixel weighs its 3×3 (REACH), with constant indices into the invocation's
+// samples (a variable index, or selects, measured 3.4× slower on lavapipe than the 7 weights it saves).
 const int RADIUS = WEIGHTS == VCT_WEIGHTS_BILINEAR ? 1 : 2;
 const int WINDOW = 2 * RADIUS;  // samples per axis around a cell
 // Arrays of samples have the largest window's size (a size from specialization constants is not valid SPIR-V
