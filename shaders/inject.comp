@@ -104,15 +104,18 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     const vec3 center = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
 
     // What leaves to every side alike: emission, the diffuse part of the direct light, and (multiple bounces)
-    // the light that has bounced before, which a voxel passes on as a Lambertian of its base colour would
-    // (the diffuse albedo of a dielectric, F0 of a metal), baseColor/π · E: the bounce gathers' irradiance is not
-    // resolved by direction, so it has no lobe to follow.
+    // the light that has bounced before, diffuse and specular alike (bouncedLightReflectance,
+    // lib/voxel_specular.glsl): the bounce gathers' light is not resolved by direction, so it has no lobe to follow.
+    const bool glossy = (frame.flags & VCT_FLAG_VOXEL_GLOSSY) != 0u;
     vec3 radiance = emissionMetallic.rgb;
-    if (push.params.x != 0u) radiance += baseColor * imageLoad(bounceImage, texel).rgb;
+    if (push.params.x != 0u) {
+        const vec2 dfg = textureLod(dfgTable, vec2(BOUNCE_MEAN_COSINE, perceptualRoughness), 0.0).rg;
+        radiance +=
+            bouncedLightReflectance(baseColor, metallic, dfg, glossy) * imageLoad(bounceImage, texel).rgb;
+    }
     // What leaves in the specular lobes of the lights, per slab (lib/voxel_specular.glsl).
     vec3 specular[VOXEL_SLAB_COUNT];
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] = vec3(0.0);
-    const bool glossy = (frame.flags & VCT_FLAG_VOXEL_GLOSSY) != 0u;
     // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light and its lobes alike.
     float facing[VOXEL_SLAB_COUNT];
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)

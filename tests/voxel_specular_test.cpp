@@ -201,4 +201,30 @@ TEST(VoxelSpecular, HardCasesStayFinite) {
     }
 }
 
+// The reflectance for bounced light (bouncedLightReflectance): Lambertian voxels reflect the diffuse albedo alone,
+// as `vct reference --secondary diffuse` does (a metal nothing); glossy ones add the specular layer's share at
+// n·l = 2/3 and keep the diffuse albedo of what it leaves, so a white surface of any roughness and metalness
+// reflects at most all of it (a furnace of it cannot run away) and at least its diffuse albedo.
+TEST(VoxelSpecular, BouncedLightReflectanceIsBoundedByOne) {
+    for (float metallic : {0.0f, 0.5f, 1.0f}) {
+        for (float roughness : {0.0f, 0.05f, 0.3f, 0.6f, 1.0f}) {
+            const glm::vec2 dfg =
+                g::integrateDFG(g::BOUNCE_MEAN_COSINE, g::alphaFromPerceptual(roughness), 1024);
+            for (float base : {0.0f, 0.5f, 1.0f}) {
+                const vec3 baseColor(base);
+                const vec3 lambertian = g::bouncedLightReflectance(baseColor, metallic, dfg, false);
+                const vec3 glossy = g::bouncedLightReflectance(baseColor, metallic, dfg, true);
+                EXPECT_EQ(lambertian, g::diffuseAlbedo(baseColor, metallic));
+                EXPECT_TRUE(std::isfinite(glossy.g)) << metallic << " " << roughness << " " << base;
+                EXPECT_GE(glossy.g, lambertian.g) << metallic << " " << roughness << " " << base;
+                EXPECT_LE(glossy.g, 1.0f + 1e-6f) << metallic << " " << roughness << " " << base;
+            }
+        }
+    }
+    // A white metal mirror reflects (nearly) all of it; a black dielectric only its 4 % specular layer.
+    const glm::vec2 mirror = g::integrateDFG(g::BOUNCE_MEAN_COSINE, 0.0f, 1024);
+    EXPECT_NEAR(g::bouncedLightReflectance(vec3(1.0f), 1.0f, mirror, true).g, 1.0f, 0.01f);
+    EXPECT_NEAR(g::bouncedLightReflectance(vec3(0.0f), 0.0f, mirror, true).g, 0.04f, 0.01f);
+}
+
 }  // namespace
