@@ -147,7 +147,8 @@ TEST(VoxelGi, FurnaceBouncesFollowTheGeometricSeriesAndNeverRunAway) {
 // a gather): --bounces 8's 1.974, the furnace's 1 % deficit, never above 2. (Before the first frame's whole-grid
 // gathers and the lifted samples, round 10: 1.580 after one round of 8 frames, 1.959 after 9.) Round 14 (the coarser
 // mip's whole reach cleared at any blend weight): 1.874 after the first frame (exact 1.875), 1.950 after one round,
-// 1.994 converged and settled. The fixed cone set: turned cones keep a pixel history (design §5.5), which
+// 1.994 converged and settled; round 17 (the gathers read blended mips, docs/design.md §5.7): 1.876, 1.952, 1.996.
+// The fixed cone set: turned cones keep a pixel history (design §5.5), which
 // lags the grid's light while it grows (1.929 after one round, 1.985 converged) and is not what this measures.
 // Lambertian voxels (--voxel-glossy off): their reflectance is the albedo ρ = 0.5 itself (furnaceReflectance).
 TEST(VoxelGi, AllBouncesConvergeOverFramesToTheFurnaceLimitAndThenStop) {
@@ -179,7 +180,8 @@ TEST(VoxelGi, AllBouncesConvergeOverFramesToTheFurnaceLimitAndThenStop) {
     EXPECT_EQ(firstGathers, 1);
     EXPECT_NEAR(first, 1.874, 0.01);
     EXPECT_GT(first, 1.75) << "fewer than four bounces";
-    EXPECT_LT(first, 1.875 + 1e-3) << "more than four bounces";  // exact: 1.875, five 1.9375
+    // Exact: 1.875, five bounces 1.9375. The furnace's own error is ±1 % (round 17's blended gathers: 1.876).
+    EXPECT_LT(first, 1.875 + 0.01) << "more than four bounces";
     EXPECT_EQ(oneRoundGathers, 9);
     EXPECT_NEAR(oneRound, 1.950, 0.01);
     EXPECT_GT(oneRound, first + 0.02) << "a round adds no bounce";

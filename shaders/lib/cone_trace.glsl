@@ -243,12 +243,21 @@ vec3 diffuseFromCones(const vec3 radiance[DIFFUSE_CONE_COUNT]) {
     return diffuse;
 }
 
-// The 6 diffuse cones from surface point p with unit normal n: cosine-weighted mean incoming radiance.
+// The 6 diffuse cones of the fixed set from surface point p with unit normal n: cosine-weighted mean incoming
+// radiance. The voxels' bounce gathers (voxel_bounce.comp). Their cones blend two mip levels, where a pixel's
+// fixed and turned cones read the whole level ⌈m⌉: a wider footprint over a room-sized cone takes in more of what
+// lies beside its path. From cornell's ceiling (not in the default view) a cone straight down read 0.56 of the
+// floor's light with whole mips and 0.73 blended, and the ceiling got 0.53 of its true one-bounce light; the
+// blended gathers took every bounce from 0.928 to 0.949 of the full GI (64³; docs/design.md §5.7).
 vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
     vec3 directions[DIFFUSE_CONE_COUNT];
     diffuseConeDirectionsOf(n, FIXED_CONE_SET, directions);
+    const vec3 origin = coneOrigin(p, n, FIXED_CONE_SET);
+    const float clearance = coneClearance(FIXED_CONE_SET);
     vec3 radiance[DIFFUSE_CONE_COUNT];
-    traceDiffuseCones(voxels, p, n, FIXED_CONE_SET, directions, radiance);
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+        radiance[i] =
+            traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, clearance, false, 0.0).rgb;
     return diffuseFromCones(radiance);
 }
 
