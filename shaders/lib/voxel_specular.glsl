@@ -89,11 +89,10 @@ VCT_INLINE float specularSlabShare(vec4 lobe, int slab) {
 // as light arriving at the cosine-weighted hemisphere's mean cosine n·l = 2/3, to every side alike: the specular
 // albedo ρ_s = F0·A + B of the split-sum table at (2/3, roughness) (`dfg`), and the diffuse albedo of what the
 // specular layer leaves, albedo·(1 − ρ_s). That sum is at most 1 wherever the albedo and ρ_s are, so no furnace
-// runs away; the lights' split (albedo·(1 − F(n·l)) + ρ_s) need not be. Without the specular part, cornell's
-// every-bounce light was 0.911 of the path tracer's (64³), while vct's Lambertian voxels against the truth with
-// Lambertian secondary vertices (`--voxel-glossy off`, `vct reference --secondary diffuse`) gave 1.023: the
-// missing light was the glossy surfaces' share of the bounced light. Without glossy voxels, the diffuse albedo
-// alone (what `vct reference --secondary diffuse` reflects).
+// runs away; the lights' split (albedo·(1 − F(n·l)) + ρ_s) need not be. Until round 17 a voxel reflected bounced
+// light by its base colour (no specular layer for a dielectric, a metal's base colour as a diffuse reflectance):
+// cornell's every-bounce light rose from 0.911 to 0.928 of the path tracer's (64³). Without glossy voxels, the
+// diffuse albedo alone (what `vct reference --secondary diffuse` reflects).
 const float BOUNCE_MEAN_COSINE = 2.0f / 3.0f;
 VCT_INLINE vec3 bouncedLightReflectance(vec3 baseColor, float metallic, vec2 dfg, bool glossy) {
     const vec3 albedo = diffuseAlbedo(baseColor, metallic);
