@@ -137,8 +137,7 @@ VCT_INLINE float coneMip(float diameter, float voxelSize) {
 }
 
 // The mip a diffuse cone of the fixed or turned set, and the specular cone, read (cone_trace.glsl's traceCone with
-// whole mips): the whole
-// level ⌈m⌉ of the footprint's fractional mip m, alone. coneCoarseMipLift already lifts every sample clear of
+// whole mips): the whole level ⌈m⌉ of the footprint's fractional mip m, alone. coneCoarseMipLift already lifts every sample clear of
 // level ⌈m⌉'s reach, so that level keeps the surface out as the blend did; read alone it is one texture read per
 // slab instead of a blend of two levels (lavapipe filters a read between two levels at about twice the cost: the
 // default frame's trace 0.66× with every read at one level). The wider footprint also averages more of what a

@@ -216,24 +216,27 @@ void diffuseConeDirectionsOf(vec3 n, ConeSet set, out vec3 directions[DIFFUSE_CO
 }
 
 // The incoming radiance along each of the 6 diffuse cone `directions` of `set` from surface point p with unit
-// normal n.
-void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
-                       const vec3 directions[DIFFUSE_CONE_COUNT], out vec3 radiance[DIFFUSE_CONE_COUNT]) {
+// normal n, every sample reading the whole level ⌈m⌉ or a blend of two (`wholeMips`, traceCone: a constant at
+// every call, so that each march compiles with one of the two; lavapipe would run both sides of a branch).
+void marchDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
+                       const vec3 directions[DIFFUSE_CONE_COUNT], const bool wholeMips,
+                       out vec3 radiance[DIFFUSE_CONE_COUNT]) {
     const vec3 origin = coneOrigin(p, n, set);
     const float clearance = coneClearance(set);
-    // The fixed and turned sets read whole mips (coneWholeMip); the jittered set's narrow footprints stay blended:
-    // two marches, each compiled with its constant, of which a lane runs one.
-    if (set.jittered) {
-        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-            radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, clearance,
-                                    false, set.stepPhase)
-                              .rgb;
-    } else {
-        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-            radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, clearance,
-                                    true, set.stepPhase)
-                              .rgb;
-    }
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
+        radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, clearance,
+                                wholeMips, set.stepPhase)
+                          .rgb;
+}
+
+// The same for a pixel: the fixed and turned sets read whole mips (coneWholeMip); the jittered set's narrow
+// footprints stay blended. Two marches, of which a lane runs one.
+void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
+                       const vec3 directions[DIFFUSE_CONE_COUNT], out vec3 radiance[DIFFUSE_CONE_COUNT]) {
+    if (set.jittered)
+        marchDiffuseCones(voxels, p, n, set, directions, false, radiance);
+    else
+        marchDiffuseCones(voxels, p, n, set, directions, true, radiance);
 }
 
 // Their cosine-weighted mean.
@@ -252,12 +255,8 @@ vec3 diffuseFromCones(const vec3 radiance[DIFFUSE_CONE_COUNT]) {
 vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
     vec3 directions[DIFFUSE_CONE_COUNT];
     diffuseConeDirectionsOf(n, FIXED_CONE_SET, directions);
-    const vec3 origin = coneOrigin(p, n, FIXED_CONE_SET);
-    const float clearance = coneClearance(FIXED_CONE_SET);
     vec3 radiance[DIFFUSE_CONE_COUNT];
-    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        radiance[i] =
-            traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, clearance, false, 0.0).rgb;
+    marchDiffuseCones(voxels, p, n, FIXED_CONE_SET, directions, false, radiance);
     return diffuseFromCones(radiance);
 }
 
