@@ -65,12 +65,14 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // 40.89). Round 17's specular cone reads whole mips (design §5.3): its every-pixel trace steps where ⌈m⌉ does,
     // which the upsampling converges to less closely with glossy voxels (specular 39.83 → 38.55 dB, final 39.09 →
     // 38.83) and more closely without (37.70 → 38.85, final 41.30 → 40.95); diffuse unchanged (41.99 and 39.26).
+    // Round 18's cones close at a room's floor and ceiling (design §5.6), and light that leaked out through them
+    // stays in the room: Lambertian 42.68 / 38.57 / 40.82 dB, glossy 40.00 / 38.26 / 38.75 dB.
     // The margins are each measurement less about 0.25 dB.
     struct Case {
         const char* glossy;
         double diffuse, specular, display;  // lowest PSNRs allowed
     };
-    for (const Case& c : {Case{"off", 41.7, 38.6, 40.7}, Case{"on", 39.0, 38.3, 38.55}}) {
+    for (const Case& c : {Case{"off", 42.4, 38.3, 40.55}, Case{"on", 39.75, 38.0, 38.5}}) {
         const std::string suffix = std::string("_glossy_") + c.glossy;
         const fs::path reference = render("converge_s1" + suffix, {"--trace-scale", "1", "--cone-rotation",
                                                                    "off", "--voxel-glossy", c.glossy});

@@ -275,5 +275,43 @@ TEST(SparseVoxels, SparseAndDenseMip0Agree) {
     }
 }
 
+// Where cones close (render/voxel_bricks.h's coneClosureBox): which faces of a scene's content geometry covers.
+// Per side: -x, +x, -y, +y, -z, +z; 1 where the box's side is the content's face, 0 where it is the grid's.
+std::string closedFaces(const Scene& scene, uint32_t n) {
+    const Aabb content = voxelSceneBounds(scene);
+    const glm::vec4 grid = g::voxelGridFit(content.min, content.max, float(n));
+    const ConeClosureBox box = coneClosureBox(allocateBricks(scene, grid, n), grid, content);
+    const glm::vec3 gridMin(grid), gridMax = gridMin + glm::vec3(grid.w * float(n));
+    std::string faces;
+    for (int axis = 0; axis < 3; ++axis) {
+        // Each side is one of the two exactly: the content's face where covered, else the grid's.
+        EXPECT_TRUE(box.min[axis] == content.min[axis] || box.min[axis] == gridMin[axis]) << axis;
+        EXPECT_TRUE(box.max[axis] == content.max[axis] || box.max[axis] == gridMax[axis]) << axis;
+        faces += box.min[axis] == content.min[axis] && content.min[axis] != gridMin[axis] ? '1' : '0';
+        faces += box.max[axis] == content.max[axis] && content.max[axis] != gridMax[axis] ? '1' : '0';
+    }
+    return faces;
+}
+
+TEST(ConeClosure, AClosedRoomClosesAtItsWallsAndAnOpenSceneAtTheGrid) {
+    for (uint32_t n : {32u, 64u, 128u}) {
+        // cornell is a closed room: every face (its floor and ceiling lie inside the cubic grid).
+        EXPECT_EQ(closedFaces(*makeBuiltinScene("cornell"), n), "111111") << n;
+        // An open courtyard (no roof): never its top.
+        const std::string courtyard = closedFaces(*makeBuiltinScene("courtyard"), n);
+        EXPECT_EQ(courtyard[3], '0') << n << ": " << courtyard;
+        std::printf("%u³: courtyard %s, hall %s\n", n, courtyard.c_str(),
+                    closedFaces(*makeBuiltinScene("hall"), n).c_str());
+        // An open plane's box is flat and its faces all covered, but its cones start above it, outside the box:
+        // they close at the grid's faces (lib/cone_trace.glsl), as `EnvironmentGpu` checks under a white sky.
+    }
+}
+
+TEST(ConeClosure, ACurvedModelStaysOpen) {
+    VCT_REQUIRE_SHARED("DamagedHelmet");
+    // Its box's faces touch the model at a few points: cones close at the grid's faces as before.
+    EXPECT_EQ(closedFaces(loadScene(test::sharedModel("DamagedHelmet").string()), 64), "000000");
+}
+
 }  // namespace
 }  // namespace vct

@@ -153,4 +153,33 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
     return layout;
 }
 
+ConeClosureBox coneClosureBox(const BrickLayout& layout, glm::vec4 originSize, const Aabb& content) {
+    const glm::vec3 origin(originSize);
+    const float voxelSize = originSize.w;
+    ConeClosureBox box{origin, origin + glm::vec3(voxelSize * float(layout.resolution))};
+    if (content.empty() || layout.bricksPerAxis == 0) return box;
+    const int perAxis = int(layout.bricksPerAxis);
+    const auto brickOf = [&](float world, int axis) {
+        const int voxel = int(std::floor((world - origin[axis]) / voxelSize));
+        return std::clamp(voxel, 0, int(layout.resolution) - 1) / kBrick;
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        for (int side = 0; side < 2; ++side) {
+            const float face = side == 0 ? content.min[axis] : content.max[axis];
+            glm::ivec3 b(0);
+            b[axis] = brickOf(face, axis);
+            uint64_t covered = 0, total = 0;
+            for (b[v] = brickOf(content.min[v], v); b[v] <= brickOf(content.max[v], v); ++b[v])
+                for (b[u] = brickOf(content.min[u], u); b[u] <= brickOf(content.max[u], u); ++b[u]) {
+                    ++total;
+                    covered += layout.map[glsl::brickLinearIndex(b, perAxis)] != VCT_BRICK_NONE ? 1 : 0;
+                }
+            if (double(covered) >= kClosedFaceCoverage * double(total))
+                (side == 0 ? box.min : box.max)[axis] = face;
+        }
+    }
+    return box;
+}
+
 }  // namespace vct

@@ -46,4 +46,17 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
 // The atlas shape (side, layers) for `count` bricks: the smallest cube-like arrangement.
 glm::uvec2 brickAtlasShape(uint32_t count);
 
+// Where cones close (shaders/lib/cone_trace.glsl's traceCone): a box whose every side is the face of `content` (what
+// was voxelized) where geometry covers that face, as a closed room's floor, walls and ceiling do, and the grid's
+// face elsewhere. The grid is a cube about the content's largest extent, so a room lower than it is wide has empty
+// voxels below its floor and above its ceiling: a cone crossing either obliquely (a thin layer is opaque only in
+// the slab across it) met nothing more there and saw the sky. A face counts as covered when at least
+// kClosedFaceCoverage of the bricks of its layer, over the content's extent, have storage (what the voxelizer
+// writes); a curved object's faces touch it at a few points and stay open.
+struct ConeClosureBox {
+    glm::vec3 min, max;
+};
+constexpr double kClosedFaceCoverage = 0.95;
+ConeClosureBox coneClosureBox(const BrickLayout& layout, glm::vec4 originSize, const Aabb& content);
+
 }  // namespace vct

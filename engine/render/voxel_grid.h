@@ -101,6 +101,8 @@ class VoxelGrid {
     // Where the scene's geometry can be, over its whole animation (voxelSceneBounds): no voxel outside is
     // ever occupied. The grid (a cube) spans more.
     const Aabb& contentBounds() const { return contentBounds_; }
+    // Where cones close (render/voxel_bricks.h's coneClosureBox).
+    const ConeClosureBox& coneClosure() const { return coneClosure_; }
     uint32_t mipCount() const { return mipCount_; }
 
     // Premultiplied radiance + opacity, 3D RGBA16F (SAMPLED | STORAGE): six direction slabs side by side along x
@@ -195,6 +197,7 @@ class VoxelGrid {
 
     std::optional<UpdateRegions> updateRegions_;
     Aabb contentBounds_;
+    ConeClosureBox coneClosure_;
     const vk::Context& context_;
     const Scene& scene_;  // outlives the grid (the Renderer's GpuScene holds it too)
     uint32_t resolution_ = 0;

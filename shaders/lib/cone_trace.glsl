@@ -85,6 +85,18 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     const float v0 = frame.voxels.voxelSize;
     const float gridSize = float(frame.voxels.resolution) * v0;
     const float maxMip = max(float(frame.voxels.mipCount) - 1.0, 0.0);
+    // Where the cone closes (below): the closure box (render/voxel_bricks.h's coneClosureBox), whose sides are the
+    // faces of what was voxelized where geometry covers them (a closed room's floor, walls and ceiling) and the
+    // grid's elsewhere; the grid's own box for a cone that starts outside it (nothing lies beyond the grid, and
+    // from outside a room the room's faces would be in the way of every cone leaving it). With the grid's faces
+    // alone, a cone crossing cornell's floor or ceiling obliquely (both lie 8 voxels inside the cubic grid) met
+    // nothing more and saw the sky: with the sky 30× brighter the gold sphere's one-bounce light rose 40 % / 47 %
+    // (64³ / 128³); closed there, and with CONE_STEPS_PAST_GRID 4, 5 % / 10 % (docs/design.md §5.6).
+    const vec3 gridMax = gridOrigin + vec3(gridSize);
+    const vec3 closureMin = frame.voxels.closureMin.xyz, closureMax = frame.voxels.closureMax.xyz;
+    const bool startsInside = all(greaterThan(origin, closureMin)) && all(lessThan(origin, closureMax));
+    const vec3 closeMin = startsInside ? closureMin : gridOrigin;
+    const vec3 closeMax = startsInside ? closureMax : gridMax;
     vec4 acc = vec4(0.0);
     // Start one voxel out along the cone, from an origin one voxel out along the normal (CONE_START_*: why twice).
     float t = v0 * CONE_START_DISTANCE;
@@ -96,21 +108,19 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
         const float d = coneSurfaceFootprint(coneD, dot(x - p, n), v0, clearance);
-        const vec3 uvw = (x - gridOrigin) / gridSize;
-        // The axis leaves the grid: the grid is padded around the scene bounds, so nothing lies beyond, but
-        // the footprint still covers the grid's outermost texels. A cone meeting a wall obliquely sees it
+        // The axis leaves the closure box (above): nothing lies beyond, or a closed room's wall stands at it, but
+        // the footprint still covers the box's outermost texels. A cone meeting a wall obliquely sees it
         // opaque only in the slab across the wall and partly in the others (an oblique crossing within one
         // texel is not certain), so a room's walls at the grid's edge would pass (1 − α) of the environment:
         // a closed emissive room gathered 0.79 of its radiance. CONE_STEPS_PAST_GRID more samples of the edge
-        // texels (the sampler clamps to the edge) close it: 0.99. A fixed count, not a margin that grows
+        // texels (clamped to the box; the sampler clamps to the grid's edge) close it: 0.99. A fixed count, not a margin that grows
         // with d: wide cones would then never leave.
-        if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) {
+        if (any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax))) {
             if (++stepsPastGrid > CONE_STEPS_PAST_GRID) break;
         }
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
         const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);
-        const ConeSampleAt at =
-            coneSampleAt(x, min(mip, maxMip), p, n, v0, gridOrigin, gridOrigin + vec3(gridSize));
+        const ConeSampleAt at = coneSampleAt(x, min(mip, maxMip), p, n, v0, closeMin, closeMax);
         const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips);
         const float dt = coneStep(coneD);
         // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).

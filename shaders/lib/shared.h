@@ -101,6 +101,10 @@ struct VoxelUniforms {
     uint brickAtlasSide;  // bricks per atlas row and column (lib/voxel_bricks.glsl)
     uint brickCount;      // bricks allocated (the atlases' and pools' blocks in use)
     vec4 atlasInvSize;    // xyz: 1 / the radiance atlas's size in texels (lib/cone_trace.glsl), w unused
+    // xyz: where cones close (render/voxel_bricks.h's coneClosureBox: the faces of what was voxelized that geometry
+    // covers, the grid's elsewhere; lib/cone_trace.glsl). w unused.
+    vec4 closureMin;
+    vec4 closureMax;
 };
 
 // Spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6): trace, upsample, resample.
@@ -315,8 +319,9 @@ struct VoxelMipsPushConstants {
 static_assert(sizeof(LightingUniforms) == 32 && offsetof(LightingUniforms, lightCount) == 12 &&
               offsetof(LightingUniforms, shadowLight) == 16 &&
               offsetof(LightingUniforms, shadowTexelSize) == 24);
-static_assert(sizeof(VoxelUniforms) == 48 && offsetof(VoxelUniforms, voxelSize) == 12 &&
-              offsetof(VoxelUniforms, resolution) == 16 && offsetof(VoxelUniforms, mipCount) == 20);
+static_assert(sizeof(VoxelUniforms) == 80 && offsetof(VoxelUniforms, voxelSize) == 12 &&
+              offsetof(VoxelUniforms, resolution) == 16 && offsetof(VoxelUniforms, mipCount) == 20 &&
+              offsetof(VoxelUniforms, closureMin) == 48 && offsetof(VoxelUniforms, closureMax) == 64);
 static_assert(sizeof(UpsampleUniforms) == 48 && offsetof(UpsampleUniforms, beta) == 8 &&
               offsetof(UpsampleUniforms, normalVariance) == 16 && offsetof(UpsampleUniforms, tau) == 28 &&
               offsetof(UpsampleUniforms, maxHistoryWeight) == 32 &&
@@ -329,8 +334,8 @@ static_assert(offsetof(FrameUniforms, cameraPosition) == 7 * 64 &&
               offsetof(FrameUniforms, texelSize) == 7 * 64 + 40);
 static_assert(offsetof(FrameUniforms, lighting) == 7 * 64 + 48 &&
               offsetof(FrameUniforms, voxels) == 7 * 64 + 80 &&
-              offsetof(FrameUniforms, upsample) == 7 * 64 + 128);
-static_assert(sizeof(FrameUniforms) == 7 * 64 + 176);
+              offsetof(FrameUniforms, upsample) == 7 * 64 + 160);
+static_assert(sizeof(FrameUniforms) == 7 * 64 + 208);
 static_assert(sizeof(ResampleListHeader) == 32);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuMaterial) == 64);
