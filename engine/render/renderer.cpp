@@ -216,6 +216,8 @@ void Renderer::writeFrameUniforms(const FrameInput& input, vk::Buffer& uniforms)
             glm::vec4(1.0f / glm::vec3(atlas.width(), atlas.height(), atlas.depth()), 0.0f);
         u.voxels.closureMin = glm::vec4(voxelGrid_->coneClosure().min, 0.0f);
         u.voxels.closureMax = glm::vec4(voxelGrid_->coneClosure().max, 0.0f);
+        u.voxels.contentMin = glm::vec4(voxelGrid_->contentBounds().min, 0.0f);
+        u.voxels.contentMax = glm::vec4(voxelGrid_->contentBounds().max, 0.0f);
     }
 
     // Spatio-temporal upsampling (docs/design.md §6): weights, history and this frame's trace offset o_k. The

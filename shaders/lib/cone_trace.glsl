@@ -87,16 +87,20 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     const float maxMip = max(float(frame.voxels.mipCount) - 1.0, 0.0);
     // Where the cone closes (below): the closure box (render/voxel_bricks.h's coneClosureBox), whose sides are the
     // faces of what was voxelized where geometry covers them (a closed room's floor, walls and ceiling) and the
-    // grid's elsewhere; the grid's own box for a cone that starts outside it (nothing lies beyond the grid, and
-    // from outside a room the room's faces would be in the way of every cone leaving it). With the grid's faces
-    // alone, a cone crossing cornell's floor or ceiling obliquely (both lie 8 voxels inside the cubic grid) met
-    // nothing more and saw the sky: with the sky 30× brighter the gold sphere's one-bounce light rose 40 % / 47 %
-    // (64³ / 128³); closed there, and with CONE_STEPS_PAST_GRID 4, 5 % / 10 % (docs/design.md §5.6).
+    // grid's elsewhere. With the grid's faces alone, a cone crossing cornell's floor or ceiling obliquely (both lie
+    // 8 voxels inside the cubic grid) met nothing more and saw the sky: with the sky 30× brighter the gold sphere's
+    // one-bounce light rose 40 % / 47 % (64³ / 128³); closed at them, with CONE_STEPS_PAST_CLOSED_FACE samples
+    // past them, 5 % / 10 % (docs/design.md §5.3, §5.6). A closed face reaches as far as the content does on the
+    // other axes: a cone that leaves the box beyond that (over the top of a courtyard's wall, into the open) has
+    // left through an open side, and closes at the grid's faces from there on, as a cone that starts outside the
+    // box does (nothing lies beyond the grid; from outside a room its faces would be in every cone's way).
     const vec3 gridMax = gridOrigin + vec3(gridSize);
     const vec3 closureMin = frame.voxels.closureMin.xyz, closureMax = frame.voxels.closureMax.xyz;
-    const bool startsInside = all(greaterThan(origin, closureMin)) && all(lessThan(origin, closureMax));
-    const vec3 closeMin = startsInside ? closureMin : gridOrigin;
-    const vec3 closeMax = startsInside ? closureMax : gridMax;
+    const vec3 contentMin = frame.voxels.contentMin.xyz, contentMax = frame.voxels.contentMax.xyz;
+    // 1 on the sides of the box that are a closed room's faces, not the grid's.
+    const vec3 closedLow = vec3(greaterThan(closureMin, gridOrigin)),
+               closedHigh = vec3(lessThan(closureMax, gridMax));
+    bool open = !(all(greaterThan(origin, closureMin)) && all(lessThan(origin, closureMax)));
     vec4 acc = vec4(0.0);
     // Start one voxel out along the cone, from an origin one voxel out along the normal (CONE_START_*: why twice).
     float t = v0 * CONE_START_DISTANCE;
@@ -115,8 +119,18 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         // a closed emissive room gathered 0.79 of its radiance. CONE_STEPS_PAST_GRID more samples of the edge
         // texels (clamped to the box; the sampler clamps to the grid's edge) close it: 0.99. A fixed count, not a margin that grows
         // with d: wide cones would then never leave.
+        if (!open && (any(lessThan(x, closureMin)) || any(greaterThan(x, closureMax)))) {
+            // Through a closed face: beyond a closed side on some axis, and on each other axis within the content
+            // or beyond a closed side too (a room's edge or corner).
+            const vec3 beyondClosed =
+                max(vec3(lessThan(x, closureMin)) * closedLow, vec3(greaterThan(x, closureMax)) * closedHigh);
+            const vec3 within = vec3(greaterThanEqual(x, contentMin)) * vec3(lessThanEqual(x, contentMax));
+            open =
+                all(lessThan(beyondClosed, vec3(0.5))) || any(lessThan(max(beyondClosed, within), vec3(0.5)));
+        }
+        const vec3 closeMin = open ? gridOrigin : closureMin, closeMax = open ? gridMax : closureMax;
         if (any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax))) {
-            if (++stepsPastGrid > CONE_STEPS_PAST_GRID) break;
+            if (++stepsPastGrid > (open ? CONE_STEPS_PAST_GRID : CONE_STEPS_PAST_CLOSED_FACE)) break;
         }
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
         const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);

@@ -105,6 +105,9 @@ struct VoxelUniforms {
     // covers, the grid's elsewhere; lib/cone_trace.glsl). w unused.
     vec4 closureMin;
     vec4 closureMax;
+    // xyz: the bounds of what was voxelized (VoxelGrid::contentBounds): how far a closed face reaches. w unused.
+    vec4 contentMin;
+    vec4 contentMax;
 };
 
 // Spatio-temporal upsampling and adaptive re-tracing (docs/design.md §6): trace, upsample, resample.
@@ -319,9 +322,10 @@ struct VoxelMipsPushConstants {
 static_assert(sizeof(LightingUniforms) == 32 && offsetof(LightingUniforms, lightCount) == 12 &&
               offsetof(LightingUniforms, shadowLight) == 16 &&
               offsetof(LightingUniforms, shadowTexelSize) == 24);
-static_assert(sizeof(VoxelUniforms) == 80 && offsetof(VoxelUniforms, voxelSize) == 12 &&
+static_assert(sizeof(VoxelUniforms) == 112 && offsetof(VoxelUniforms, voxelSize) == 12 &&
               offsetof(VoxelUniforms, resolution) == 16 && offsetof(VoxelUniforms, mipCount) == 20 &&
-              offsetof(VoxelUniforms, closureMin) == 48 && offsetof(VoxelUniforms, closureMax) == 64);
+              offsetof(VoxelUniforms, closureMin) == 48 && offsetof(VoxelUniforms, closureMax) == 64 &&
+              offsetof(VoxelUniforms, contentMax) == 96);
 static_assert(sizeof(UpsampleUniforms) == 48 && offsetof(UpsampleUniforms, beta) == 8 &&
               offsetof(UpsampleUniforms, normalVariance) == 16 && offsetof(UpsampleUniforms, tau) == 28 &&
               offsetof(UpsampleUniforms, maxHistoryWeight) == 32 &&
@@ -334,8 +338,8 @@ static_assert(offsetof(FrameUniforms, cameraPosition) == 7 * 64 &&
               offsetof(FrameUniforms, texelSize) == 7 * 64 + 40);
 static_assert(offsetof(FrameUniforms, lighting) == 7 * 64 + 48 &&
               offsetof(FrameUniforms, voxels) == 7 * 64 + 80 &&
-              offsetof(FrameUniforms, upsample) == 7 * 64 + 160);
-static_assert(sizeof(FrameUniforms) == 7 * 64 + 208);
+              offsetof(FrameUniforms, upsample) == 7 * 64 + 192);
+static_assert(sizeof(FrameUniforms) == 7 * 64 + 240);
 static_assert(sizeof(ResampleListHeader) == 32);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuMaterial) == 64);
