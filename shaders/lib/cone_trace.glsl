@@ -100,6 +100,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // 1 on the sides of the box that are a closed room's faces, not the grid's.
     const vec3 closedLow = vec3(greaterThan(closureMin, gridOrigin)),
                closedHigh = vec3(lessThan(closureMax, gridMax));
+    // The cone closes at the grid's faces: it starts outside the closure box, or has left it through an open side.
     bool open = !(all(greaterThan(origin, closureMin)) && all(lessThan(origin, closureMax)));
     vec4 acc = vec4(0.0);
     // Start one voxel out along the cone, from an origin one voxel out along the normal (CONE_START_*: why twice).
@@ -107,7 +108,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     t += stepPhase * coneStep(coneDiameter(tanHalfAngle, t, v0));
     // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
     const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
-    int stepsPastGrid = 0;
+    int stepsPastBox = 0;
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
@@ -117,8 +118,8 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         // opaque only in the slab across the wall and partly in the others (an oblique crossing within one
         // texel is not certain), so a room's walls at the grid's edge would pass (1 − α) of the environment:
         // a closed emissive room gathered 0.79 of its radiance. CONE_STEPS_PAST_GRID more samples of the edge
-        // texels (clamped to the box; the sampler clamps to the grid's edge) close it: 0.99. A fixed count, not a margin that grows
-        // with d: wide cones would then never leave.
+        // texels (clamped to the box; the sampler clamps to the grid's edge) close it: 0.99. A fixed count, not a
+        // margin that grows with d: wide cones would then never leave.
         if (!open && (any(lessThan(x, closureMin)) || any(greaterThan(x, closureMax)))) {
             // Through a closed face: beyond a closed side on some axis, and on each other axis within the content
             // or beyond a closed side too (a room's edge or corner).
@@ -130,7 +131,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         }
         const vec3 closeMin = open ? gridOrigin : closureMin, closeMax = open ? gridMax : closureMax;
         if (any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax))) {
-            if (++stepsPastGrid > (open ? CONE_STEPS_PAST_GRID : CONE_STEPS_PAST_CLOSED_FACE)) break;
+            if (++stepsPastBox > (open ? CONE_STEPS_PAST_GRID : CONE_STEPS_PAST_CLOSED_FACE)) break;
         }
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
         const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);
