@@ -109,7 +109,9 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     const bool glossy = (frame.flags & VCT_FLAG_VOXEL_GLOSSY) != 0u;
     vec3 radiance = emissionMetallic.rgb;
     if (push.params.x != 0u) {
-        const vec2 dfg = textureLod(dfgTable, vec2(BOUNCE_MEAN_COSINE, perceptualRoughness), 0.0).rg;
+        // Lambertian voxels reflect the diffuse albedo alone: no table read.
+        const vec2 dfg =
+            glossy ? textureLod(dfgTable, vec2(BOUNCE_MEAN_COSINE, perceptualRoughness), 0.0).rg : vec2(0.0);
         radiance +=
             bouncedLightReflectance(baseColor, metallic, dfg, glossy) * imageLoad(bounceImage, texel).rgb;
     }

@@ -167,11 +167,12 @@ ConeClosureBox coneClosureBox(const BrickLayout& layout, glm::vec4 originSize, c
         const int u = (axis + 1) % 3, v = (axis + 2) % 3;
         for (int side = 0; side < 2; ++side) {
             const float face = side == 0 ? content.min[axis] : content.max[axis];
+            const int uLast = brickOf(content.max[u], u), vLast = brickOf(content.max[v], v);
             glm::ivec3 b(0);
             b[axis] = brickOf(face, axis);
             uint64_t covered = 0, total = 0;
-            for (b[v] = brickOf(content.min[v], v); b[v] <= brickOf(content.max[v], v); ++b[v])
-                for (b[u] = brickOf(content.min[u], u); b[u] <= brickOf(content.max[u], u); ++b[u]) {
+            for (b[v] = brickOf(content.min[v], v); b[v] <= vLast; ++b[v])
+                for (b[u] = brickOf(content.min[u], u); b[u] <= uLast; ++b[u]) {
                     ++total;
                     covered += layout.map[glsl::brickLinearIndex(b, perAxis)] != VCT_BRICK_NONE ? 1 : 0;
                 }

@@ -106,11 +106,11 @@ VCT_INLINE float coneCoarseMipLift(float height, float mip, float voxelSize) {
     return max(reach - height, 0.0f);
 }
 
-// Where a cone's sample at x reads the grid [gridMin, gridMax], and at which mip, for a cone that left the surface
-// at p with unit normal n: lifted by coneCoarseMipLift, and kept inside the grid. The sampler clamps to the edge
-// texels, so a sample past the grid (a cone that has left it: cone_trace.glsl takes CONE_STEPS_PAST_GRID more, to
-// close walls met obliquely at the border) reads the edge texels as if taken at the edge: there its height above
-// the surface, not x's, counts. Where the lift cannot be had within the grid (a cone leaving it straight above an
+// Where a cone's sample at x reads the box [boxMin, boxMax] (the grid, or the closure box of a closed room:
+// cone_trace.glsl), and at which mip, for a cone that left the surface at p with unit normal n: lifted by
+// coneCoarseMipLift, and kept inside the box. A sample past the box (a cone that has left it: cone_trace.glsl takes
+// a few more, to close walls met obliquely at the border) reads the box's edge as if taken there: there its height
+// above the surface, not x's, counts. Where the lift cannot be had within the box (a cone leaving it straight above an
 // open floor that spans the grid) the mip is capped instead at the level whose reach ends above the surface:
 // the top level's texel holds the whole grid, the floor among it, opaque in the slab along the normal, and an
 // open white floor under a white sky gathered 0.46 of the sky (exact 1) before; 0.96 capped
@@ -120,12 +120,12 @@ struct ConeSampleAt {
     float mip;
 };
 
-VCT_INLINE ConeSampleAt coneSampleAt(vec3 x, float mip, vec3 p, vec3 n, float voxelSize, vec3 gridMin,
-                                     vec3 gridMax) {
+VCT_INLINE ConeSampleAt coneSampleAt(vec3 x, float mip, vec3 p, vec3 n, float voxelSize, vec3 boxMin,
+                                     vec3 boxMax) {
     ConeSampleAt at;
-    const vec3 edge = clamp(x, gridMin, gridMax);
+    const vec3 edge = clamp(x, boxMin, boxMax);
     const vec3 lifted = edge + n * coneCoarseMipLift(dot(edge - p, n), mip, voxelSize);
-    at.position = clamp(lifted, gridMin, gridMax);
+    at.position = clamp(lifted, boxMin, boxMax);
     at.mip = mip;
     if (any(notEqual(at.position, lifted))) {
         const float height = max(dot(at.position - p, n), 0.0f);
@@ -144,12 +144,12 @@ VCT_INLINE float coneMip(float diameter, float voxelSize) {
 }
 
 // The mip a diffuse cone of the fixed or turned set, and the specular cone, read (cone_trace.glsl's traceCone with
-// whole mips): the whole level ⌈m⌉ of the footprint's fractional mip m, alone. coneCoarseMipLift already lifts every sample clear of
-// level ⌈m⌉'s reach, so that level keeps the surface out as the blend did; read alone it is one texture read per
-// slab instead of a blend of two levels (lavapipe filters a read between two levels at about twice the cost: the
-// default frame's trace 0.66× with every read at one level). The wider footprint also averages more of what a
-// fixed direction sees: cornell (64³ / 128³, trace scale 4, one bounce, nf) 24.17 / 24.45 → 24.50 / 24.95 dB
-// against the path-traced truth, where ⌊m⌋ gave 21.90 / 22.22 and the nearest level 23.82 / 22.96.
+// whole mips): the whole level ⌈m⌉ of the footprint's fractional mip m, alone. coneCoarseMipLift already lifts
+// every sample clear of level ⌈m⌉'s reach, so that level keeps the surface out as the blend did; read alone it is
+// one texture read per slab instead of a blend of two levels (lavapipe filters a read between two levels at about
+// twice the cost: the default frame's trace 0.66× with every read at one level). The wider footprint also averages
+// more of what a fixed direction sees: cornell (64³ / 128³, trace scale 4, one bounce, nf) 24.17 / 24.45 → 24.50 /
+// 24.95 dB against the path-traced truth, where ⌊m⌋ gave 21.90 / 22.22 and the nearest level 23.82 / 22.96.
 // ⌈log2(d / v0)⌉ is read off the exponent of x = d / v0 ≥ 1 (x = f·2^e, f in [0.5, 1): e, or e − 1 when x is a
 // power of two), exactly and without the log2 coneMip takes (the trace 0.947× on lavapipe, 640×360).
 VCT_INLINE float coneWholeMip(float diameter, float voxelSize) {

@@ -100,8 +100,10 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // 1 on the sides of the box that are a closed room's faces, not the grid's.
     const vec3 closedLow = vec3(greaterThan(closureMin, gridOrigin)),
                closedHigh = vec3(lessThan(closureMax, gridMax));
-    // The cone closes at the grid's faces: it starts outside the closure box, or has left it through an open side.
+    // The box the cone closes at: the grid's once it is open (it starts outside the closure box, or has left it
+    // through an open side), else the closure box. Changed only where the cone turns open, not per step.
     bool open = !(all(greaterThan(origin, closureMin)) && all(lessThan(origin, closureMax)));
+    vec3 closeMin = open ? gridOrigin : closureMin, closeMax = open ? gridMax : closureMax;
     vec4 acc = vec4(0.0);
     // Start one voxel out along the cone, from an origin one voxel out along the normal (CONE_START_*: why twice).
     float t = v0 * CONE_START_DISTANCE;
@@ -120,19 +122,22 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         // a closed emissive room gathered 0.79 of its radiance. CONE_STEPS_PAST_GRID more samples of the edge
         // texels (clamped to the box; the sampler clamps to the grid's edge) close it: 0.99. A fixed count, not a
         // margin that grows with d: wide cones would then never leave.
-        if (!open && (any(lessThan(x, closureMin)) || any(greaterThan(x, closureMax)))) {
+        bool outside = any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax));
+        if (outside && !open) {
             // Through a closed face: beyond a closed side on some axis, and on each other axis within the content
-            // or beyond a closed side too (a room's edge or corner).
+            // or beyond a closed side too (a room's edge or corner). Else through an open side: the grid's box.
             const vec3 beyondClosed =
                 max(vec3(lessThan(x, closureMin)) * closedLow, vec3(greaterThan(x, closureMax)) * closedHigh);
             const vec3 within = vec3(greaterThanEqual(x, contentMin)) * vec3(lessThanEqual(x, contentMax));
             open =
                 all(lessThan(beyondClosed, vec3(0.5))) || any(lessThan(max(beyondClosed, within), vec3(0.5)));
+            if (open) {
+                closeMin = gridOrigin;
+                closeMax = gridMax;
+                outside = any(lessThan(x, gridOrigin)) || any(greaterThan(x, gridMax));
+            }
         }
-        const vec3 closeMin = open ? gridOrigin : closureMin, closeMax = open ? gridMax : closureMax;
-        if (any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax))) {
-            if (++stepsPastBox > (open ? CONE_STEPS_PAST_GRID : CONE_STEPS_PAST_CLOSED_FACE)) break;
-        }
+        if (outside && ++stepsPastBox > (open ? CONE_STEPS_PAST_GRID : CONE_STEPS_PAST_CLOSED_FACE)) break;
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
         const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);
         const ConeSampleAt at = coneSampleAt(x, min(mip, maxMip), p, n, v0, closeMin, closeMax);
