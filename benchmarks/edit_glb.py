@@ -8,6 +8,11 @@ Usage:
   edit_glb.py black IN.glb OUT.glb KEEP...          every material's base colour black but those named KEEP
                                                     (emission and the dielectric F0 stay: with --voxel-glossy off
                                                     and a --secondary diffuse reference they light nothing)
+  edit_glb.py absorb IN.glb OUT.glb MATERIAL...    the materials named MATERIAL reflect nothing: base colour black,
+                                                    metallic 1 (F0 = the base colour: 0); they still occlude
+  edit_glb.py glow IN.glb OUT.glb MATERIAL...      no punctual lights; the materials named MATERIAL emit radiance 1
+                                                    (emissiveFactor 1, 1, 1): a uniformly glowing object whose light
+                                                    reaching the others tests the cones' geometry alone
   edit_glb.py pad IN.glb OUT.glb MESH HALF DELTA    four nodes of mesh MESH scaled to 1/1000, at x = ±(HALF + DELTA)
                                                     and z = ±(HALF + DELTA), y = 0, in the first scene: they widen
                                                     the bounds of a room centred on x = z = 0 whose walls stand at
@@ -72,6 +77,28 @@ def black(document, keep):
             material.setdefault('pbrMetallicRoughness', {})['baseColorFactor'] = [0.0, 0.0, 0.0, 1.0]
 
 
+def named_materials(document, names):
+    materials = [m for m in document.get('materials', []) if m.get('name') in names]
+    missing = names - {m.get('name') for m in materials}
+    if missing:
+        sys.exit(f'edit_glb.py: no material named {", ".join(sorted(missing))}')
+    return materials
+
+
+def absorb(document, names):
+    for material in named_materials(document, names):
+        pbr = material.setdefault('pbrMetallicRoughness', {})
+        pbr['baseColorFactor'] = [0.0, 0.0, 0.0, 1.0]
+        pbr['metallicFactor'] = 1.0
+
+
+def glow(document, names):
+    for material in named_materials(document, names):
+        material['emissiveFactor'] = [1.0, 1.0, 1.0]
+    for node in document.get('nodes', []):
+        node.get('extensions', {}).pop('KHR_lights_punctual', None)
+
+
 def pad(document, mesh_name, half, delta):
     meshes = [i for i, m in enumerate(document['meshes']) if m.get('name') == mesh_name]
     if not meshes:
@@ -83,7 +110,7 @@ def pad(document, mesh_name, half, delta):
 
 
 def main(argv):
-    if len(argv) < 4 or argv[1] not in ('drop', 'black', 'pad'):
+    if len(argv) < 4 or argv[1] not in ('drop', 'black', 'absorb', 'glow', 'pad'):
         sys.exit(__doc__)
     command, source, target, args = argv[1], argv[2], argv[3], argv[4:]
     document, rest = read(source)
@@ -91,6 +118,10 @@ def main(argv):
         drop(document, set(args))
     elif command == 'black':
         black(document, set(args))
+    elif command == 'absorb':
+        absorb(document, set(args))
+    elif command == 'glow':
+        glow(document, set(args))
     else:
         if len(args) != 3:
             sys.exit(__doc__)
