@@ -68,21 +68,20 @@ def drop(document, names):
         document.pop('animations', None)
 
 
-def black(document, keep):
-    missing = keep - {material.get('name') for material in document.get('materials', [])}
-    if missing:
-        sys.exit(f'edit_glb.py: no material named {", ".join(sorted(missing))}')
-    for material in document.get('materials', []):
-        if material.get('name') not in keep:
-            material.setdefault('pbrMetallicRoughness', {})['baseColorFactor'] = [0.0, 0.0, 0.0, 1.0]
-
-
 def named_materials(document, names):
+    # The materials named `names`; exits naming those that match none.
     materials = [m for m in document.get('materials', []) if m.get('name') in names]
     missing = names - {m.get('name') for m in materials}
     if missing:
         sys.exit(f'edit_glb.py: no material named {", ".join(sorted(missing))}')
     return materials
+
+
+def black(document, keep):
+    named_materials(document, keep)  # every name must match one
+    for material in document.get('materials', []):
+        if material.get('name') not in keep:
+            material.setdefault('pbrMetallicRoughness', {})['baseColorFactor'] = [0.0, 0.0, 0.0, 1.0]
 
 
 def absorb(document, names):

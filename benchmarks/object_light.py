@@ -60,19 +60,15 @@ def main(argv):
             absorb_ref = data[('absorb', voxels[0])][name][part]['reference_sum']
             if whole_ref <= 0:
                 continue
+            def cell(label, n):
+                return data[(label, n)][name][part]
+
             row = [name, f'{(whole_ref - absorb_ref) / whole_ref:.3f}']
-            for label in ('whole', 'absorb', 'glow'):
-                cells = [f"{data[(label, n)][name][part]['ratio']:.3f}" for n in voxels]
-                if label == 'glow':
-                    glow_cells = cells
-                    continue
-                row += cells
-                if label == 'absorb':
-                    for n in voxels:
-                        own_vct = (data[('whole', n)][name][part]['vct_sum'] -
-                                   data[('absorb', n)][name][part]['vct_sum'])
-                        row.append(f'{ratio(own_vct, whole_ref - absorb_ref):.3f}')
-            row += glow_cells
+            row += [f"{cell('whole', n)['ratio']:.3f}" for n in voxels]
+            row += [f"{cell('absorb', n)['ratio']:.3f}" for n in voxels]
+            row += [f"{ratio(cell('whole', n)['vct_sum'] - cell('absorb', n)['vct_sum'], whole_ref - absorb_ref):.3f}"
+                    for n in voxels]
+            row += [f"{cell('glow', n)['ratio']:.3f}" for n in voxels]
             print('| ' + ' | '.join(row) + ' |')
         print()
 
