@@ -68,14 +68,22 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // Round 18's cones close at a room's floor and ceiling (design §5.6), and light that leaked out through them
     // stays in the room: Lambertian 42.68 / 38.57 / 40.82 dB, glossy 40.00 / 38.26 / 38.75 dB.
     // The margins are each measurement less about 0.25 dB.
+    // On the H200 (round 20) the same code measured the diffuse part lower: Lambertian 42.30 / 38.59 / 40.83 dB,
+    // glossy 39.69 / 38.28 / 38.76 dB. Neither the pixel layout nor anisotropic filtering (its two per-device
+    // defaults that reach this image) moves lavapipe's figures, so the 0.3–0.4 dB is the hardware's arithmetic
+    // (its texture filter's fixed-point weights, say); a GPU's diffuse margins are the H200's less 0.25 dB.
     struct Case {
         const char* glossy;
         double diffuse, specular, display;  // lowest PSNRs allowed
+        double gpuDiffuse;                  // the diffuse part's on a GPU
     };
-    for (const Case& c : {Case{"off", 42.4, 38.3, 40.55}, Case{"on", 39.75, 38.0, 38.5}}) {
+    for (const Case& c : {Case{"off", 42.4, 38.3, 40.55, 42.05}, Case{"on", 39.75, 38.0, 38.5, 39.45}}) {
         const std::string suffix = std::string("_glossy_") + c.glossy;
         const fs::path reference = render("converge_s1" + suffix, {"--trace-scale", "1", "--cone-rotation",
                                                                    "off", "--voxel-glossy", c.glossy});
+        const std::string device =
+            json::parse(std::ifstream(reference / "timings.json")).value("device", std::string());
+        const bool cpuDevice = device.find("llvmpipe") != std::string::npos;
         const fs::path upsampled =
             render("converge_s4" + suffix, {"--cone-rotation", "off", "--voxel-glossy", c.glossy});
         const double diffuse = psnr(reference / "diffuse_indirect.exr", upsampled / "diffuse_indirect.exr");
@@ -88,7 +96,7 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
             "static cornell, glossy voxels %s, scale 4 vs 1 after 64 frames: diffuse %.2f dB, specular "
             "%.2f dB, final sRGB %.2f dB\n",
             c.glossy, diffuse, specular, display);
-        EXPECT_GE(diffuse, c.diffuse) << c.glossy;
+        EXPECT_GE(diffuse, cpuDevice ? c.diffuse : c.gpuDiffuse) << c.glossy << " on " << device;
         EXPECT_GE(specular, c.specular) << c.glossy;
         EXPECT_GE(display, c.display) << c.glossy;
     }
@@ -139,19 +147,32 @@ TEST(Report, ReportModeMeasuresEveryConfigurationEveryFrame) {
             EXPECT_GT(c["frame_median_ms"].get<double>(), 0.0);
         }
     }
-    // The cut: in frame 6 the view jumps; the first frame after it is worse than the frame before, and the
-    // history brings it back within the 5 frames after (sg + adaptive at scale 4).
+    // The cut: in frame 6 the view jumps. Without adaptive re-tracing the pixels whose history is lost are
+    // interpolated from the scale-4 trace, and the frame drops below the one before it; the re-tracing fills them
+    // with their own samples (the frame after the cut is then about as good as the one before: lavapipe 35.58 dB
+    // before, 35.42 at the cut; the H200 35.10 and 35.16, which is why this no longer asks the cut to be worse);
+    // and the history brings it back within the 5 frames after (sg + adaptive at scale 4).
+    // Measured (lavapipe, final sRGB PSNR, frames 5 / 6 / 11): sg 31.98 / 29.24 / 33.72, sg + adaptive 35.58 /
+    // 35.42 / 38.02. The margins are about half of each measured gap.
     const json& cut = report["runs"][1];
     EXPECT_EQ(cut["cut_frame"], 6);
-    const json& sg = cut["configs"][12];
-    ASSERT_EQ(sg["name"], "s4 sg+adaptive");
-    const auto& finalCurve = sg["curves"]["final_srgb_psnr"];
-    const double before = finalCurve[5].get<double>(), atCut = finalCurve[6].get<double>(),
-                 after = finalCurve[11].get<double>();
-    std::printf("cut: final sRGB PSNR %.2f dB before, %.2f at the cut, %.2f five frames later\n", before,
-                atCut, after);
-    EXPECT_LT(atCut, before);
-    EXPECT_GT(after, atCut + 1.0);
+    const auto curveOf = [&](const std::string& name) {
+        for (const json& c : cut["configs"])
+            if (c["name"] == name) return c["curves"]["final_srgb_psnr"];
+        ADD_FAILURE() << "no configuration " << name;
+        return json::array({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+    };
+    const json sg = curveOf("s4 sg"), adaptive = curveOf("s4 sg+adaptive");
+    const double before = sg[5].get<double>(), atCut = sg[6].get<double>();
+    const double adaptiveBefore = adaptive[5].get<double>(), adaptiveAtCut = adaptive[6].get<double>(),
+                 adaptiveAfter = adaptive[11].get<double>();
+    std::printf(
+        "cut: final sRGB PSNR, sg %.2f dB before, %.2f at the cut; sg + adaptive %.2f before, %.2f at the "
+        "cut, %.2f five frames later\n",
+        before, atCut, adaptiveBefore, adaptiveAtCut, adaptiveAfter);
+    EXPECT_LE(atCut, before - 1.3);                 // measured 2.74 dB lower
+    EXPECT_GE(adaptiveAtCut, atCut + 3.0);          // measured 6.18 dB higher
+    EXPECT_GE(adaptiveAfter, adaptiveAtCut + 1.3);  // measured 2.60 dB higher
     EXPECT_TRUE(fs::is_regular_file(dir / "report.md"));
 }
 
