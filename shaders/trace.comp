@@ -13,7 +13,10 @@
 #include "lib/upsample_guide.glsl"
 #include "lib/indirect_pack.glsl"
 
-layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE) in;
+// z: the invocations per pixel, 1 (the pixel layout: a pixel's cones one after the other) or CONE_LANES_PER_PIXEL
+// (the cone layout: one cone each; RenderSettings::TraceLayout, lib/cone_trace.glsl).
+layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE,
+       local_size_z_id = VCT_TRACE_SPEC_CONE_LANES) in;
 
 // The trace scale s (lib/shared.h, VCT_SPEC_TRACE_SCALE: the one way it reaches the shaders).
 layout(constant_id = VCT_SPEC_TRACE_SCALE) const int SCALE = 4;
@@ -92,32 +95,18 @@ uvec4 accumulateHistory(ivec2 pixel, vec2 uv, Guide here, IndirectSample s) {
     return packIndirect(diffuse, specular);
 }
 
-void main() {
-    const ivec2 lowPixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(lowPixel, imageSize(indirectImage)))) return;
-    // Clamped at the right and bottom edges (the low-res image rounds up); upsample clamps the same way.
-    const ivec2 pixel = min(lowPixel * SCALE + frame.upsample.traceOffset, ivec2(frame.imageSize) - 1);
-    const float depth = texelFetch(depthTexture, pixel, 0).r;
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
-    if (isBackground(depth) || isDegeneratePosition(worldFromDepth(frame.invViewProj, uv, depth))) {
-        // Nothing to light; the guide marks the sample as background for the upsample.
-        imageStore(indirectImage, lowPixel, packIndirect(vec4(0.0, 0.0, 0.0, 1.0), vec4(0.0, 0.0, 0.0, 1.0)));
-        if (!FULL_RESOLUTION) imageStore(guidePositionImage, lowPixel, vec4(0.0));
-        return;
-    }
-    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
-    // The sample's guide for the upsample weights, computed once here rather than by every pixel it serves.
-    const Guide g = guideFromGBuffer(normalRoughness, worldFromDepth(frame.invViewProj, uv, depth),
-                                     frame.cameraPosition, frame.upsample.kappa);
-    // No grid yet: no indirect light.
-    IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
-    // The turned set's noise is that of the low-res sample (of the pixel at trace scale 1): neighbouring samples,
-    // which the upsample combines, then get interleaved gradient noise's far-apart values. Indexed by the traced
-    // pixel, s apart, the noise ran along diagonals: hatching on cornell's walls at 1280×720, and 1485 still
-    // pixels moving by more than 2 of 255 levels from frame 64 to 65 at 320×180 against 991 (docs/design.md §5.5).
-    if (frame.voxels.voxelSize > 0.0)
-        s = traceSurface(voxels, g.p, g.n, viewDirection(frame.cameraPosition - g.p, g.n), normalRoughness.w,
-                         coneSetOf(FULL_RESOLUTION ? pixel : lowPixel, frame.upsample.frameIndex));
+// The cone layout's radiances, per cone and pixel of the workgroup.
+const bool CONE_LANES = gl_WorkGroupSize.z > 1;
+shared vec3 coneRadiance[CONE_LANES_PER_PIXEL][VCT_TILE_SIZE * VCT_TILE_SIZE];
+
+// Low-res pixel `lowPixel` has nothing to light: the guide marks the sample as background for the upsample.
+void writeBackground(ivec2 lowPixel) {
+    imageStore(indirectImage, lowPixel, packIndirect(vec4(0.0, 0.0, 0.0, 1.0), vec4(0.0, 0.0, 0.0, 1.0)));
+    if (!FULL_RESOLUTION) imageStore(guidePositionImage, lowPixel, vec4(0.0));
+}
+
+// Writes low-res pixel `lowPixel`'s sample s, traced at full-res `pixel` (uv its centre) of surface g.
+void writeSample(ivec2 lowPixel, ivec2 pixel, vec2 uv, Guide g, IndirectSample s) {
     if (FULL_RESOLUTION) {
         // Weight 1: one fresh sample, added to the history as the upsample adds a pixel-own sample
         // (docs/design.md §6.5, the same reprojection, validation, decay γ and cap in own samples).
@@ -129,4 +118,55 @@ void main() {
     imageStore(guidePositionImage, lowPixel, vec4(g.p, 1.0));
     imageStore(guideNormalImage, lowPixel, vec4(g.n, g.specularSharpness));
     imageStore(guideAxisImage, lowPixel, vec4(g.specularAxis, 0.0));
+}
+
+void main() {
+    const ivec2 lowPixel = ivec2(gl_GlobalInvocationID.xy);
+    const bool inside = all(lessThan(lowPixel, imageSize(indirectImage)));
+    // The cone layout's invocations all reach its barrier.
+    if (!CONE_LANES && !inside) return;
+    // Clamped at the right and bottom edges (the low-res image rounds up); upsample clamps the same way.
+    const ivec2 pixel = min(lowPixel * SCALE + frame.upsample.traceOffset, ivec2(frame.imageSize) - 1);
+    const float depth = texelFetch(depthTexture, pixel, 0).r;
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
+    const bool lit =
+        inside && !isBackground(depth) && !isDegeneratePosition(worldFromDepth(frame.invViewProj, uv, depth));
+    if (!CONE_LANES && !lit) {
+        writeBackground(lowPixel);
+        return;
+    }
+    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
+    // The sample's guide for the upsample weights, computed once here rather than by every pixel it serves.
+    const Guide g = guideFromGBuffer(normalRoughness, worldFromDepth(frame.invViewProj, uv, depth),
+                                     frame.cameraPosition, frame.upsample.kappa);
+    // No grid yet: no indirect light.
+    const bool traced = lit && frame.voxels.voxelSize > 0.0;
+    // The turned set's noise is that of the low-res sample (of the pixel at trace scale 1): neighbouring samples,
+    // which the upsample combines, then get interleaved gradient noise's far-apart values. Indexed by the traced
+    // pixel, s apart, the noise ran along diagonals: hatching on cornell's walls at 1280×720, and 1485 still
+    // pixels moving by more than 2 of 255 levels from frame 64 to 65 at 320×180 against 991 (docs/design.md §5.5).
+    const ConeSet set = coneSetOf(FULL_RESOLUTION ? pixel : lowPixel, frame.upsample.frameIndex);
+    const vec3 v = viewDirection(frame.cameraPosition - g.p, g.n);
+    IndirectSample s = IndirectSample(vec3(0.0), vec3(0.0));
+    if (!CONE_LANES) {
+        if (traced) s = traceSurface(voxels, g.p, g.n, v, normalRoughness.w, set);
+        writeSample(lowPixel, pixel, uv, g, s);
+        return;
+    }
+    const int cone = int(gl_LocalInvocationID.z);
+    const uint slot = gl_LocalInvocationID.y * VCT_TILE_SIZE + gl_LocalInvocationID.x;
+    if (traced && cone < SURFACE_CONE_COUNT)
+        coneRadiance[cone][slot] = traceSurfaceCone(voxels, g.p, g.n, v, normalRoughness.w, set, cone);
+    barrier();
+    if (cone != 0 || !inside) return;
+    if (!lit) {
+        writeBackground(lowPixel);
+        return;
+    }
+    if (traced) {
+        vec3 radiance[SURFACE_CONE_COUNT];
+        for (int i = 0; i < SURFACE_CONE_COUNT; ++i) radiance[i] = coneRadiance[i][slot];
+        s = surfaceFromCones(g.n, v, normalRoughness.w, set, radiance);
+    }
+    writeSample(lowPixel, pixel, uv, g, s);
 }

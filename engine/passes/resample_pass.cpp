@@ -27,10 +27,11 @@ ResourceTable resampleResources(const VoxelSource& voxels) {
 
 }  // namespace
 
-ResamplePass::ResamplePass(const vk::Context& context, const VoxelSource& voxels)
+ResamplePass::ResamplePass(const vk::Context& context, uint32_t coneLanes, const VoxelSource& voxels)
     : resources_(resampleResources(voxels)) {
+    // VCT_TRACE_SPEC_CONE_LANES (constant 0, the trace scale, is not the resample's).
     pipeline_ = vk::Pipeline::compute(context, name(), "resample.comp", resources_.bindings(), 0,
-                                      voxels.specialization());
+                                      voxels.specialization({0u, coneLanes}));
 }
 
 void ResamplePass::execute(const FrameContext& frame) {

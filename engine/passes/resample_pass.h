@@ -11,7 +11,8 @@ namespace vct {
 
 class ResamplePass : public Pass {
   public:
-    ResamplePass(const vk::Context& context, const VoxelSource& voxels);
+    // `coneLanes`: traceConeLanes (passes/trace_pass.h).
+    ResamplePass(const vk::Context& context, uint32_t coneLanes, const VoxelSource& voxels);
     const char* name() const override { return "resample"; }
     void execute(const FrameContext& frame) override;
 

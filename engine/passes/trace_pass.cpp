@@ -28,11 +28,20 @@ ResourceTable traceResources(Target output, const VoxelSource& voxels) {
 
 }  // namespace
 
-TracePass::TracePass(const vk::Context& context, uint32_t traceScale, const VoxelSource& voxels)
+uint32_t traceConeLanes(const vk::Context& context, RenderSettings::TraceLayout layout) {
+    using Layout = RenderSettings::TraceLayout;
+    const bool cones = layout == Layout::Cone || (layout == Layout::Auto && context.properties().deviceType !=
+                                                                                VK_PHYSICAL_DEVICE_TYPE_CPU);
+    return cones ? VCT_CONE_LANES_PER_PIXEL : 1u;
+}
+
+TracePass::TracePass(const vk::Context& context, uint32_t traceScale, uint32_t coneLanes,
+                     const VoxelSource& voxels)
     : output_(traceScale <= 1 ? Target::indirect : Target::indirectLow),
       resources_(traceResources(output_, voxels)) {
+    // VCT_SPEC_TRACE_SCALE, VCT_TRACE_SPEC_CONE_LANES
     pipeline_ = vk::Pipeline::compute(context, name(), "trace.comp", resources_.bindings(), 0,
-                                      voxels.specialization({traceScale}));  // VCT_SPEC_TRACE_SCALE
+                                      voxels.specialization({traceScale, coneLanes}));
 }
 
 void TracePass::execute(const FrameContext& frame) {

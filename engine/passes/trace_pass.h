@@ -5,14 +5,21 @@
 
 #include "passes/voxel_source.h"
 #include "render/pass.h"
+#include "render/settings.h"
 #include "vk/pipeline.h"
 
 namespace vct {
 
+// Invocations per pixel of the trace and resample pipelines (VCT_TRACE_SPEC_CONE_LANES, lib/cone_trace.glsl): 1 for
+// the pixel layout, VCT_CONE_LANES_PER_PIXEL for the cone layout; auto picks by device type (the cone layout on a
+// GPU).
+uint32_t traceConeLanes(const vk::Context& context, RenderSettings::TraceLayout layout);
+
 class TracePass : public Pass {
   public:
-    // Trace scale 1 writes the full-res indirect targets directly (no upsample pass follows).
-    TracePass(const vk::Context& context, uint32_t traceScale, const VoxelSource& voxels);
+    // Trace scale 1 writes the full-res indirect targets directly (no upsample pass follows). `coneLanes`:
+    // traceConeLanes.
+    TracePass(const vk::Context& context, uint32_t traceScale, uint32_t coneLanes, const VoxelSource& voxels);
     const char* name() const override { return "trace"; }
     void execute(const FrameContext& frame) override;
 

@@ -98,12 +98,14 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
         const VoxelSource voxels = VoxelSource::of(*voxelGrid_, environment);
-        passes_.push_back(std::make_unique<TracePass>(context, settings.traceScale, voxels));
+        const uint32_t coneLanes = traceConeLanes(context, settings.traceLayout);
+        passes_.push_back(std::make_unique<TracePass>(context, settings.traceScale, coneLanes, voxels));
         // Upsampling and adaptive re-tracing only where something is traced at low resolution: at scale 1 the
         // trace writes the full-res targets itself.
         if (settings.traceScale > 1) {
             passes_.push_back(std::make_unique<UpsamplePass>(context));
-            if (settings.adaptive) passes_.push_back(std::make_unique<ResamplePass>(context, voxels));
+            if (settings.adaptive)
+                passes_.push_back(std::make_unique<ResamplePass>(context, coneLanes, voxels));
         }
     }
     // Blended surfaces, drawn forward over the opaque frame's depth into their own layer, which composite puts

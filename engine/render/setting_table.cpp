@@ -101,6 +101,12 @@ const SettingSpec kTable[] = {
              "samples (fast on a GPU); auto: by device type; the same image (docs/design.md sec. 6.8)",
      .value = NamedValue{&S::upsampleLayout, kUpsampleLayoutNames}, .apply = A::Live, .group = G::Upsample,
      .demo = true, .json = true, .widget = W::Combo, .label = "upsample layout"},
+    {.name = "trace-layout", .valueName = "auto|pixel|cone",
+     .help = "trace and re-trace invocations: one per pixel, its cones in turn (fast on a CPU device), or one per "
+             "cone (fast on a GPU, where few pixels wait on one invocation's reads); auto: by device type; the "
+             "same image (docs/design.md sec. 5.5)",
+     .value = NamedValue{&S::traceLayout, kTraceLayoutNames}, .apply = A::Rebuild, .group = G::Upsample,
+     .demo = true, .json = true, .widget = W::Combo, .label = "trace layout"},
     {.name = "beta", .valueName = "B", .help = "SG lobe weight exponent",
      .value = FloatValue{&S::beta, 0.01f, 1000.0f}, .apply = A::Live, .group = G::Upsample, .demo = true,
      .json = true, .widget = W::LogSlider, .label = "beta"},

@@ -78,7 +78,8 @@ struct ChoiceValue {  // one of a few unsigned integers
     }
 };
 struct NamedValue {  // an enum by name: names[i] is the enumerator of value i
-    std::variant<RenderSettings::Weights RenderSettings::*, RenderSettings::UpsampleLayout RenderSettings::*>
+    std::variant<RenderSettings::Weights RenderSettings::*, RenderSettings::UpsampleLayout RenderSettings::*,
+                 RenderSettings::TraceLayout RenderSettings::*>
         member;
     std::span<const char* const> names;
     size_t get(const RenderSettings& s) const {

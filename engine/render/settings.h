@@ -106,6 +106,13 @@ struct RenderSettings {
     // fast on a GPU); auto picks by device type. The images are the same.
     enum class UpsampleLayout { Auto, Cell, Pixel };  // kUpsampleLayoutNames in this order
     UpsampleLayout upsampleLayout = UpsampleLayout::Auto;
+    // How the trace and re-trace passes map cones to invocations (lib/cone_trace.glsl, docs/design.md §5.5): a
+    // pixel's cones one after the other in one invocation (pixel: fast on a CPU device, where an invocation is a
+    // SIMD lane and a pixel's lanes would diverge), or one invocation per cone, combined through shared memory
+    // (cone: on a GPU a pass that traces few pixels waits on one invocation's chain of texture reads, which this
+    // shortens 7×); auto picks by device type. The images are the same.
+    enum class TraceLayout { Auto, Pixel, Cone };  // kTraceLayoutNames in this order
+    TraceLayout traceLayout = TraceLayout::Auto;
 
     // ---- material filtering ----
     bool toksvig = true;     // normal-map mip length → effective roughness (docs/design.md §4.1)
@@ -125,6 +132,7 @@ inline const char* weightsName(RenderSettings::Weights weights) {
 }
 
 inline constexpr const char* kUpsampleLayoutNames[] = {"auto", "cell", "pixel"};
+inline constexpr const char* kTraceLayoutNames[] = {"auto", "pixel", "cone"};
 
 // Largest κ (--kappa): glsl::SG_MAX_KAPPA, the largest fp16 value, since the trace stores each sample's
 // smoothed sharpness λ̄ ≤ κ in a 16-bit float (lib/upsample_weights.glsl; tests/upsample_weights_test.cpp

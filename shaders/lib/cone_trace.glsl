@@ -290,15 +290,64 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
     return diffuseFromCones(radiance);
 }
 
-// Both cone sets from surface point p with unit normal n, seen along unit v (towards the camera).
-// Specular: the GGX lobe as an SG (lib/cone.glsl). The share of it that the specular cone stands for is read
-// from that cone; the rest, which a rough lobe spreads beyond the widest cone, from the diffuse cones weighted
-// by the lobe at their directions. A single cone capped at 45° saw only the lobe's centre: on cornell's rough
-// walls (α = 0.81) it reflected the dark front wall and ceiling where the path-traced truth also sees the
-// lit floor.
-// The specular cone reads whole mips (coneWholeMip) with every set, as the fixed and turned diffuse cones do: its
-// footprint grows by up to 2× (a glossy reflection a little blurrier), for 0.86× the default frame's trace
-// (docs/design.md §5.3).
+// The specular cone of a surface with unit normal n seen along unit v, of GGX roughness alpha, in `set`: the GGX lobe
+// as an SG (lib/cone.glsl) about xi, the cone along `direction` (xi, or a direction of the lobe for the jittered set).
+struct SpecularCone {
+    vec3 xi;          // the lobe's axis
+    vec3 direction;   // the cone's
+    float tanHalf;    // its aperture
+    float invLambda;  // the lobe's inverse sharpness
+};
+
+SpecularCone specularConeOf(vec3 n, vec3 v, float alpha, ConeSet set) {
+    SpecularCone cone;
+    cone.xi = specularConeDirection(n, v);
+    cone.tanHalf = specularConeTanHalf(alpha);
+    cone.invLambda = specularLobeInverseSharpness(alpha, dot(n, v));
+    cone.direction = cone.xi;
+    if (set.jittered) {
+        // A direction of the lobe inside the cone; one that would leave below the surface (a grazing lobe's
+        // lower edge) keeps the axis.
+        const float cosTheta = sgConeSampleCosine(cone.invLambda, cone.tanHalf, set.u.z);
+        const vec3 w = coneDirectionAt(cone.xi, 1.0 - cosTheta * cosTheta, 2.0 * PI * set.u.w);
+        cone.direction = dot(w, n) > 0.02 ? w : cone.xi;
+    }
+    return cone;
+}
+
+// The specular cone's march. It reads whole mips (coneWholeMip) with every set, as the fixed and turned diffuse
+// cones do: its footprint grows by up to 2× (a glossy reflection a little blurrier), for 0.86× the default frame's
+// trace (docs/design.md §5.3).
+vec3 marchSpecularCone(sampler3D voxels, vec3 p, vec3 n, ConeSet set, SpecularCone cone) {
+    return traceCone(voxels, p, n, coneOrigin(p, n, set), cone.direction, cone.tanHalf, coneClearance(set),
+                     true, set.stepPhase)
+        .rgb;
+}
+
+// The specular light from the specular cone's radiance and the diffuse cones' (`directions`, `cones`): the share
+// of the lobe that the specular cone stands for is read from that cone; the rest, which a rough lobe spreads beyond
+// the widest cone, from the diffuse cones weighted by the lobe at their directions. A single cone capped at 45° saw
+// only the lobe's centre: on cornell's rough walls (α = 0.81) it reflected the dark front wall and ceiling where the
+// path-traced truth also sees the lit floor.
+vec3 specularFromCones(vec3 n, vec3 v, float alpha, SpecularCone cone, vec3 specular,
+                       const vec3 directions[DIFFUSE_CONE_COUNT], const vec3 cones[DIFFUSE_CONE_COUNT]) {
+    const float share = specularConeShare(alpha, dot(n, v));
+    if (share < 1.0) {
+        vec3 lobe = vec3(0.0);
+        float lobeWeight = 0.0;
+        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
+            const float w = sgDiffuseConeWeight(cone.xi, cone.invLambda, n, directions[i]);
+            lobe += w * cones[i];
+            lobeWeight += w;
+        }
+        // No diffuse cone under the lobe at all: the specular cone stands for all of it.
+        if (lobeWeight > 0.0) specular = share * specular + (1.0 - share) * lobe / lobeWeight;
+    }
+    return specular;
+}
+
+// Both cone sets from surface point p with unit normal n, seen along unit v (towards the camera), one cone after the
+// other (an invocation per pixel; the cone layout, below, traces them in parallel and combines them the same way).
 IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness,
                             ConeSet set) {
     vec3 directions[DIFFUSE_CONE_COUNT];
@@ -306,46 +355,94 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
     vec3 cones[DIFFUSE_CONE_COUNT];
     traceDiffuseCones(voxels, p, n, set, directions, cones);
     const float alpha = alphaFromPerceptual(perceptualRoughness);
-    const vec3 xi = specularConeDirection(n, v);
-    const float tanHalf = specularConeTanHalf(alpha);
-    const float invLambda = specularLobeInverseSharpness(alpha, dot(n, v));
-    vec3 direction = xi;
-    if (set.jittered) {
-        // A direction of the lobe inside the cone; one that would leave below the surface (a grazing lobe's
-        // lower edge) keeps the axis.
-        const float cosTheta = sgConeSampleCosine(invLambda, tanHalf, set.u.z);
-        const vec3 w = coneDirectionAt(xi, 1.0 - cosTheta * cosTheta, 2.0 * PI * set.u.w);
-        direction = dot(w, n) > 0.02 ? w : xi;
-    }
-    vec3 specular = traceCone(voxels, p, n, coneOrigin(p, n, set), direction, tanHalf, coneClearance(set),
-                              true, set.stepPhase)
-                        .rgb;
-    const float share = specularConeShare(alpha, dot(n, v));
-    if (share < 1.0) {
-        vec3 lobe = vec3(0.0);
-        float lobeWeight = 0.0;
-        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
-            const float w = sgDiffuseConeWeight(xi, invLambda, n, directions[i]);
-            lobe += w * cones[i];
-            lobeWeight += w;
-        }
-        // No diffuse cone under the lobe at all: the specular cone stands for all of it.
-        if (lobeWeight > 0.0) specular = share * specular + (1.0 - share) * lobe / lobeWeight;
-    }
-    return IndirectSample(diffuseFromCones(cones), specular);
+    const SpecularCone cone = specularConeOf(n, v, alpha, set);
+    const vec3 specular = marchSpecularCone(voxels, p, n, set, cone);
+    return IndirectSample(diffuseFromCones(cones),
+                          specularFromCones(n, v, alpha, cone, specular, directions, cones));
+}
+
+// ---- one invocation per cone (the cone layout: RenderSettings::TraceLayout, docs/design.md §5.5) ----
+// On a GPU a pass that traces few pixels (the low-res trace below 1280×720, the re-trace of a few hundred) costs one
+// invocation's chain of dependent texture reads, whatever its pixel count: on an NVIDIA H200 the scale-4 trace took
+// 0.072 ms at 320×180 and at 640×360 alike, the re-trace of a few dozen pixels 0.070 ms. Each of a pixel's cones in
+// its own invocation makes that chain one cone long instead of seven. The invocations of a pixel share its
+// surface; each marches cone `index` (0 .. DIFFUSE_CONE_COUNT − 1 the diffuse cones, SPECULAR_CONE_INDEX the
+// specular one), and one combines the radiances (surfaceFromCones) with the arithmetic of traceSurface.
+const int SPECULAR_CONE_INDEX = DIFFUSE_CONE_COUNT;
+const int SURFACE_CONE_COUNT = DIFFUSE_CONE_COUNT + 1;
+// Invocations per pixel in the cone layout: the cones, rounded up to a power of two (one idles).
+const int CONE_LANES_PER_PIXEL = VCT_CONE_LANES_PER_PIXEL;
+
+// Cone `index` of the surface's set (`index` < SURFACE_CONE_COUNT): its incoming radiance, as traceSurface marches it.
+vec3 traceSurfaceCone(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptualRoughness, ConeSet set,
+                      int index) {
+    if (index == SPECULAR_CONE_INDEX)
+        return marchSpecularCone(voxels, p, n, set,
+                                 specularConeOf(n, v, alphaFromPerceptual(perceptualRoughness), set));
+    const vec3 direction = diffuseConeDirectionOf(n, index, set);
+    const vec3 origin = coneOrigin(p, n, set);
+    const float clearance = coneClearance(set);
+    // The fixed and turned sets read whole mips, the jittered set's narrow footprints a blend (traceDiffuseCones).
+    if (set.jittered)
+        return traceCone(voxels, p, n, origin, direction, DIFFUSE_CONE_TAN_HALF, clearance, false,
+                         set.stepPhase)
+            .rgb;
+    return traceCone(voxels, p, n, origin, direction, DIFFUSE_CONE_TAN_HALF, clearance, true, set.stepPhase)
+        .rgb;
+}
+
+// The surface's light from its cones' radiances (`radiance[SPECULAR_CONE_INDEX]` the specular cone's).
+IndirectSample surfaceFromCones(vec3 n, vec3 v, float perceptualRoughness, ConeSet set,
+                                const vec3 radiance[SURFACE_CONE_COUNT]) {
+    vec3 directions[DIFFUSE_CONE_COUNT];
+    diffuseConeDirectionsOf(n, set, directions);
+    vec3 cones[DIFFUSE_CONE_COUNT];
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) cones[i] = radiance[i];
+    const float alpha = alphaFromPerceptual(perceptualRoughness);
+    const SpecularCone cone = specularConeOf(n, v, alpha, set);
+    return IndirectSample(
+        diffuseFromCones(cones),
+        specularFromCones(n, v, alpha, cone, radiance[SPECULAR_CONE_INDEX], directions, cones));
+}
+
+// ---- a full-res pixel ----
+// What its cones need of full-res `pixel`: its surface from the G-buffer (none on the background, with no grid, or
+// at a position that cannot be shaded) and its cone set.
+struct PixelSurface {
+    bool lit;  // false: no indirect light
+    vec3 p, n, v;
+    float perceptualRoughness;
+    ConeSet set;
+};
+
+PixelSurface pixelSurface(sampler2D depthTexture, sampler2D normalRoughnessTexture, ivec2 pixel) {
+    PixelSurface s;
+    s.lit = false;
+    s.p = vec3(0.0);
+    s.n = vec3(0.0, 0.0, 1.0);
+    s.v = vec3(0.0, 0.0, 1.0);
+    s.perceptualRoughness = 1.0;
+    s.set = FIXED_CONE_SET;
+    const float depth = texelFetch(depthTexture, pixel, 0).r;
+    if (isBackground(depth) || frame.voxels.voxelSize <= 0.0) return s;
+    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
+    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
+    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
+    if (isDegeneratePosition(p)) return s;
+    s.lit = true;
+    s.p = p;
+    s.n = gbufferNormal(normalRoughness);
+    s.v = viewDirection(frame.cameraPosition - p, s.n);
+    s.perceptualRoughness = normalRoughness.w;
+    s.set = coneSetOf(pixel, frame.upsample.frameIndex);
+    return s;
 }
 
 IndirectSample tracePixel(sampler3D voxels, sampler2D depthTexture, sampler2D normalRoughnessTexture,
                           ivec2 pixel) {
-    const float depth = texelFetch(depthTexture, pixel, 0).r;
-    if (isBackground(depth) || frame.voxels.voxelSize <= 0.0) return IndirectSample(vec3(0.0), vec3(0.0));
-    const vec2 uv = (vec2(pixel) + 0.5) * frame.texelSize;
-    const vec4 normalRoughness = texelFetch(normalRoughnessTexture, pixel, 0);
-    const vec3 p = worldFromDepth(frame.invViewProj, uv, depth);
-    if (isDegeneratePosition(p)) return IndirectSample(vec3(0.0), vec3(0.0));
-    const vec3 n = gbufferNormal(normalRoughness);
-    return traceSurface(voxels, p, n, viewDirection(frame.cameraPosition - p, n), normalRoughness.w,
-                        coneSetOf(pixel, frame.upsample.frameIndex));
+    const PixelSurface s = pixelSurface(depthTexture, normalRoughnessTexture, pixel);
+    if (!s.lit) return IndirectSample(vec3(0.0), vec3(0.0));
+    return traceSurface(voxels, s.p, s.n, s.v, s.perceptualRoughness, s.set);
 }
 
 #endif  // VCT_CONE_TRACE_GLSL

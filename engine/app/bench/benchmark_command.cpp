@@ -249,7 +249,10 @@ int runBenchmarkCommand(int argc, char** argv, int first) {
         settingOption("voxels"),
         settingOption("bounces"),
         settingOption("exposure"),
-        settingOption("recompute-every-frame")};
+        settingOption("recompute-every-frame"),
+        // The per-device layouts, to time one against the other on one device.
+        settingOption("trace-layout"),
+        settingOption("upsample-layout")};
     for (Option& option : settingOptions(SettingGroup::Material)) options.push_back(std::move(option));
     static const CommandSpec spec("benchmark", "GPU-timed measurements in one run: see --mode.", options);
     auto parsed = spec.parse(argc, argv, first);
