@@ -15,7 +15,7 @@
 
 // z: the invocations per entry, 1 (a pixel's cones one after the other) or CONE_LANES_PER_PIXEL (one cone each;
 // RenderSettings::TraceLayout, lib/cone_trace.glsl).
-layout(local_size_x = VCT_RESAMPLE_GROUP_SIZE, local_size_z_id = VCT_TRACE_SPEC_CONE_LANES) in;
+layout(local_size_x = VCT_RESAMPLE_GROUP_SIZE, local_size_z_id = VCT_SPEC_CONE_LANES) in;
 
 // Resources: bound by engine/passes/resample_pass.cpp (checked against these bindings when the pipeline is
 // made); 1–4 are the trace's numbers, for the shared cone-tracing code.

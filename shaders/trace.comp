@@ -15,8 +15,7 @@
 
 // z: the invocations per pixel, 1 (the pixel layout: a pixel's cones one after the other) or CONE_LANES_PER_PIXEL
 // (the cone layout: one cone each; RenderSettings::TraceLayout, lib/cone_trace.glsl).
-layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE,
-       local_size_z_id = VCT_TRACE_SPEC_CONE_LANES) in;
+layout(local_size_x = VCT_TILE_SIZE, local_size_y = VCT_TILE_SIZE, local_size_z_id = VCT_SPEC_CONE_LANES) in;
 
 // The trace scale s (lib/shared.h, VCT_SPEC_TRACE_SCALE: the one way it reaches the shaders).
 layout(constant_id = VCT_SPEC_TRACE_SCALE) const int SCALE = 4;

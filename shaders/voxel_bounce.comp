@@ -16,7 +16,9 @@
 
 // Invocations per brick (VCT_VOXEL_SPEC_LANES, a divisor of 64): 64 on a GPU, one per voxel; the subgroup size
 // on a CPU device, one SIMD batch a brick (lib/voxel_packing.glsl: why).
-layout(local_size_x_id = VCT_VOXEL_SPEC_LANES) in;
+// z: invocations per voxel, 1 (its cones one after the other) or CONE_LANES_PER_PIXEL (one cone each, combined
+// through shared memory: the cone layout, RenderSettings::TraceLayout, lib/cone_trace.glsl).
+layout(local_size_x_id = VCT_VOXEL_SPEC_LANES, local_size_z_id = VCT_SPEC_CONE_LANES) in;
 
 // Resources: bound by engine/passes/voxel_bounce_pass.cpp (its resource table gives these binding numbers and is
 // checked against them when the pipeline is made).
@@ -38,46 +40,98 @@ layout(push_constant) uniform Push { VoxelBouncePushConstants push; };
 // Below this |n̄| a voxel's surfaces face both ways about equally: gather both hemispheres.
 const float BOUNCE_ONE_SIDED = 0.5;
 
-// The light voxel `local` of brick k (at `brick`) receives through the grid.
-vec3 gather(uint k, ivec3 brick, ivec3 local) {
+// Where voxel `local` of brick k (at `brick`) gathers from: its centre, lifted one voxel along its axis (and against
+// it where its surfaces face both ways: twoSided).
+struct GatherPoint {
+    vec3 p;
+    vec3 axis;
+    bool twoSided;
+};
+
+GatherPoint gatherPoint(uint k, ivec3 brick, ivec3 local) {
     const ivec3 voxel = brick * VOXEL_BRICK + local;
     const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, local);
     const vec3 nbar = imageLoad(normalImage, texel).xyz;
     const float r = length(nbar);
-    const vec3 p = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
+    GatherPoint g;
+    g.p = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
     // No direction at all (rare: opposite faces in one voxel cancelling exactly): +y's two sides.
-    const vec3 axis = r > 1e-3 ? nbar / r : vec3(0.0, 1.0, 0.0);
-    // The cones leave from one voxel out along the normal, not from the centre: the surface lies anywhere within
-    // its voxel, and from the centre the side cones met the voxel's own neighbours along the surface (its own
-    // light, or a shadow where the truth sees the room). Measured on cornell against the all-bounce truth
-    // (320×180, 64 frames): 64³ 0.890 → 0.925 of the indirect light, sRGB PSNR 22.90 → 23.33 dB; 32³ and 128³
-    // and DamagedHelmet gain 0.1–0.5 dB (docs/design.md §5.7).
-    const float lift = frame.voxels.voxelSize;
-    vec3 gathered = traceDiffuse(voxels, p + lift * axis, axis);
-    if (r < BOUNCE_ONE_SIDED) gathered = 0.5 * (gathered + traceDiffuse(voxels, p - lift * axis, -axis));
+    g.axis = r > 1e-3 ? nbar / r : vec3(0.0, 1.0, 0.0);
+    g.twoSided = r < BOUNCE_ONE_SIDED;
+    return g;
+}
+
+// The cones leave from one voxel out along the normal, not from the centre: the surface lies anywhere within its
+// voxel, and from the centre the side cones met the voxel's own neighbours along the surface (its own light, or a
+// shadow where the truth sees the room). Measured on cornell against the all-bounce truth (320×180, 64 frames):
+// 64³ 0.890 → 0.925 of the indirect light, sRGB PSNR 22.90 → 23.33 dB; 32³ and 128³ and DamagedHelmet gain 0.1–0.5
+// dB (docs/design.md §5.7).
+vec3 gatherOrigin(GatherPoint g, float side) { return g.p + side * frame.voxels.voxelSize * g.axis; }
+
+// The light voxel `local` of brick k (at `brick`) receives through the grid, its cones one after the other.
+vec3 gather(uint k, ivec3 brick, ivec3 local) {
+    const GatherPoint g = gatherPoint(k, brick, local);
+    vec3 gathered = traceDiffuse(voxels, gatherOrigin(g, 1.0), g.axis);
+    if (g.twoSided) gathered = 0.5 * (gathered + traceDiffuse(voxels, gatherOrigin(g, -1.0), -g.axis));
     return gathered;
 }
+
+// The cone layout's radiances, per side, cone and listed voxel of the workgroup's current batch.
+const bool CONE_LANES = gl_WorkGroupSize.z > 1;
+shared vec3 gatherRadiance[2][CONE_LANES_PER_PIXEL][VCT_VOXEL_TILE * VCT_VOXEL_TILE * VCT_VOXEL_TILE];
 
 void main() {
     uint k;
     ivec3 brick;
     // Uniform over the workgroup (one brick each): all of it or none reaches the packing's barriers.
     if (!workgroupBrick(push.region.w != 0u, push.region.xyz, k, brick)) return;
-    const uint lanes = gl_WorkGroupSize.x;
-    // Every voxel of the brick: empty ones store no light, occupied ones are listed.
+    const uint lanes = gl_WorkGroupSize.x;  // voxels gathered at a time
+    // Every voxel of the brick: empty ones store no light, occupied ones are listed (by all the invocations).
+    const uint invocations = gl_WorkGroupSize.x * gl_WorkGroupSize.z;
     clearOccupancy();
-    for (uint voxel = gl_LocalInvocationIndex; voxel < 64u; voxel += lanes) {
+    for (uint voxel = gl_LocalInvocationIndex; voxel < 64u; voxel += invocations) {
         const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, brickVoxel(voxel));
         if (imageLoad(albedoImage, texel).a > 0.0)
             markOccupied(voxel);
         else
             imageStore(bounceImage, texel, vec4(0.0));
     }
-    const uint count = listOccupiedVoxels(lanes);
-    // The listed voxels, neighbours in neighbouring lanes.
-    for (uint i = gl_LocalInvocationIndex; i < count; i += lanes) {
-        const ivec3 local = brickVoxel(packedVoxels[i]);
-        imageStore(bounceImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local),
-                   vec4(gather(k, brick, local), 0.0));
+    const uint count = listOccupiedVoxels(invocations);
+    if (!CONE_LANES) {
+        // The listed voxels, neighbours in neighbouring lanes.
+        for (uint i = gl_LocalInvocationIndex; i < count; i += lanes) {
+            const ivec3 local = brickVoxel(packedVoxels[i]);
+            imageStore(bounceImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local),
+                       vec4(gather(k, brick, local), 0.0));
+        }
+        return;
+    }
+    // The cone layout: `lanes` listed voxels at a time, cone z of each in invocation (x, z); the batches' count is
+    // uniform, so every invocation reaches the barriers.
+    const uint lane = gl_LocalInvocationID.x;
+    const int cone = int(gl_LocalInvocationID.z);
+    for (uint first = 0u; first < count; first += lanes) {
+        const bool listed = first + lane < count;
+        const ivec3 local = brickVoxel(packedVoxels[listed ? first + lane : 0u]);
+        const GatherPoint g = gatherPoint(k, brick, local);
+        if (listed && cone < DIFFUSE_CONE_COUNT) {
+            gatherRadiance[0][cone][lane] = traceDiffuseCone(voxels, gatherOrigin(g, 1.0), g.axis, cone);
+            if (g.twoSided)
+                gatherRadiance[1][cone][lane] =
+                    traceDiffuseCone(voxels, gatherOrigin(g, -1.0), -g.axis, cone);
+        }
+        barrier();
+        if (listed && cone == 0) {
+            vec3 radiance[DIFFUSE_CONE_COUNT];
+            for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) radiance[i] = gatherRadiance[0][i][lane];
+            vec3 gathered = diffuseFromCones(radiance);
+            if (g.twoSided) {
+                for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) radiance[i] = gatherRadiance[1][i][lane];
+                gathered = 0.5 * (gathered + diffuseFromCones(radiance));
+            }
+            imageStore(bounceImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local),
+                       vec4(gathered, 0.0));
+        }
+        barrier();  // before the next batch overwrites the radiances
     }
 }

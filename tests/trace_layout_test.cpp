@@ -1,7 +1,7 @@
-// The two layouts of the trace and re-trace passes (--trace-layout, lib/cone_trace.glsl, docs/design.md §5.5): a
-// pixel's cones one after the other in one invocation (the CPU default) and one invocation per cone, combined
-// through shared memory (the GPU default), run the same arithmetic per cone and per pixel, so they give
-// bit-identical images.
+// The two layouts of the cone-tracing passes, trace, re-trace and the voxel gathers (--trace-layout,
+// lib/cone_trace.glsl, docs/design.md §5.5): a pixel's or voxel's cones one after the other in one invocation (the CPU
+// default) and one invocation per cone, combined through shared memory (the GPU default), run the same arithmetic
+// per cone and per pixel, so they give bit-identical images.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 fs::path render(const std::string& name, std::vector<std::string> extra) {
     const fs::path dir = vct::test::freshOutputDir("trace_layout/" + name);
-    std::vector<std::string> args = {"render", "--size",     "96x54", "--voxels", "32",
+    std::vector<std::string> args = {"render", "--size",     "96x54", "--voxels",  "32",
                                      "--aux",  "--validate", "--out", dir.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = vct::test::runVct(args);
@@ -28,8 +28,9 @@ fs::path render(const std::string& name, std::vector<std::string> extra) {
 
 // Every cone set (turned, the default; fixed; jittered), trace scale 4, 2 (a size that is not a multiple of it) and
 // 1 (the every-pixel trace, which keeps a history with the turned set), many pixels re-traced (τ high, and a camera
-// cut: the resample pass's cones), another scene and a textured model: the two layouts give the same images, and
-// the layout the run used is the one asked for (timings.json).
+// cut: the resample pass's cones), every bounce (the default: the gathers of one layer a frame) and four (whole-grid
+// gathers), other scenes: the two layouts give the same images, and the layout the run used is the one asked for
+// (timings.json).
 TEST(TraceGpu, PixelAndConeLayoutsGiveTheSameImages) {
     const std::vector<std::vector<std::string>> configurations = {
         {"--scene", "cornell", "--frames", "5"},
@@ -38,7 +39,11 @@ TEST(TraceGpu, PixelAndConeLayoutsGiveTheSameImages) {
         {"--scene", "cornell", "--frames", "4", "--trace-scale", "1"},
         {"--scene", "cornell", "--frames", "3", "--trace-scale", "2", "--size", "97x55"},
         {"--scene", "cornell", "--frames", "4", "--tau", "4", "--camera-cut", "2"},
-        {"--scene", "plane", "--frames", "3"}};
+        {"--scene", "plane", "--frames", "3"},
+        // The voxel gathers' cones (the bounce pass): whole-grid iterations, and a scene with thin walls, whose
+        // voxels gather on both sides.
+        {"--scene", "cornell", "--frames", "2", "--bounces", "4"},
+        {"--scene", "hall", "--frames", "3", "--bounces", "4", "--voxels", "64"}};
     int index = 0;
     for (const auto& flags : configurations) {
         const std::string name = "layouts_" + std::to_string(index++);

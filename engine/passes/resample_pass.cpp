@@ -29,7 +29,7 @@ ResourceTable resampleResources(const VoxelSource& voxels) {
 
 ResamplePass::ResamplePass(const vk::Context& context, uint32_t coneLanes, const VoxelSource& voxels)
     : resources_(resampleResources(voxels)) {
-    // VCT_TRACE_SPEC_CONE_LANES (constant 0, the trace scale, is not the resample's).
+    // VCT_SPEC_CONE_LANES (constant 0, the trace scale, is not the resample's).
     pipeline_ = vk::Pipeline::compute(context, name(), "resample.comp", resources_.bindings(), 0,
                                       voxels.specialization({0u, coneLanes}));
 }

@@ -39,7 +39,7 @@ TracePass::TracePass(const vk::Context& context, uint32_t traceScale, uint32_t c
                      const VoxelSource& voxels)
     : output_(traceScale <= 1 ? Target::indirect : Target::indirectLow),
       resources_(traceResources(output_, voxels)) {
-    // VCT_SPEC_TRACE_SCALE, VCT_TRACE_SPEC_CONE_LANES
+    // VCT_SPEC_TRACE_SCALE, VCT_SPEC_CONE_LANES
     pipeline_ = vk::Pipeline::compute(context, name(), "trace.comp", resources_.bindings(), 0,
                                       voxels.specialization({traceScale, coneLanes}));
 }

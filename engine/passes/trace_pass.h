@@ -10,7 +10,7 @@
 
 namespace vct {
 
-// Invocations per pixel of the trace and resample pipelines (VCT_TRACE_SPEC_CONE_LANES, lib/cone_trace.glsl): 1 for
+// Invocations per pixel of the trace and resample pipelines (VCT_SPEC_CONE_LANES, lib/cone_trace.glsl): 1 for
 // the pixel layout, VCT_CONE_LANES_PER_PIXEL for the cone layout; auto picks by device type (the cone layout on a
 // GPU).
 uint32_t traceConeLanes(const vk::Context& context, RenderSettings::TraceLayout layout);

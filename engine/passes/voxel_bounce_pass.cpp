@@ -68,7 +68,8 @@ uint32_t VoxelBouncePass::settleFrames() const {
 }
 
 VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject,
-                                 VoxelMipsPass& mips, uint32_t bounces, const EnvironmentSource& environment)
+                                 VoxelMipsPass& mips, uint32_t bounces, uint32_t coneLanes,
+                                 const EnvironmentSource& environment)
     : grid_(grid),
       inject_(inject),
       mips_(mips),
@@ -78,7 +79,7 @@ VoxelBouncePass::VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, In
       resources_(bounceResources(grid, environment)) {
     pipeline_ = vk::Pipeline::compute(context, name(), "voxel_bounce.comp", resources_.bindings(),
                                       sizeof(gpu::VoxelBouncePushConstants),
-                                      grid.specialization({voxelPassLanes(context)}));
+                                      grid.specialization({voxelPassLanes(context), coneLanes}));
     if (amortised()) {
         // Every frame's inject reads the gathers, the first one before any gather ran: none yet.
         context.submitAndWait([&](VkCommandBuffer cmd) {

@@ -24,8 +24,9 @@ class VoxelBouncePass : public Pass {
   public:
     // `bounces` ≥ 2: the number of bounces the indirect light of a pixel carries (1 needs no pass); kAllBounces:
     // every bounce, amortised over frames (then `inject` must add the gathers in every frame's inject too).
+    // `coneLanes`: invocations per voxel (traceConeLanes, passes/trace_pass.h).
     VoxelBouncePass(const vk::Context& context, VoxelGrid& grid, InjectPass& inject, VoxelMipsPass& mips,
-                    uint32_t bounces, const EnvironmentSource& environment);
+                    uint32_t bounces, uint32_t coneLanes, const EnvironmentSource& environment);
     const char* name() const override { return "bounce"; }
     void execute(const FrameContext& frame) override;
     PassReuse reuse() const override {

@@ -78,8 +78,9 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.7).
         std::unique_ptr<VoxelBouncePass> bounce;
         if (settings.bounces > 1)
-            bounce = std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces,
-                                                       environment);
+            bounce =
+                std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces,
+                                                  traceConeLanes(context, settings.traceLayout), environment);
         if (allBounces) voxelLightSettleFrames_ = bounce->settleFrames();
         passes_.push_back(std::move(inject));
         passes_.push_back(std::move(mips));

@@ -290,6 +290,16 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
     return diffuseFromCones(radiance);
 }
 
+// Diffuse cone `i` of the fixed set from surface point p with unit normal n, as traceDiffuse marches it: the voxel
+// gathers' cone layout (voxel_bounce.comp), whose invocations march one cone each and combine them with
+// diffuseFromCones.
+vec3 traceDiffuseCone(sampler3D voxels, vec3 p, vec3 n, int i) {
+    return traceCone(voxels, p, n, coneOrigin(p, n, FIXED_CONE_SET),
+                     diffuseConeDirectionOf(n, i, FIXED_CONE_SET), DIFFUSE_CONE_TAN_HALF,
+                     coneClearance(FIXED_CONE_SET), false, FIXED_CONE_SET.stepPhase)
+        .rgb;
+}
+
 // The specular cone of a surface with unit normal n seen along unit v, of GGX roughness alpha, in `set`: the GGX lobe
 // as an SG (lib/cone.glsl) about xi, the cone along `direction` (xi, or a direction of the lobe for the jittered set).
 struct SpecularCone {

@@ -41,9 +41,10 @@ using glm::vec4;
 // full-res targets, no guides) and upsample (the cell loops are unrolled for s) alike. The low-res images'
 // extent, ceil(size / s), is what their bounds checks read (imageSize, textureSize).
 #define VCT_SPEC_TRACE_SCALE 0
-// trace and resample (lib/cone_trace.glsl): invocations per pixel, the workgroup's z size: 1 (a pixel's cones one
-// after the other) or VCT_CONE_LANES_PER_PIXEL (one cone each: RenderSettings::TraceLayout).
-#define VCT_TRACE_SPEC_CONE_LANES 1
+// The cone-tracing passes, trace, resample and bounce (lib/cone_trace.glsl): invocations per pixel or voxel, the
+// workgroup's z size: 1 (its cones one after the other) or VCT_CONE_LANES_PER_PIXEL (one cone each:
+// RenderSettings::TraceLayout).
+#define VCT_SPEC_CONE_LANES 1
 #define VCT_CONE_LANES_PER_PIXEL 8
 // The G-buffer and blend pipelines (gbuffer.vert, gbuffer.frag, blend.frag): whether any primitive of the scene
 // has COLOR_0. Without, the colour varying is not passed at all (one interpolant less per fragment on a GPU;
