@@ -294,8 +294,9 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 // gathers' cone layout (voxel_bounce.comp), whose invocations march one cone each and combine them with
 // diffuseFromCones.
 vec3 traceDiffuseCone(sampler3D voxels, vec3 p, vec3 n, int i) {
-    return traceCone(voxels, p, n, coneOrigin(p, n, FIXED_CONE_SET),
-                     diffuseConeDirectionOf(n, i, FIXED_CONE_SET), DIFFUSE_CONE_TAN_HALF,
+    vec3 directions[DIFFUSE_CONE_COUNT];
+    diffuseConeDirectionsOf(n, FIXED_CONE_SET, directions);  // all of them: why at traceSurfaceCone
+    return traceCone(voxels, p, n, coneOrigin(p, n, FIXED_CONE_SET), directions[i], DIFFUSE_CONE_TAN_HALF,
                      coneClearance(FIXED_CONE_SET), false, FIXED_CONE_SET.stepPhase)
         .rgb;
 }
@@ -389,7 +390,13 @@ vec3 traceSurfaceCone(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptual
     if (index == SPECULAR_CONE_INDEX)
         return marchSpecularCone(voxels, p, n, set,
                                  specularConeOf(n, v, alphaFromPerceptual(perceptualRoughness), set));
-    const vec3 direction = diffuseConeDirectionOf(n, index, set);
+    // Every direction of the set, each with a constant index as the pixel layout computes them, then the one this
+    // invocation marches: with a runtime index the fixed set's trigonometry (its angles constants) ran on the device
+    // instead of folding at compile time, and an NVIDIA H200's approximate sine and cosine made 3 channels of a
+    // 96×54 image differ between the layouts (the hall, four bounces).
+    vec3 directions[DIFFUSE_CONE_COUNT];
+    diffuseConeDirectionsOf(n, set, directions);
+    const vec3 direction = directions[index];
     const vec3 origin = coneOrigin(p, n, set);
     const float clearance = coneClearance(set);
     // The fixed and turned sets read whole mips, the jittered set's narrow footprints a blend (traceDiffuseCones).
