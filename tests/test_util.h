@@ -228,6 +228,23 @@ inline size_t countNonFinite(const std::vector<float>& values) {
     return n;
 }
 
+// How two equally sized lists of values (two images' channels) differ: how many differ at all, and the largest
+// relative difference among them (to say how far apart a failed exact comparison is).
+struct ExactDifference {
+    size_t different = 0;
+    double largestRelative = 0.0;
+};
+inline ExactDifference exactDifference(const std::vector<float>& a, const std::vector<float>& b) {
+    ExactDifference d;
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+        d.different += a[i] != b[i];
+        const double scale = std::max(std::abs(double(a[i])), std::abs(double(b[i])));
+        if (scale > 0.0)
+            d.largestRelative = std::max(d.largestRelative, std::abs(double(a[i]) - b[i]) / scale);
+    }
+    return d;
+}
+
 }  // namespace vct::test
 
 // Skips the test where the shared sample model NAME is absent (test::sharedModel).

@@ -58,18 +58,13 @@ TEST(TraceGpu, PixelAndConeLayoutsGiveTheSameImages) {
         for (const char* file : {"final.exr", "diffuse_indirect.exr", "specular_indirect.exr"}) {
             const vct::ImageRgba32f x = vct::readExr(a / file), y = vct::readExr(b / file);
             ASSERT_EQ(x.pixels.size(), y.pixels.size()) << name << " " << file;
-            size_t different = 0, lit = 0;
-            double largest = 0.0;  // the largest relative difference, to say how far apart a failure is
-            for (size_t i = 0; i < x.pixels.size(); ++i) {
-                different += x.pixels[i] != y.pixels[i];
-                lit += x.pixels[i] > 0.0f;
-                const double scale = std::max(std::abs(double(x.pixels[i])), std::abs(double(y.pixels[i])));
-                if (scale > 0.0)
-                    largest = std::max(largest, std::abs(double(x.pixels[i]) - y.pixels[i]) / scale);
-            }
-            EXPECT_EQ(different, 0u) << name << " " << file << ": largest relative difference " << largest;
+            const vct::test::ExactDifference d = vct::test::exactDifference(x.pixels, y.pixels);
+            EXPECT_EQ(d.different, 0u)
+                << name << " " << file << ": largest relative difference " << d.largestRelative;
             // Not two black images: most channels carry light.
-            EXPECT_GT(lit, x.pixels.size() / 2) << name << " " << file;
+            const auto lit =
+                std::count_if(x.pixels.begin(), x.pixels.end(), [](float v) { return v > 0.0f; });
+            EXPECT_GT(size_t(lit), x.pixels.size() / 2) << name << " " << file;
         }
     }
 }

@@ -157,15 +157,9 @@ TEST(UpsampleGpu, CellAndPixelLayoutsGiveTheSameImages) {
              {"final.exr", "diffuse_indirect.exr", "specular_indirect.exr", "weight_sum.exr"}) {
             const vct::ImageRgba32f x = vct::readExr(a / file), y = vct::readExr(b / file);
             ASSERT_EQ(x.pixels.size(), y.pixels.size()) << name << " " << file;
-            size_t different = 0;
-            double largest = 0.0;  // the largest relative difference, to say how far apart a failure is
-            for (size_t i = 0; i < x.pixels.size(); ++i) {
-                different += x.pixels[i] != y.pixels[i];
-                const double scale = std::max(std::abs(double(x.pixels[i])), std::abs(double(y.pixels[i])));
-                if (scale > 0.0)
-                    largest = std::max(largest, std::abs(double(x.pixels[i]) - y.pixels[i]) / scale);
-            }
-            EXPECT_EQ(different, 0u) << name << " " << file << ": largest relative difference " << largest;
+            const vct::test::ExactDifference d = vct::test::exactDifference(x.pixels, y.pixels);
+            EXPECT_EQ(d.different, 0u)
+                << name << " " << file << ": largest relative difference " << d.largestRelative;
         }
     }
 }
