@@ -10,9 +10,9 @@
 
 namespace vct {
 
-// Invocations per pixel of the trace and resample pipelines (VCT_SPEC_CONE_LANES, lib/cone_trace.glsl): 1 for
-// the pixel layout, VCT_CONE_LANES_PER_PIXEL for the cone layout; auto picks by device type (the cone layout on a
-// GPU).
+// Invocations per pixel or voxel of the trace, resample and bounce pipelines (VCT_SPEC_CONE_LANES,
+// lib/cone_trace.glsl): 1 for the pixel layout, VCT_CONE_LANES_PER_PIXEL for the cone layout; auto picks by device
+// type (the cone layout on a GPU).
 uint32_t traceConeLanes(const vk::Context& context, RenderSettings::TraceLayout layout);
 
 class TracePass : public Pass {

@@ -102,9 +102,9 @@ const SettingSpec kTable[] = {
      .value = NamedValue{&S::upsampleLayout, kUpsampleLayoutNames}, .apply = A::Live, .group = G::Upsample,
      .demo = true, .json = true, .widget = W::Combo, .label = "upsample layout"},
     {.name = "trace-layout", .valueName = "auto|pixel|cone",
-     .help = "trace and re-trace invocations: one per pixel, its cones in turn (fast on a CPU device), or one per "
-             "cone (fast on a GPU, where few pixels wait on one invocation's reads); auto: by device type; the "
-             "same image (docs/design.md sec. 5.5)",
+     .help = "trace, re-trace and voxel-gather invocations: one per pixel or voxel, its cones in turn (fast on a "
+             "CPU device), or one per cone (fast on a GPU, where few pixels wait on one invocation's reads); auto: "
+             "by device type; the same image (docs/design.md sec. 5.5)",
      .value = NamedValue{&S::traceLayout, kTraceLayoutNames}, .apply = A::Rebuild, .group = G::Upsample,
      .demo = true, .json = true, .widget = W::Combo, .label = "trace layout"},
     {.name = "beta", .valueName = "B", .help = "SG lobe weight exponent",

@@ -106,11 +106,11 @@ struct RenderSettings {
     // fast on a GPU); auto picks by device type. The images are the same.
     enum class UpsampleLayout { Auto, Cell, Pixel };  // kUpsampleLayoutNames in this order
     UpsampleLayout upsampleLayout = UpsampleLayout::Auto;
-    // How the trace and re-trace passes map cones to invocations (lib/cone_trace.glsl, docs/design.md §5.5): a
-    // pixel's cones one after the other in one invocation (pixel: fast on a CPU device, where an invocation is a
-    // SIMD lane and a pixel's lanes would diverge), or one invocation per cone, combined through shared memory
-    // (cone: on a GPU a pass that traces few pixels waits on one invocation's chain of texture reads, which this
-    // shortens 7×); auto picks by device type. The images are the same.
+    // How the cone-tracing passes (trace, re-trace, the voxel gathers) map cones to invocations (lib/cone_trace.glsl,
+    // docs/design.md §5.5): a pixel's or voxel's cones one after the other in one invocation (pixel: fast on a CPU
+    // device, where an invocation is a SIMD lane and a pixel's lanes would diverge), or one invocation per cone,
+    // combined through shared memory (cone: on a GPU a pass that traces few pixels waits on one invocation's chain
+    // of texture reads, which this shortens 6–7×); auto picks by device type. The images are the same.
     enum class TraceLayout { Auto, Pixel, Cone };  // kTraceLayoutNames in this order
     TraceLayout traceLayout = TraceLayout::Auto;
 
