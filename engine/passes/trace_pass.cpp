@@ -1,5 +1,10 @@
 #include "passes/trace_pass.h"
 
+#include <algorithm>
+#include <string>
+
+#include "core/error.h"
+
 namespace vct {
 
 namespace {
@@ -30,9 +35,23 @@ ResourceTable traceResources(Target output, const VoxelSource& voxels) {
 
 uint32_t traceConeLanes(const vk::Context& context, RenderSettings::TraceLayout layout) {
     using Layout = RenderSettings::TraceLayout;
-    const bool cones = layout == Layout::Cone || (layout == Layout::Auto && context.properties().deviceType !=
-                                                                                VK_PHYSICAL_DEVICE_TYPE_CPU);
-    return cones ? VCT_CONE_LANES_PER_PIXEL : 1u;
+    // The cone layout's largest workgroup: the trace's tile, the resample's entries or the bounce's brick (one
+    // voxel an invocation on a GPU), times the cones. Vulkan guarantees 128 invocations and a z size of 64; a
+    // device that allows fewer than this keeps the pixel layout (or refuses it when asked for).
+    constexpr uint32_t kGroupInvocations =
+        std::max({uint32_t(VCT_TILE_SIZE * VCT_TILE_SIZE), uint32_t(VCT_RESAMPLE_GROUP_SIZE),
+                  uint32_t(VCT_VOXEL_BRICK * VCT_VOXEL_BRICK * VCT_VOXEL_BRICK)}) *
+        VCT_CONE_LANES_PER_PIXEL;
+    const VkPhysicalDeviceLimits& limits = context.properties().limits;
+    const bool fits = limits.maxComputeWorkGroupInvocations >= kGroupInvocations &&
+                      limits.maxComputeWorkGroupSize[2] >= VCT_CONE_LANES_PER_PIXEL;
+    if (layout == Layout::Cone && !fits)
+        throw UsageError(
+            "--trace-layout cone: needs " + std::to_string(kGroupInvocations) +
+            " invocations per workgroup, more than this device's maxComputeWorkGroupInvocations (" +
+            std::to_string(limits.maxComputeWorkGroupInvocations) + "); use --trace-layout pixel");
+    const bool gpu = context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
+    return layout == Layout::Cone || (layout == Layout::Auto && fits && gpu) ? VCT_CONE_LANES_PER_PIXEL : 1u;
 }
 
 TracePass::TracePass(const vk::Context& context, uint32_t traceScale, uint32_t coneLanes,
