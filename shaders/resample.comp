@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // resample: adaptive re-tracing (docs/design.md §6.6, Tokuyoshi 2015 §5.4). The pixels the upsample pass could not
 // reconstruct (sum of weights < τ) are on a compacted list; this pass, dispatched indirectly with one thread
-// per entry, traces each of them at full resolution and overwrites the upsampled result with a fresh sample
-// of the weight of a sample traced at its own pixel (EXACT_SAMPLE_WEIGHT, lib/upsample_weights.glsl): it is one.
+// per entry (8 in the cone layout, one per cone), traces each of them at full resolution and overwrites the
+// upsampled result with a fresh sample of the weight of a sample traced at its own pixel (EXACT_SAMPLE_WEIGHT,
+// lib/upsample_weights.glsl): it is one.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"

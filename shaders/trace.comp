@@ -4,6 +4,8 @@
 // (docs/design.md §6.1: o_k cycles through the s×s offsets, so s² frames visit every full-res pixel) from the
 // full-res G-buffer there: 6 diffuse cones around n and 1 specular cone along reflect(−v, n) through the voxel
 // grid. Outputs are demodulated (lib/cone.glsl); the upsample pass knows o_k and reads the same G-buffer texels.
+// In the cone layout (GPUs: RenderSettings::TraceLayout) a low-res pixel has 8 invocations, 7 of which march one
+// cone each.
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
