@@ -2,7 +2,7 @@
 # Speed against error of the upsampling (docs/design.md §8), one run: `vct benchmark` renders the reference
 # (trace scale 1) and the bilinear / normal / sg configurations (with and without adaptive re-tracing)
 # interleaved in blocks of frames on one device, and compares their last frames with the reference's.
-# Writes benchmarks/results/<device>-<size>-s<scale>-upsampling.{json,md} and prints the table.
+# Writes benchmarks/results/<device>-<size>-s<scale>-upsampling[-flags].{json,md} and prints the table.
 # Usage: benchmarks/upsampling.sh [SIZE] [TRACE_SCALE] [extra vct benchmark flags...]   (build first)
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
@@ -16,5 +16,8 @@ out="$(mktemp -d)"
 build/vct benchmark --scene cornell --size "$size" --frames 64 --warmup 10 --trace-scale "$scale" --bounces 1 \
     --out "$out" "$@"
 slug="$(device_slug "$out/benchmark.json")"
-for ext in json md; do cp "$out/benchmark.$ext" "benchmarks/results/${slug}-${size}-s${scale}-upsampling.$ext"; done
-echo "recorded benchmarks/results/${slug}-${size}-s${scale}-upsampling.{json,md}"
+# Extra flags name the files too (as run.sh's and scenes.sh's), so that a configuration measured beside the default
+# (`--trace-layout pixel`, say) does not overwrite the default's results.
+name="${slug}-${size}-s${scale}-upsampling$(flags_suffix "$@")"
+for ext in json md; do cp "$out/benchmark.$ext" "benchmarks/results/${name}.$ext"; done
+echo "recorded benchmarks/results/${name}.{json,md}"
