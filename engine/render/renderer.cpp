@@ -63,6 +63,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     auto shadow = std::make_unique<ShadowPass>(context);
     shadowPass_ = shadow.get();
     passes_.push_back(std::move(shadow));
+    // The cone-tracing passes' invocations per pixel or voxel (trace, resample, bounce).
+    const uint32_t coneLanes = settings.gi ? traceConeLanes(context, settings.traceLayout) : 1u;
     if (settings.gi) {
         // The voxel grid and its light (docs/design.md §5.1–5.2); inject reads the shadow map drawn just before.
         const uint32_t n = chooseVoxelResolution(context, settings);
@@ -78,9 +80,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
         // Multiple bounces run inject and mips again, after the first of each (docs/design.md §5.7).
         std::unique_ptr<VoxelBouncePass> bounce;
         if (settings.bounces > 1)
-            bounce =
-                std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces,
-                                                  traceConeLanes(context, settings.traceLayout), environment);
+            bounce = std::make_unique<VoxelBouncePass>(context, *voxelGrid_, *inject, *mips, settings.bounces,
+                                                       coneLanes, environment);
         if (allBounces) voxelLightSettleFrames_ = bounce->settleFrames();
         passes_.push_back(std::move(inject));
         passes_.push_back(std::move(mips));
@@ -99,7 +100,6 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     if (settings.gi) {
         // Indirect light: traced at low resolution, brought back to full resolution (docs/design.md §5, §6).
         const VoxelSource voxels = VoxelSource::of(*voxelGrid_, environment);
-        const uint32_t coneLanes = traceConeLanes(context, settings.traceLayout);
         passes_.push_back(std::make_unique<TracePass>(context, settings.traceScale, coneLanes, voxels));
         // Upsampling and adaptive re-tracing only where something is traced at low resolution: at scale 1 the
         // trace writes the full-res targets itself.

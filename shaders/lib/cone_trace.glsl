@@ -245,18 +245,22 @@ void diffuseConeDirectionsOf(vec3 n, ConeSet set, out vec3 directions[DIFFUSE_CO
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) directions[i] = diffuseConeDirectionOf(n, i, set);
 }
 
-// The incoming radiance along each of the 6 diffuse cone `directions` of `set` from surface point p with unit
-// normal n, every sample reading the whole level ⌈m⌉ or a blend of two (`wholeMips`, traceCone: a constant at
-// every call, so that each march compiles with one of the two; lavapipe would run both sides of a branch).
+// The incoming radiance along diffuse cone `direction` of `set` from surface point p with unit normal n, every
+// sample reading the whole level ⌈m⌉ or a blend of two (`wholeMips`, traceCone: a constant at every call, so that
+// each march compiles with one of the two; lavapipe would run both sides of a branch). Every diffuse march, a
+// pixel's or voxel's cones one after the other or one per invocation (the cone layout), is this call.
+vec3 marchDiffuseCone(sampler3D voxels, vec3 p, vec3 n, ConeSet set, vec3 direction, const bool wholeMips) {
+    return traceCone(voxels, p, n, coneOrigin(p, n, set), direction, DIFFUSE_CONE_TAN_HALF,
+                     coneClearance(set), wholeMips, set.stepPhase)
+        .rgb;
+}
+
+// The same along each of the set's 6 `directions`.
 void marchDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
                        const vec3 directions[DIFFUSE_CONE_COUNT], const bool wholeMips,
                        out vec3 radiance[DIFFUSE_CONE_COUNT]) {
-    const vec3 origin = coneOrigin(p, n, set);
-    const float clearance = coneClearance(set);
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        radiance[i] = traceCone(voxels, p, n, origin, directions[i], DIFFUSE_CONE_TAN_HALF, clearance,
-                                wholeMips, set.stepPhase)
-                          .rgb;
+        radiance[i] = marchDiffuseCone(voxels, p, n, set, directions[i], wholeMips);
 }
 
 // The same for a pixel: the fixed and turned sets read whole mips (coneWholeMip); the jittered set's narrow
@@ -296,9 +300,7 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 vec3 traceDiffuseCone(sampler3D voxels, vec3 p, vec3 n, int i) {
     vec3 directions[DIFFUSE_CONE_COUNT];
     diffuseConeDirectionsOf(n, FIXED_CONE_SET, directions);  // all of them: why at traceSurfaceCone
-    return traceCone(voxels, p, n, coneOrigin(p, n, FIXED_CONE_SET), directions[i], DIFFUSE_CONE_TAN_HALF,
-                     coneClearance(FIXED_CONE_SET), false, FIXED_CONE_SET.stepPhase)
-        .rgb;
+    return marchDiffuseCone(voxels, p, n, FIXED_CONE_SET, directions[i], false);
 }
 
 // The specular cone of a surface with unit normal n seen along unit v, of GGX roughness alpha, in `set`: the GGX lobe
@@ -396,16 +398,9 @@ vec3 traceSurfaceCone(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptual
     // 96×54 image differ between the layouts (the hall, four bounces).
     vec3 directions[DIFFUSE_CONE_COUNT];
     diffuseConeDirectionsOf(n, set, directions);
-    const vec3 direction = directions[index];
-    const vec3 origin = coneOrigin(p, n, set);
-    const float clearance = coneClearance(set);
     // The fixed and turned sets read whole mips, the jittered set's narrow footprints a blend (traceDiffuseCones).
-    if (set.jittered)
-        return traceCone(voxels, p, n, origin, direction, DIFFUSE_CONE_TAN_HALF, clearance, false,
-                         set.stepPhase)
-            .rgb;
-    return traceCone(voxels, p, n, origin, direction, DIFFUSE_CONE_TAN_HALF, clearance, true, set.stepPhase)
-        .rgb;
+    if (set.jittered) return marchDiffuseCone(voxels, p, n, set, directions[index], false);
+    return marchDiffuseCone(voxels, p, n, set, directions[index], true);
 }
 
 // The surface's light from its cones' radiances (`radiance[SPECULAR_CONE_INDEX]` the specular cone's).
