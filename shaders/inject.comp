@@ -157,7 +157,7 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         float shares[VOXEL_SLAB_COUNT];
         float exitance = 0.0;  // of the shares as radiance
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
-            shares[slab] = specularSlabShare(lobe, slab) * facing[slab];
+            shares[slab] = specularSlabShare(lobe, slab, facing[slab]);
             exitance += shares[slab] * slabExitance(towardsLightSide, slab);
         }
         if (exitance <= 1e-6) continue;  // the lobe points only where the surfaces do not face
@@ -166,7 +166,7 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] += reflected * shares[slab];
     }
     // Each slab sees the light that leaves towards the cones reading it, i.e. against its direction (the
-    // specular shares have the facing in them already).
+    // specular shares have the facing in them already: specularSlabShare).
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
         slabs[slab] = vec4((radiance * facing[slab] + specular[slab]) * albedoOpacity.a, albedoOpacity.a);
     storeRadiance(k, brick, local, slabs);

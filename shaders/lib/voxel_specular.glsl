@@ -40,10 +40,12 @@ VCT_INLINE float vmfSpread(float inverseLambda) {
 
 // E[(ω·e)₊²] for a vMF lobe about unit r with spread vmfSpread(λ) and unit e: the axis part goes to the side r
 // points to, the isotropic part half to each side. The six axis directions' values sum to 1.
-VCT_INLINE float vmfSlabShare(vec3 r, float spread, vec3 e) {
+// `isotropicFacing` (1 for the whole share) scales the isotropic part alone: specularSlabShare.
+VCT_INLINE float vmfSlabShareFacing(vec3 r, float spread, vec3 e, float isotropicFacing) {
     float re = max(dot(r, e), 0.0f);
-    return (1.0f - 3.0f * spread) * re * re + 0.5f * spread;
+    return (1.0f - 3.0f * spread) * re * re + isotropicFacing * 0.5f * spread;
 }
+VCT_INLINE float vmfSlabShare(vec3 r, float spread, vec3 e) { return vmfSlabShareFacing(r, spread, e, 1.0f); }
 
 // The roughness of a voxel's lobe: its surfaces' mean perceptual roughness widened by the spread of their normals
 // (Toksvig, lib/toksvig.glsl) read from the averaged normal's length: a curved or bumpy surface within one voxel
@@ -70,18 +72,25 @@ VCT_INLINE vec4 specularLobe(vec3 n, vec3 l, float NoL, float perceptualRoughnes
 }
 
 // The share of `lobe` that slab `slab` carries, before normalisation: its reading weight E[(ω·e)₊²]
-// (vmfSlabShare), e the slab's outgoing direction. inject.comp multiplies it by voxelFacing (nothing leaves
-// behind the surface) and scales the shares to the specular exitance with slabExitance.
+// (vmfSlabShare), e the slab's outgoing direction; inject.comp scales the shares to the specular exitance with
+// slabExitance. `facing` is the slab's voxelFacing (lib/voxel.glsl): it keeps the lobe's isotropic part (half to
+// every side) from leaving behind the surface, and leaves the axis part alone.
 // The lobe goes where it points, also along the surface: a metal sphere's flank lit from above at a grazing
-// angle reflects the light downwards, onto the floor around it. Foreshortening each slab by (n·e)₊ (until
-// issue 18, round 6) gave that flank's downward slab nothing, and its lobe lit the walls sideways instead:
-// cornell's floor got 10 % of its light by glossy bounces where the truth has 32 %. The factor had been there
-// to keep a lit metal plane from lighting itself through the sideways slabs of its own voxels (`plane` 1.77×
-// without it); the jittered cone set's clearance keeps a surface's own voxels out of its cones instead
-// (`plane` 1.06× against the path tracer; docs/design.md §5.6), the fixed set's does not (1.77×, still
-// closer than the 0.27× the factor gave it there).
-VCT_INLINE float specularSlabShare(vec4 lobe, int slab) {
-    return vmfSlabShare(vec3(lobe), lobe.w, -voxelSlabDirection(slab));
+// angle reflects the light downwards, onto the floor around it.
+// - Foreshortening each slab by (n·e)₊ (until issue 18, round 6) gave that flank's downward slab nothing, and its
+//   lobe lit the walls sideways instead: cornell's floor got 10 % of its light by glossy bounces where the truth
+//   has 32 %. The factor had been there to keep a lit metal plane from lighting itself through the sideways slabs
+//   of its own voxels (`plane` 1.77× without it); the jittered cone set's clearance keeps a surface's own voxels
+//   out of its cones instead (`plane` 1.06× against the path tracer; docs/design.md §5.6), the fixed set's does
+//   not (1.77×, still closer than the 0.27× the factor gave it there).
+// - The facing on the axis part (until round 21) did the same wherever the averaged normal n̄ leans away from
+//   the slab the reflection leaves by: a flank whose n̄ points up and sideways reflects a grazing light sideways
+//   and down, and its downward slab is behind n̄. The reflection r = 2(n·l)n − l is never behind its surface, but
+//   its slab components can be. Cornell's floor got 0.77× (64³) and 0.66× (128³) of its true glossy-bounce
+//   light with it, 1.14× and 1.03× without (docs/design.md §5.11). What the axis part sends behind a one-sided
+//   oblique surface is seen from behind it.
+VCT_INLINE float specularSlabShare(vec4 lobe, int slab, float facing) {
+    return vmfSlabShareFacing(vec3(lobe), lobe.w, -voxelSlabDirection(slab), facing);
 }
 
 // The share of the light arriving from the grid that a voxel sends on (multiple bounces, docs/design.md §5.7).
