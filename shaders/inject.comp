@@ -3,10 +3,10 @@
 // inject: direct light into the voxels. For each occupied voxel: Σ lights E·(1 − F)·albedo/π·cos to every side
 // it faces and each light's specular lobe into the sides it leaves towards (lib/voxel_specular.glsl; the main light
 // shadow-mapped at the voxel centre, the others unshadowed) + emission, written premultiplied by opacity into
-// mip 0 of the radiance, the radiance atlas's six direction slabs (rgb = radiance × facing × opacity, a = opacity;
-// lib/voxel.glsl, lib/voxel_bricks.glsl), in the voxel's brick and in the aprons of the bricks below it. One
-// workgroup per brick (every allocated brick, or those of the frame's region), its invocations packed onto the
-// brick's occupied voxels (lib/voxel_packing.glsl).
+// mip 0 of the radiance, the radiance atlas's six direction slabs (rgb = (diffuse radiance × facing + the lobes'
+// shares) × opacity, a = opacity; lib/voxel.glsl, lib/voxel_bricks.glsl), in the voxel's brick and in the aprons
+// of the bricks below it. One workgroup per brick (every allocated brick, or those of the frame's region), its
+// invocations packed onto the brick's occupied voxels (lib/voxel_packing.glsl).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/voxel.glsl"
@@ -118,7 +118,8 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     // What leaves in the specular lobes of the lights, per slab (lib/voxel_specular.glsl).
     vec3 specular[VOXEL_SLAB_COUNT];
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] = vec3(0.0);
-    // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light and its lobes alike.
+    // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light, and its lobes' isotropic
+    // part (their axis part goes where the reflection points: specularSlabShare).
     float facing[VOXEL_SLAB_COUNT];
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
         facing[slab] = voxelFacing(nbar, -voxelSlabDirection(slab));
@@ -160,7 +161,9 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
             shares[slab] = specularSlabShare(lobe, slab, facing[slab]);
             exitance += shares[slab] * slabExitance(towardsLightSide, slab);
         }
-        if (exitance <= 1e-6) continue;  // the lobe points only where the surfaces do not face
+        // A guard: r lies in front of the surface (r·n = n·l > 0), so the axis part sends some light through it
+        // unless the lobe is uniform (no axis part).
+        if (exitance <= 1e-6) continue;
         const vec2 dfg = textureLod(dfgTable, vec2(NoL, perceptualRoughness), 0.0).rg;
         const vec3 reflected = irradiance * (f0 * dfg.x + dfg.y) / exitance;
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] += reflected * shares[slab];

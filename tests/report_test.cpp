@@ -73,14 +73,14 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // defaults that reach this image) moves lavapipe's figures, so the 0.3–0.4 dB is the hardware's arithmetic
     // (its texture filter's fixed-point weights, say); a GPU's diffuse margins are the H200's less 0.25 dB.
     // Round 21's lobes light the floor with the glossy light its neighbours reflect down (lib/voxel_specular.glsl):
-    // glossy 39.71 / 39.04 / 38.41 dB (Lambertian unchanged). The GPU's glossy diffuse margin keeps the H200's
-    // 0.31 dB below lavapipe, not measured on a GPU since.
+    // glossy 39.71 / 39.04 / 38.41 dB (Lambertian unchanged). On a GPU the glossy diffuse margin is an estimate, not
+    // measured since: the H200's figure taken 0.31 dB below lavapipe's as in round 20 (39.40), less 0.25.
     struct Case {
         const char* glossy;
         double diffuse, specular, display;  // lowest PSNRs allowed
         double gpuDiffuse;                  // the diffuse part's on a GPU
     };
-    for (const Case& c : {Case{"off", 42.4, 38.3, 40.55, 42.05}, Case{"on", 39.45, 38.0, 38.15, 39.15}}) {
+    for (const Case& c : {Case{"off", 42.4, 38.3, 40.55, 42.05}, Case{"on", 39.45, 38.8, 38.15, 39.15}}) {
         const std::string suffix = std::string("_glossy_") + c.glossy;
         const fs::path reference = render("converge_s1" + suffix, {"--trace-scale", "1", "--cone-rotation",
                                                                    "off", "--voxel-glossy", c.glossy});

@@ -115,6 +115,7 @@ struct LitVoxel {
     double slabs[6];
     double exitance;     // what the reconstruction sends through the surface: ∫ L̂(ω)(ω·n)₊ dω
     double axisPart[6];  // the lobe's axis part in each slab, at the same scale
+    double behind;       // what it sends through the back of the surface: ∫ L̂(ω)(−ω·n)₊ dω
 };
 
 LitVoxel litVoxel(vec3 n, vec3 l, float roughness, vec3 f0, const std::vector<vec3>& points) {
@@ -133,8 +134,12 @@ LitVoxel litVoxel(vec3 n, vec3 l, float roughness, vec3 f0, const std::vector<ve
         v.axisPart[slab] =
             double(scale * g::vmfSlabShareFacing(vec3(lobe), lobe.w, -g::voxelSlabDirection(slab), 0.0f));
     }
-    for (vec3 w : points) v.exitance += reconstruct(v.slabs, w) * std::max(0.0, double(glm::dot(w, n)));
+    for (vec3 w : points) {
+        v.exitance += reconstruct(v.slabs, w) * std::max(0.0, double(glm::dot(w, n)));
+        v.behind += reconstruct(v.slabs, w) * std::max(0.0, -double(glm::dot(w, n)));
+    }
     v.exitance *= 4.0 * kPi / double(points.size());
+    v.behind *= 4.0 * kPi / double(points.size());
     return v;
 }
 
@@ -142,6 +147,7 @@ TEST(VoxelSpecular, ReflectedLightIsTheSpecularExitanceAtEveryAngleAndRoughness)
     // Irradiance 1 at normal incidence: the slabs send E·(n·l)·ρ_s through the surface, no more (the lobe's
     // own ∫ L dω, kept instead, sent 2.3x the light from grazing lobes: docs/design.md §5.11).
     const std::vector<vec3> points = fibonacciSphere(20000);
+    double worstBehind = 0.0;
     for (vec3 n : kNormals) {
         const vec3 t = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
         for (float cosine : {1.0f, 0.7f, 0.2f, 0.02f}) {
@@ -152,6 +158,7 @@ TEST(VoxelSpecular, ReflectedLightIsTheSpecularExitanceAtEveryAngleAndRoughness)
                 for (double s : v.slabs) EXPECT_TRUE(std::isfinite(s) && s >= 0.0);
                 EXPECT_NEAR(v.exitance, expected, 0.01 * expected + 1e-7)
                     << "cos " << cosine << ", roughness " << roughness;
+                worstBehind = std::max(worstBehind, v.behind / v.exitance);
                 // Behind the surface only the lobe's axis part leaves (a reflection along an oblique surface
                 // has a component there; none for an axis-aligned normal), none of its isotropic part (but float
                 // rounding of |n| = 1 in voxelFacing's blend).
@@ -168,6 +175,13 @@ TEST(VoxelSpecular, ReflectedLightIsTheSpecularExitanceAtEveryAngleAndRoughness)
             }
         }
     }
+    // What the slabs send through the back of the surface is not counted in the exitance: their cos² read sends
+    // a grazing lobe's light half behind a surface it leaves along (1.00x the exitance at n·l = 0.02 with the
+    // facing on the whole share, before round 21), and the axis part behind a leaning normal adds to it: measured
+    // at most 1.716x (normal (0.31, 0.93, −0.21), n·l = 0.02); asserted ≤ 1.8x. On a closed object the object's
+    // own voxels stand before it; behind a one-sided oblique surface it is seen.
+    std::printf("light sent behind the surface, at most %.3f of the exitance\n", worstBehind);
+    EXPECT_LE(worstBehind, 1.8);
 }
 
 TEST(VoxelSpecular, TheLobeLeavesTowardsTheMirrorDirectionAlsoAlongTheSurface) {
@@ -189,12 +203,12 @@ TEST(VoxelSpecular, TheLobeLeavesTowardsTheMirrorDirectionAlsoAlongTheSurface) {
     const vec3 flankLight = glm::normalize(vec3(0.2f, 0.98f, 0.0f));
     const LitVoxel flank = litVoxel(vec3(1, 0, 0), flankLight, 0.1f, vec3(0.04f), points);
     EXPECT_GT(flank.slabs[minusY], 10.0 * flank.slabs[plusX]);
-    // Nothing leaves behind the surface (the −x side).
+    // Nothing leaves by the slab straight behind an axis-aligned surface (the −x side).
     EXPECT_LE(flank.slabs[0], 1e-6 * flank.slabs[minusY]);
     // A flank whose averaged normal leans up, (0.8, 0.6, 0), lit from above at n·l = 0.2: the reflection
     // (0.75, −0.66, 0) leaves sideways and down. The downward slab is behind the normal (n·e = −0.6); until round
     // 21 the facing took it away whole and the flank lit the walls, not the floor (docs/design.md §5.11). Its axis
-    // part goes where the reflection points: measured −y ÷ +x = 0.79 (the lobe's (0.66/0.75)² = 0.78); asserted
+    // part goes where the reflection points: measured −y ÷ +x = 0.788 (the lobe's (0.664/0.748)² = 0.788); asserted
     // ≥ 0.7. Its isotropic part stays out: the rough lobe's downward slab holds its axis part alone.
     const vec3 leaning(0.8f, 0.6f, 0.0f), up(-0.6f, 0.8f, 0.0f);
     const vec3 grazing = 0.2f * leaning + std::sqrt(1.0f - 0.04f) * up;

@@ -39,11 +39,11 @@ VCT_INLINE float vmfSpread(float inverseLambda) {
 }
 
 // E[(ω·e)₊²] for a vMF lobe about unit r with spread vmfSpread(λ) and unit e: the axis part goes to the side r
-// points to, the isotropic part half to each side. The six axis directions' values sum to 1.
-// `isotropicFacing` (1 for the whole share) scales the isotropic part alone: specularSlabShare.
-VCT_INLINE float vmfSlabShareFacing(vec3 r, float spread, vec3 e, float isotropicFacing) {
+// points to, the isotropic part half to each side. With `isotropicWeight` 1 the six axis directions' values sum
+// to 1; specularSlabShare scales the isotropic part alone by the slab's facing.
+VCT_INLINE float vmfSlabShareFacing(vec3 r, float spread, vec3 e, float isotropicWeight) {
     float re = max(dot(r, e), 0.0f);
-    return (1.0f - 3.0f * spread) * re * re + isotropicFacing * 0.5f * spread;
+    return (1.0f - 3.0f * spread) * re * re + isotropicWeight * 0.5f * spread;
 }
 VCT_INLINE float vmfSlabShare(vec3 r, float spread, vec3 e) { return vmfSlabShareFacing(r, spread, e, 1.0f); }
 
@@ -87,8 +87,9 @@ VCT_INLINE vec4 specularLobe(vec3 n, vec3 l, float NoL, float perceptualRoughnes
 //   the slab the reflection leaves by: a flank whose n̄ points up and sideways reflects a grazing light sideways
 //   and down, and its downward slab is behind n̄. The reflection r = 2(n·l)n − l is never behind its surface, but
 //   its slab components can be. Cornell's floor got 0.77× (64³) and 0.66× (128³) of its true glossy-bounce
-//   light with it, 1.14× and 1.03× without (docs/design.md §5.11). What the axis part sends behind a one-sided
-//   oblique surface is seen from behind it.
+//   light with it, 1.14× and 1.03× without (docs/design.md §5.11).
+//   Cost: what the axis part sends behind a one-sided oblique surface is seen from behind it, and the exitance
+//   normalisation (inject.comp) does not count it (tests/voxel_specular_test.cpp bounds it).
 VCT_INLINE float specularSlabShare(vec4 lobe, int slab, float facing) {
     return vmfSlabShareFacing(vec3(lobe), lobe.w, -voxelSlabDirection(slab), facing);
 }
