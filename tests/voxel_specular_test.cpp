@@ -71,7 +71,7 @@ TEST(VoxelSpecular, SlabSharesOfALobeSumToOneAndFollowItsAxis) {
             double sum = 0.0, towardsAxis = 0.0;
             for (int slab = 0; slab < g::VOXEL_SLAB_COUNT; ++slab) {
                 const vec3 e = -g::voxelSlabDirection(slab);
-                const float share = g::vmfSlabShare(r, spread, e);
+                const float share = g::vmfSlabShare(r, spread, e, 1.0f);
                 EXPECT_GE(share, 0.0f);
                 sum += share;
                 towardsAxis += share * std::max(0.0f, glm::dot(e, r));
@@ -132,7 +132,7 @@ LitVoxel litVoxel(vec3 n, vec3 l, float roughness, vec3 f0, const std::vector<ve
     for (int slab = 0; slab < 6; ++slab) {
         v.slabs[slab] = double(scale * shares[slab]);
         v.axisPart[slab] =
-            double(scale * g::vmfSlabShareFacing(vec3(lobe), lobe.w, -g::voxelSlabDirection(slab), 0.0f));
+            double(scale * g::vmfSlabShare(vec3(lobe), lobe.w, -g::voxelSlabDirection(slab), 0.0f));
     }
     for (vec3 w : points) {
         v.exitance += reconstruct(v.slabs, w) * std::max(0.0, double(glm::dot(w, n)));

@@ -39,13 +39,12 @@ VCT_INLINE float vmfSpread(float inverseLambda) {
 }
 
 // E[(ω·e)₊²] for a vMF lobe about unit r with spread vmfSpread(λ) and unit e: the axis part goes to the side r
-// points to, the isotropic part half to each side. With `isotropicWeight` 1 the six axis directions' values sum
-// to 1; specularSlabShare scales the isotropic part alone by the slab's facing.
-VCT_INLINE float vmfSlabShareFacing(vec3 r, float spread, vec3 e, float isotropicWeight) {
+// points to, the isotropic part half to each side, scaled by `isotropicWeight`. With it 1 the six axis
+// directions' values sum to 1; specularSlabShare passes the slab's facing.
+VCT_INLINE float vmfSlabShare(vec3 r, float spread, vec3 e, float isotropicWeight) {
     float re = max(dot(r, e), 0.0f);
     return (1.0f - 3.0f * spread) * re * re + isotropicWeight * 0.5f * spread;
 }
-VCT_INLINE float vmfSlabShare(vec3 r, float spread, vec3 e) { return vmfSlabShareFacing(r, spread, e, 1.0f); }
 
 // The roughness of a voxel's lobe: its surfaces' mean perceptual roughness widened by the spread of their normals
 // (Toksvig, lib/toksvig.glsl) read from the averaged normal's length: a curved or bumpy surface within one voxel
@@ -91,7 +90,7 @@ VCT_INLINE vec4 specularLobe(vec3 n, vec3 l, float NoL, float perceptualRoughnes
 //   Cost: what the axis part sends behind a one-sided oblique surface is seen from behind it, and the exitance
 //   normalisation (inject.comp) does not count it (tests/voxel_specular_test.cpp bounds it).
 VCT_INLINE float specularSlabShare(vec4 lobe, int slab, float facing) {
-    return vmfSlabShareFacing(vec3(lobe), lobe.w, -voxelSlabDirection(slab), facing);
+    return vmfSlabShare(vec3(lobe), lobe.w, -voxelSlabDirection(slab), facing);
 }
 
 // The share of the light arriving from the grid that a voxel sends on (multiple bounces, docs/design.md §5.7).
