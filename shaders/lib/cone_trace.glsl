@@ -16,59 +16,64 @@
 layout(set = 0, binding = VCT_BINDING_VOXEL_ATLAS) uniform sampler3D voxelAtlas;
 
 // The grid as a cone travelling along unit `dir` sees it at `uvw` and (fractional) `mip`: the three direction
-// slabs facing it (lib/voxel.glsl), weighted by dir² per axis. Slabs with no weight are not sampled (an
-// axis-aligned cone reads one). Below mip 1 the sample blends mip 0 from the atlas with mip 1 (what a trilinear
-// read between the two levels of one texture does): the atlas read is the block of the brick holding the
-// sample's lower corner voxel, which its apron makes hold all eight voxels the filter reads; no block there means
-// none of them is occupied.
-// The slabs with weights w read from the mips' texture at level `lod`; `texels` per slab at the coarser level
-// read, to keep u inside each slab. The sampler picks one level (VoxelGrid: mipmap mode nearest): `wholeMip`, lod
-// is a whole level and one read per slab is all; else lod is fractional and the two levels around it are read and
-// blended, as a trilinear read between levels does. `wholeMip` is a constant at every call, so each cone march
-// compiles with one of the two; lavapipe would run both sides of a branch.
-vec4 sampleMipSlabs(sampler3D voxels, vec3 uvw, vec3 dir, vec3 w, float lod, float texels,
-                    const bool wholeMip) {
-    vec4 s = vec4(0.0);
+// slabs facing it (lib/voxel.glsl), combined by voxelSlabsSeen with weights dir² per axis (their largest opacity
+// with `wholeMip`, for coneCompositeNested; their weighted mean otherwise). Slabs with no weight are not sampled
+// (an axis-aligned cone reads one). Below mip 1 the sample blends mip 0 from the atlas with mip 1 (what a
+// trilinear read between the two levels of one texture does): the atlas read is the block of the brick holding
+// the sample's lower corner voxel, which its apron makes hold all eight voxels the filter reads; no block there
+// means none of them is occupied.
+// Slab `axis` at `uvw`, read from the mips' texture at level `lod`; `texels` per slab at the coarser level read, to
+// keep u inside the slab. The sampler picks one level (VoxelGrid: mipmap mode nearest): `wholeMip`, lod is a whole
+// level and one read is all; else lod is fractional and the two levels around it are read and blended, as a
+// trilinear read between levels does. `wholeMip` is a constant at every call, so each cone march compiles with one
+// of the two; lavapipe would run both sides of a branch.
+vec4 sampleMipSlab(sampler3D voxels, vec3 uvw, vec3 dir, int axis, float lod, float texels,
+                   const bool wholeMip) {
     const float level = wholeMip ? lod : floor(lod);
-    for (int axis = 0; axis < 3; ++axis) {
-        if (w[axis] <= 0.0) continue;
-        const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
-        vec4 v = textureLod(voxels, slabUvw, level);
-        if (!wholeMip) v = mix(v, textureLod(voxels, slabUvw, level + 1.0), lod - level);
-        s += w[axis] * v;
-    }
-    return s;
+    const vec3 slabUvw = vec3(voxelSlabU(uvw.x, voxelSlabFor(dir, axis), texels), uvw.yz);
+    vec4 v = textureLod(voxels, slabUvw, level);
+    if (!wholeMip) v = mix(v, textureLod(voxels, slabUvw, level + 1.0), lod - level);
+    return v;
 }
 
 vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip, const bool wholeMip) {
     const vec3 w = voxelSlabWeights(dir);
     const int n = int(frame.voxels.resolution);
-    // Mip 0 dense (RenderSettings::sparseMip0From): every mip in the one texture, one read per slab.
-    if (!SPARSE_MIP0)
-        return sampleMipSlabs(voxels, uvw, dir, w, mip, float(max(n >> int(ceil(mip)), 1)), wholeMip);
-    vec4 s = vec4(0.0);
-    const float fine = 1.0 - min(mip, 1.0);
-    if (fine > 0.0) {
-        // Voxel units, clamped to the outermost texel centres (the coarse sampler's clamp to the edge).
-        const vec3 p = clamp(uvw * float(n), vec3(0.5), vec3(float(n) - 0.5));
-        const ivec3 brick = voxelBrickOf(ivec3(floor(p - 0.5)));
-        const uint k = brickIndex(brick);
-        if (k != VCT_BRICK_NONE) {
-            const vec3 inBlock = p - vec3(brick * VOXEL_BRICK);
-            for (int axis = 0; axis < 3; ++axis) {
-                if (w[axis] <= 0.0) continue;
-                const ivec3 block =
-                    radianceAtlasTexel(k, frame.voxels.brickAtlasSide, ivec3(0), voxelSlabFor(dir, axis));
-                s += (w[axis] * fine) *
-                     textureLod(voxelAtlas, (vec3(block) + inBlock) * frame.voxels.atlasInvSize.xyz, 0.0);
+    vec4 seen[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
+    if (!SPARSE_MIP0) {
+        // Mip 0 dense (RenderSettings::sparseMip0From): every mip in the one texture, one read per slab.
+        const float texels = float(max(n >> int(ceil(mip)), 1));
+        for (int axis = 0; axis < 3; ++axis)
+            if (w[axis] > 0.0) seen[axis] = sampleMipSlab(voxels, uvw, dir, axis, mip, texels, wholeMip);
+    } else {
+        const float fine = 1.0 - min(mip, 1.0);
+        if (fine > 0.0) {
+            // Voxel units, clamped to the outermost texel centres (the coarse sampler's clamp to the edge).
+            const vec3 p = clamp(uvw * float(n), vec3(0.5), vec3(float(n) - 0.5));
+            const ivec3 brick = voxelBrickOf(ivec3(floor(p - 0.5)));
+            const uint k = brickIndex(brick);
+            if (k != VCT_BRICK_NONE) {
+                const vec3 inBlock = p - vec3(brick * VOXEL_BRICK);
+                for (int axis = 0; axis < 3; ++axis) {
+                    if (w[axis] <= 0.0) continue;
+                    const ivec3 block =
+                        radianceAtlasTexel(k, frame.voxels.brickAtlasSide, ivec3(0), voxelSlabFor(dir, axis));
+                    seen[axis] +=
+                        fine *
+                        textureLod(voxelAtlas, (vec3(block) + inBlock) * frame.voxels.atlasInvSize.xyz, 0.0);
+                }
             }
         }
+        // Mip 1 and coarser: the texture's level mip − 1.
+        if (mip > 0.0) {
+            const float texels = float(max(n >> int(ceil(max(mip, 1.0))), 1));
+            for (int axis = 0; axis < 3; ++axis)
+                if (w[axis] > 0.0)
+                    seen[axis] += min(mip, 1.0) * sampleMipSlab(voxels, uvw, dir, axis, max(mip - 1.0, 0.0),
+                                                                texels, wholeMip);
+        }
     }
-    // Mip 1 and coarser: the texture's level mip − 1.
-    if (mip > 0.0)
-        s += min(mip, 1.0) * sampleMipSlabs(voxels, uvw, dir, w, max(mip - 1.0, 0.0),
-                                            float(max(n >> int(ceil(max(mip, 1.0))), 1)), wholeMip);
-    return s;
+    return voxelSlabsSeen(w, seen[0], seen[1], seen[2], wholeMip);
 }
 
 // Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
@@ -111,6 +116,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
     const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
     int stepsPastBox = 0;
+    float previousCoverage = 0.0;  // the last sample's (whole mips)
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
@@ -143,8 +149,17 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         const ConeSampleAt at = coneSampleAt(x, min(mip, maxMip), p, n, v0, closeMin, closeMax);
         const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips);
         const float dt = coneStep(coneD);
-        // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
-        acc = coneComposite(acc, s, dt, wholeMips ? ldexp(v0, int(at.mip)) : v0 * exp2(at.mip));
+        if (wholeMips) {
+            // Whole mips: what the sample's coverage adds to the last one's (coneCompositeNested). Past a closed
+            // room's face its wall stands there whatever the edge texel's coverage says: the cone closes, in the
+            // colour the texel shows (the fog composite closed it by counting the edge texel a few times over).
+            const float coverage = outside && !open ? 1.0 : s.a;
+            acc = coneCompositeNested(acc, s, coverage, previousCoverage);
+            previousCoverage = saturate(coverage);
+        } else {
+            // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
+            acc = coneComposite(acc, s, dt, v0 * exp2(at.mip));
+        }
         t += dt;
     }
     // Stopped as nearly opaque: what lies behind the last CONE_MAX_OPACITY would add its share of the cone in

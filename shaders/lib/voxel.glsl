@@ -182,6 +182,20 @@ VCT_INLINE vec3 voxelSlabWeights(vec3 dir) {
     return sum > 0.0f ? kept / sum : w;
 }
 
+// What a cone along a direction with slab weights `w` (voxelSlabWeights) sees of the three slabs it reads, `x`,
+// `y` and `z` (premultiplied radiance, opacity). The radiance is their weighted mean. The opacity is the weighted
+// mean too where `coverage` is false (coneComposite, which counts every step), and their largest where it is true
+// (coneCompositeNested, which counts a rise in coverage once): a one-voxel wall met obliquely is opaque in the
+// slab across it and thin in the others, and its weighted mean (0.25 for a cone 60° from the wall's normal) was
+// made opaque only by counting it at every step; counted once it would let 3/4 of what lies behind through.
+VCT_INLINE vec4 voxelSlabsSeen(vec3 w, vec4 x, vec4 y, vec4 z, bool coverage) {
+    const vec4 mean = w.x * x + w.y * y + w.z * z;
+    if (!coverage) return mean;
+    // The largest opacity among the slabs read (a weight of 0: not read).
+    const float most = max(max(w.x > 0.0f ? x.w : 0.0f, w.y > 0.0f ? y.w : 0.0f), w.z > 0.0f ? z.w : 0.0f);
+    return mean.w > 1e-6f ? vec4(vec3(mean) * (most / mean.w), most) : mean;
+}
+
 // The u coordinate (0..1 across the whole 6N width) of point u (0..1 across one volume) in `slab`, at a mip of
 // `texels` texels per slab: kept half a texel inside the slab, so that filtering never reads the slab beside
 // it (the outermost half texel is the grid's empty padding).
