@@ -185,7 +185,7 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     info.magFilter = VK_FILTER_LINEAR;
     info.minFilter = VK_FILTER_LINEAR;
     // One level per read: the diffuse cones read whole mips, the others blend two reads themselves
-    // (lib/cone_trace.glsl's sampleMipSlabs), which lavapipe does at the cost of one read between levels.
+    // (lib/cone_trace.glsl's sampleMipSlab), which lavapipe does at the cost of one read between levels.
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     // Clamped to the edge, not to a transparent border: at coarse mips the outermost texels hold the walls of a
     // room fitted to the grid (the one voxel of padding is a fraction of them), and a border would fade them by
