@@ -499,4 +499,36 @@ TEST(VoxelGi, LightLeakingThroughAOneVoxelWallIsBounded) {
     }
 }
 
+TEST(VoxelGi, ARoofOfNoThicknessLitFromAboveSendsNothingIntoTheRoomBelow) {
+    // A closed room (albedo 0.5) whose ceiling is also the top face of a roof of no thickness (two quads in one
+    // plane, facing up and down), under a sun straight above: no light gets into the room (exact 0). The roof's
+    // plane lies inside a voxel layer at 32³ and 64³ (y = 2.05), so both faces fall in one voxel, whose normals
+    // cancel. Until round 22 that voxel sent its sunlit face's light to every side (voxelCosine and voxelFacing for
+    // |n̄| → 0): down into the room and, through its sideways slabs, to the room's cones that read it obliquely.
+    // inject.comp now reads the sheet's plane from its neighbours (sheetAxis) and sends each face's light into the
+    // slab on its own side only (sheetFacing; docs/design.md §5.6). Measured: the room's mean diffuse indirect
+    // light over the roof's radiance (the sun's E·ρ/π) 0.138 / 0.135 before (32³ / 64³), 0.135 / 0.123 with the
+    // sheet's sideways slabs still lit, 0.0033 / 0.0034 now.
+    vct::Scene room = emptyScene("roofed room", diffuseMaterial(0.5f, 0.0f));
+    addClosedBox(room, {-2.0f, 0.0f, -2.0f}, {2.0f, 2.05f, 2.0f}, 0);
+    addQuad(room, glm::vec3(0.0f, 2.05f, 0.0f), glm::vec3(0, 0, 2), glm::vec3(2, 0, 0), 0);  // the roof, +y
+    const float sunIlluminance = 3.0f;
+    vct::Node& sun = addLight(room, "sun", vct::LightType::Directional, sunIlluminance);
+    sun.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0));  // −Z turned to −Y
+    const std::string file = sceneFile("roofed_room", room, glm::vec3(0.0f, 1.0f, 1.5f), 0.0f);
+    const double roofRadiance = sunIlluminance * 0.5 / M_PI;
+    const std::pair<const char*, double> bounds[] = {{"32", 0.01}, {"64", 0.01}};
+    for (const auto& [voxels, bound] : bounds) {
+        const fs::path dir = renderVct(std::string("roofed_room_") + voxels, file,
+                                       {"--voxels", voxels, "--environment-intensity", "0.001"});
+        const double leak = meanLuminance(vct::readExr(dir / "diffuse_indirect.exr")) / roofRadiance;
+        std::printf(
+            "a roof of no thickness at %s^3: the room's indirect light %.4f of the roof's radiance (exact "
+            "0)\n",
+            voxels, leak);
+        EXPECT_LE(leak, bound) << voxels;
+        EXPECT_TRUE(std::isfinite(leak));
+    }
+}
+
 }  // namespace
