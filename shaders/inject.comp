@@ -84,14 +84,17 @@ void storeRadiance(uint k, ivec3 brick, ivec3 local, const vec4 slabs[VOXEL_SLAB
     }
 }
 
-// Whether `voxel` (grid coordinates) holds a surface; outside the grid it does not.
+// Whether voxel `local` of brick k holds a surface (its resolved opacity).
+bool brickVoxelOccupied(uint k, ivec3 local) {
+    return imageLoad(albedoImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local)).a > 0.0;
+}
+
+// The same for `voxel` in grid coordinates, in any brick; outside the grid or its storage it holds none.
 bool voxelOccupied(ivec3 voxel) {
     const int n = int(frame.voxels.resolution);
     if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(n)))) return false;
     const uint k = brickIndex(voxelBrickOf(voxel));
-    if (k == VCT_BRICK_NONE) return false;
-    const ivec3 local = voxel - voxelBrickOf(voxel) * VOXEL_BRICK;
-    return imageLoad(albedoImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local)).a > 0.0;
+    return k != VCT_BRICK_NONE && brickVoxelOccupied(k, voxel % VOXEL_BRICK);
 }
 
 // A voxel whose surfaces' normals cancel (|n̄| below SHEET_MAX_NORMAL_LENGTH) may hold both faces of a thin sheet
@@ -241,7 +244,7 @@ void main() {
     clearOccupancy();
     for (uint voxel = gl_LocalInvocationIndex; voxel < 64u; voxel += lanes) {
         const ivec3 own = brickVoxel(voxel);
-        if (imageLoad(albedoImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, own)).a > 0.0) {
+        if (brickVoxelOccupied(k, own)) {
             markOccupied(voxel);
         } else if (region) {
             vec4 zero[VOXEL_SLAB_COUNT];

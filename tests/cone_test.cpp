@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <functional>
 #include <iterator>
+#include <vector>
 
 #include "io/image_io.h"
 #include "render/shader_math.h"
