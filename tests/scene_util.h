@@ -70,11 +70,13 @@ inline vct::Node& addLight(vct::Scene& scene, const std::string& name, vct::Ligh
     return scene.nodes.back();
 }
 
-// Appends the six inward faces of the box [lo, hi] with `material`.
-inline void addClosedBox(vct::Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
+// Appends the six inward faces of the box [lo, hi] with `material`, all but face `leftOut` (axis · 2 + 1 for the
+// high side, axis · 2 for the low one; −1: none).
+inline void addClosedBox(vct::Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material, int leftOut = -1) {
     const glm::vec3 c = 0.5f * (lo + hi), h = 0.5f * (hi - lo);
     for (int axis = 0; axis < 3; ++axis)
         for (float side : {-1.0f, 1.0f}) {
+            if (axis * 2 + (side > 0.0f ? 1 : 0) == leftOut) continue;
             glm::vec3 e(0.0f);
             e[axis] = side;
             const glm::vec3 inward = -e;

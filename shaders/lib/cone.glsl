@@ -47,15 +47,12 @@ const float CONE_START_DISTANCE = 1.0f;
 // VoxelGi.HowMuchASurfaceShadowsAndLightsItselfInAClosedBox read 0.948 / 0.936 at 32³ / 128³ (exact 1), at 1.5
 // 0.998 / 0.985.
 const float CONE_START_OFFSET_JITTERED = 1.5f;
-// Samples a cone takes beyond its closure box before it stops (cone_trace.glsl: why): past the grid's face 2, past a
-// closed room's own face (a side of the box that is not the grid's: render/voxel_bricks.h's coneClosureBox) 4.
-// With 2 there, the gold sphere's near-mirror cones, which cross cornell's floor at grazing angles, still let
-// through 27 % / 30 % (64³ / 128³) of a sky 30× brighter into its light, with 4 5 % / 10 %; its one-bounce ratio
-// against the path tracer 0.979 / 0.940 → 1.049 / 0.991. Past the grid's faces 4 would read the edge texels, where
-// the walls of open scenes may stand, twice as long: courtyard 25.40 → 24.45 dB, DamagedHelmet 22.02 → 21.28 dB
-// (indirect sRGB PSNR against the truth, 64³).
+// Samples a cone takes beyond the grid's faces before it stops (cone_trace.glsl: why). Past a closed room's own face
+// (a side of the closure box that is not the grid's: render/voxel_bricks.h's coneClosureBox) it takes one, on that
+// face (cone_trace.glsl's closedFaceRead). Past the grid's faces 4 would read the edge texels, where the walls of
+// open scenes may stand, twice as long: courtyard 25.40 → 24.45 dB, DamagedHelmet 22.02 → 21.28 dB (indirect sRGB
+// PSNR against the truth, 64³).
 const int CONE_STEPS_PAST_GRID = 2;
-const int CONE_STEPS_PAST_CLOSED_FACE = 4;
 // coneSurfaceFootprint: how wide a footprint may be for its height above the surface the cone left.
 // The fixed cone set: 0.5. A sample at height h then reads mip levels up to a texel of 2·0.5h = h, and a trilinear
 // read there reaches 1.5 texels below it, into the surface's own voxel layer: the surface shadows (and, through

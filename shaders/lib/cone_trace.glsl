@@ -76,6 +76,54 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip, const bool wh
     return voxelSlabsSeen(w, seen[0], seen[1], seen[2], wholeMip);
 }
 
+// The share of a closed face's layer that a read at `at` (one in-plane axis, world units) sees, for texels of side
+// `texel`: the part of a texel's width about `at` within the face's extent [lo, hi] on that axis (a box in place of
+// the bilinear tent: the same ½ at a wall whether the wall lies on a texel's edge or at its centre, and a third of
+// the tent's arithmetic, which lavapipe runs at every step of every cone: design §5.3). A solid face reads this
+// opacity, not 1, where the texel reaches past the room.
+float closedFaceShare(float at, float texel, float lo, float hi) {
+    return saturate((min(at + 0.5 * texel, hi) - max(at - 0.5 * texel, lo)) / texel);
+}
+
+// Where a cone reads the closed face it has passed (traceCone), so that it ends on that face: where the cone's axis
+// crossed the face (`at`, kept inside the closure box [boxMin, boxMax] by coneSampleAt), at level ⌈m⌉, on the texel
+// boundary nearest the face along its axis. The face is the content's bound, on a voxel boundary or within a voxel,
+// and the conservative voxelizer marks the voxels touching it on one side or both: the read there takes half of each
+// texel beside the boundary, one of which holds the face's layer, and no more of what lies beyond. `solid`: the
+// opacity a whole face shows in that read, ½ along the axis (both sides holding it: ≥ 1, closed) times
+// closedFaceShare on its two other axes (a coarse texel reaches past the room's other walls). The read itself is
+// the march's one read per step, by the cone's direction: a separate read of the slab across the face for each
+// closing cone cost the trace 2.9× on lavapipe, whose SIMD lanes run every branch that any lane takes.
+struct ClosedFaceRead {
+    vec3 position;
+    float mip;
+    float solid;
+};
+ClosedFaceRead closedFaceRead(ConeSampleAt at, int axis, float faceAt, vec3 boxMin, vec3 boxMax) {
+    const vec3 gridOrigin = frame.voxels.origin;
+    const float v0 = frame.voxels.voxelSize;
+    ClosedFaceRead read;
+    read.mip = ceil(at.mip);
+    const float texel = ldexp(v0, int(read.mip));
+    read.position = at.position;
+    read.position[axis] = gridOrigin[axis] + floor((faceAt - gridOrigin[axis]) / texel + 0.5) * texel;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    read.solid = 0.5 * closedFaceShare(at.position[u], texel, boxMin[u], boxMax[u]) *
+                 closedFaceShare(at.position[v], texel, boxMin[v], boxMax[v]);
+    return read;
+}
+
+// The face's read `s` as a coverage of the cone: its opacity over what a whole face shows there (`solid`), so that
+// a whole face closes the cone (coverage 1) while a window or skylight in it (a face counts as closed with 95 % of
+// its bricks holding surfaces, render/voxel_bricks.h) lets through its share of the footprint, and the sky beyond.
+// Where a whole face would show almost nothing the read says nothing either: closed. Premultiplied colour and
+// coverage.
+vec4 closedFaceCoverage(vec4 s, float solid) {
+    const float coverage = solid > 0.05 ? saturate(s.a / solid) : 1.0;
+    const vec3 colour = s.a > 1e-6 ? vec3(s) / s.a : vec3(0.0);
+    return vec4(colour * coverage, coverage);
+}
+
 // Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
 // Light that leaves the grid unoccluded sees the environment (docs/design.md §5.9): the map read along the cone
 // at the mip whose texels are as wide as the cone, times what the cone left unoccluded (the background shows
@@ -94,8 +142,8 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // faces of what was voxelized where geometry covers them (a closed room's floor, walls and ceiling) and the
     // grid's elsewhere. With the grid's faces alone, a cone crossing cornell's floor or ceiling obliquely (both lie
     // 8 voxels inside the cubic grid) met nothing more and saw the sky: with the sky 30× brighter the gold sphere's
-    // one-bounce light rose 40 % / 47 % (64³ / 128³); closed at them, with CONE_STEPS_PAST_CLOSED_FACE samples
-    // past them, 5 % / 10 % (docs/design.md §5.3, §5.6). A closed face reaches as far as the content does on the
+    // one-bounce light rose 40 % / 47 % (64³ / 128³); closed at them (round 18, by a few samples past them), 5 % /
+    // 10 % (docs/design.md §5.3, §5.6), and since round 23 a cone ends on the face it passes (closedFaceRead). A closed face reaches as far as the content does on the
     // other axes: a cone that leaves the box beyond that (over the top of a courtyard's wall, into the open) has
     // left through an open side, and closes at the grid's faces from there on, as a cone that starts outside the
     // box does (nothing lies beyond the grid; from outside a room its faces would be in every cone's way).
@@ -117,6 +165,9 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
     int stepsPastBox = 0;
     float previousCoverage = 0.0;  // the last sample's (whole mips)
+    // The closed face the cone has just passed, if it has: its axis and where it lies.
+    int faceAxis = 0;
+    float faceAt = 0.0;
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
@@ -129,6 +180,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         // texels (clamped to the box; the sampler clamps to the grid's edge) close it: 0.99. A fixed count, not a
         // margin that grows with d: wide cones would then never leave.
         bool outside = any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax));
+        bool closing = false;
         if (outside && !open) {
             // Through a closed face: beyond a closed side on some axis, and on each other axis within the content
             // or beyond a closed side too (a room's edge or corner). Else through an open side: the grid's box.
@@ -141,21 +193,42 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
                 closeMin = gridOrigin;
                 closeMax = gridMax;
                 outside = any(lessThan(x, gridOrigin)) || any(greaterThan(x, gridMax));
+            } else {
+                // Past a closed face (the one it has passed farthest): the cone ends on that face's layer where its
+                // axis crossed it (closedFaceRead), which lets the sky in only through an opening in the face.
+                closing = true;
+                const vec3 past = max(closureMin - x, x - closureMax) * beyondClosed;
+                faceAxis = past.x >= past.y && past.x >= past.z ? 0 : (past.y >= past.z ? 1 : 2);
+                faceAt = x[faceAxis] > closureMax[faceAxis] ? closureMax[faceAxis] : closureMin[faceAxis];
             }
         }
-        if (outside && ++stepsPastBox > (open ? CONE_STEPS_PAST_GRID : CONE_STEPS_PAST_CLOSED_FACE)) break;
+        if (outside && !closing && ++stepsPastBox > CONE_STEPS_PAST_GRID) break;
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
         const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);
-        const ConeSampleAt at = coneSampleAt(x, min(mip, maxMip), p, n, v0, closeMin, closeMax);
+        // Where the cone's axis crossed the closed face, if it has just passed one.
+        const vec3 readFrom = closing ? x - dir * ((x[faceAxis] - faceAt) / dir[faceAxis]) : x;
+        ConeSampleAt at = coneSampleAt(readFrom, min(mip, maxMip), p, n, v0, closeMin, closeMax);
+        float solid = 1.0;
+        if (closing) {
+            const ClosedFaceRead read = closedFaceRead(at, faceAxis, faceAt, closureMin, closureMax);
+            at.position = read.position;
+            at.mip = read.mip;
+            solid = read.solid;
+        }
         const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips);
+        if (closing) {
+            // Counted as a coverage whatever the composite; the cone ends here. A cone that meets the face at
+            // under 18° does not read the slab across it (voxelSlabWeights), where alone the face is opaque at any
+            // angle: the face closes it.
+            const vec4 face = closedFaceCoverage(s, voxelSlabWeights(dir)[faceAxis] > 0.0 ? solid : 0.0);
+            acc = coneCompositeNested(acc, face, face.a, wholeMips ? previousCoverage : 0.0);
+            break;
+        }
         const float dt = coneStep(coneD);
         if (wholeMips) {
-            // Whole mips: what the sample's coverage adds to the last one's (coneCompositeNested). Past a closed
-            // room's face its wall stands there whatever the edge texel's coverage says: the cone closes, in the
-            // colour the texel shows (the fog composite closed it by counting the edge texel a few times over).
-            const float coverage = outside && !open ? 1.0 : s.a;
-            acc = coneCompositeNested(acc, s, coverage, previousCoverage);
-            previousCoverage = saturate(coverage);
+            // Whole mips: what the sample's coverage adds to the last one's (coneCompositeNested).
+            acc = coneCompositeNested(acc, s, s.a, previousCoverage);
+            previousCoverage = saturate(s.a);
         } else {
             // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
             acc = coneComposite(acc, s, dt, v0 * exp2(at.mip));
