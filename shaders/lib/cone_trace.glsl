@@ -17,7 +17,7 @@ layout(set = 0, binding = VCT_BINDING_VOXEL_ATLAS) uniform sampler3D voxelAtlas;
 
 // The grid as a cone travelling along unit `dir` sees it at `uvw` and (fractional) `mip`: the three direction
 // slabs facing it (lib/voxel.glsl), combined by voxelSlabsSeen with weights dir² per axis (their largest opacity
-// with `wholeMip`, for coneCompositeNested; their weighted mean otherwise). Slabs with no weight are not sampled
+// with `coverage`, for coneCompositeNested; their weighted mean otherwise). Slabs with no weight are not sampled
 // (an axis-aligned cone reads one). Below mip 1 the sample blends mip 0 from the atlas with mip 1 (what a
 // trilinear read between the two levels of one texture does): the atlas read is the block of the brick holding
 // the sample's lower corner voxel, which its apron makes hold all eight voxels the filter reads; no block there
@@ -36,7 +36,7 @@ vec4 sampleMipSlab(sampler3D voxels, vec3 uvw, vec3 dir, int axis, float lod, fl
     return v;
 }
 
-vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip, const bool wholeMip) {
+vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip, const bool wholeMip, bool coverage) {
     const vec3 w = voxelSlabWeights(dir);
     const int n = int(frame.voxels.resolution);
     vec4 seen[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
@@ -73,7 +73,7 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip, const bool wh
                                                                 texels, wholeMip);
         }
     }
-    return voxelSlabsSeen(w, seen[0], seen[1], seen[2], wholeMip);
+    return voxelSlabsSeen(w, seen[0], seen[1], seen[2], coverage);
 }
 
 // The share of a closed face's layer that a read at `at` (one in-plane axis, world units) sees, for texels of side
@@ -215,7 +215,9 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             at.mip = read.mip;
             solid = read.solid;
         }
-        const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips);
+        // Opacity as a coverage (voxelSlabsSeen) for the whole-mip cones, and on a closed face for every cone.
+        const vec4 s =
+            sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips, wholeMips || closing);
         if (closing) {
             // Counted as a coverage whatever the composite; the cone ends here. A cone that meets the face at
             // under 18° does not read the slab across it (voxelSlabWeights), where alone the face is opaque at any
