@@ -76,40 +76,39 @@ vec4 sampleVoxels(sampler3D voxels, vec3 uvw, vec3 dir, float mip, const bool wh
     return voxelSlabsSeen(w, seen[0], seen[1], seen[2], coverage);
 }
 
-// The share of a closed face's layer that a read at `at` (one in-plane axis, world units) sees, for texels of side
-// `texel`: the part of a texel's width about `at` within the face's extent [lo, hi] on that axis (a box in place of
-// the bilinear tent: the same ½ at a wall whether the wall lies on a texel's edge or at its centre, and a third of
-// the tent's arithmetic, which lavapipe runs at every step of every cone: design §5.3). A solid face reads this
-// opacity, not 1, where the texel reaches past the room.
-float closedFaceShare(float at, float texel, float lo, float hi) {
+// The share of a closed face's layer that a read at `at` sees on each axis, for texels of side `texel`: the part of
+// a texel's width about `at` within the face's extent [lo, hi] on that axis (a box in place of the bilinear tent:
+// the same ½ at a wall whether the wall lies on a texel's edge or at its centre, and a third of the tent's
+// arithmetic, which lavapipe runs at every step of every cone). A solid face reads this opacity, not 1, where the
+// texel reaches past the room.
+vec3 closedFaceShare(vec3 at, float texel, vec3 lo, vec3 hi) {
     return saturate((min(at + 0.5 * texel, hi) - max(at - 0.5 * texel, lo)) / texel);
 }
 
 // Where a cone reads the closed face it has passed (traceCone), so that it ends on that face: where the cone's axis
 // crossed the face (`at`, kept inside the closure box [boxMin, boxMax] by coneSampleAt), at level ⌈m⌉, on the texel
-// boundary nearest the face along its axis. The face is the content's bound, on a voxel boundary or within a voxel,
-// and the conservative voxelizer marks the voxels touching it on one side or both: the read there takes half of each
-// texel beside the boundary, one of which holds the face's layer, and no more of what lies beyond. `solid`: the
-// opacity a whole face shows in that read, ½ along the axis (both sides holding it: ≥ 1, closed) times
-// closedFaceShare on its two other axes (a coarse texel reaches past the room's other walls). The read itself is
-// the march's one read per step, by the cone's direction: a separate read of the slab across the face for each
-// closing cone cost the trace 2.9× on lavapipe, whose SIMD lanes run every branch that any lane takes.
+// boundary nearest the face along its axis (`face`: 1 on that axis; the face at `faceAt` on it). The face is the
+// content's bound, on a voxel boundary or within a voxel, and the conservative voxelizer marks the voxels touching
+// it on one side or both: the read there takes half of each texel beside the boundary, one of which holds the
+// face's layer, and no more of what lies beyond. `solid`: the opacity a whole face shows in that read, ½ along the
+// axis (both sides holding it: ≥ 1, closed) times closedFaceShare on its two other axes (a coarse texel reaches
+// past the room's other walls). The read itself is the march's one read per step, by the cone's direction: a
+// separate read of the slab across the face for each closing cone cost the trace 2.9× on lavapipe, whose SIMD
+// lanes run every branch that any lane takes (so this is vector arithmetic, no index by axis).
 struct ClosedFaceRead {
     vec3 position;
     float mip;
     float solid;
 };
-ClosedFaceRead closedFaceRead(ConeSampleAt at, int axis, float faceAt, vec3 boxMin, vec3 boxMax) {
+ClosedFaceRead closedFaceRead(ConeSampleAt at, vec3 face, vec3 faceAt, vec3 boxMin, vec3 boxMax) {
     const vec3 gridOrigin = frame.voxels.origin;
-    const float v0 = frame.voxels.voxelSize;
     ClosedFaceRead read;
     read.mip = ceil(at.mip);
-    const float texel = ldexp(v0, int(read.mip));
-    read.position = at.position;
-    read.position[axis] = gridOrigin[axis] + floor((faceAt - gridOrigin[axis]) / texel + 0.5) * texel;
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    read.solid = 0.5 * closedFaceShare(at.position[u], texel, boxMin[u], boxMax[u]) *
-                 closedFaceShare(at.position[v], texel, boxMin[v], boxMax[v]);
+    const float texel = ldexp(frame.voxels.voxelSize, int(read.mip));
+    const vec3 boundary = gridOrigin + floor((faceAt - gridOrigin) / texel + 0.5) * texel;
+    read.position = mix(at.position, boundary, face);
+    const vec3 share = mix(closedFaceShare(at.position, texel, boxMin, boxMax), vec3(1.0), face);
+    read.solid = 0.5 * share.x * share.y * share.z;
     return read;
 }
 
@@ -165,9 +164,8 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
     int stepsPastBox = 0;
     float previousCoverage = 0.0;  // the last sample's (whole mips)
-    // The closed face the cone has just passed, if it has: its axis and where it lies.
-    int faceAxis = 0;
-    float faceAt = 0.0;
+    // The slabs the cone reads, for the closed face below.
+    const vec3 slabWeights = voxelSlabWeights(dir);
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
@@ -181,6 +179,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         // margin that grows with d: wide cones would then never leave.
         bool outside = any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax));
         bool closing = false;
+        vec3 face = vec3(0.0);  // 1 on the axis of the closed face the cone has just passed
         if (outside && !open) {
             // Through a closed face: beyond a closed side on some axis, and on each other axis within the content
             // or beyond a closed side too (a room's edge or corner). Else through an open side: the grid's box.
@@ -198,32 +197,33 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
                 // axis crossed it (closedFaceRead), which lets the sky in only through an opening in the face.
                 closing = true;
                 const vec3 past = max(closureMin - x, x - closureMax) * beyondClosed;
-                faceAxis = past.x >= past.y && past.x >= past.z ? 0 : (past.y >= past.z ? 1 : 2);
-                faceAt = x[faceAxis] > closureMax[faceAxis] ? closureMax[faceAxis] : closureMin[faceAxis];
+                const bool alongX = past.x >= past.y && past.x >= past.z;
+                face = vec3(alongX, !alongX && past.y >= past.z, !alongX && past.y < past.z);
             }
         }
         if (outside && !closing && ++stepsPastBox > CONE_STEPS_PAST_GRID) break;
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
         const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);
-        // Where the cone's axis crossed the closed face, if it has just passed one.
-        const vec3 readFrom = closing ? x - dir * ((x[faceAxis] - faceAt) / dir[faceAxis]) : x;
+        // Where the cone's axis crossed the closed face, if it has just passed one (`face` is 0 otherwise).
+        const vec3 faceAt = mix(closureMin, closureMax, greaterThan(x, closureMax));
+        const vec3 readFrom = x - dir * (dot(x - faceAt, face) / (closing ? dot(dir, face) : 1.0));
         ConeSampleAt at = coneSampleAt(readFrom, min(mip, maxMip), p, n, v0, closeMin, closeMax);
         float solid = 1.0;
         if (closing) {
-            const ClosedFaceRead read = closedFaceRead(at, faceAxis, faceAt, closureMin, closureMax);
+            const ClosedFaceRead read = closedFaceRead(at, face, faceAt, closureMin, closureMax);
             at.position = read.position;
             at.mip = read.mip;
             solid = read.solid;
         }
         // Opacity as a coverage (voxelSlabsSeen) for the whole-mip cones, and on a closed face for every cone.
-        const vec4 s =
-            sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips, wholeMips || closing);
+        const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips,
+                                    wholeMips || closing);
         if (closing) {
             // Counted as a coverage whatever the composite; the cone ends here. A cone that meets the face at
             // under 18° does not read the slab across it (voxelSlabWeights), where alone the face is opaque at any
             // angle: the face closes it.
-            const vec4 face = closedFaceCoverage(s, voxelSlabWeights(dir)[faceAxis] > 0.0 ? solid : 0.0);
-            acc = coneCompositeNested(acc, face, face.a, wholeMips ? previousCoverage : 0.0);
+            const vec4 faceSeen = closedFaceCoverage(s, dot(slabWeights, face) > 0.0 ? solid : 0.0);
+            acc = coneCompositeNested(acc, faceSeen, faceSeen.a, wholeMips ? previousCoverage : 0.0);
             break;
         }
         const float dt = coneStep(coneD);
