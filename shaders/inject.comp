@@ -41,6 +41,7 @@ layout(set = 0, binding = 9) uniform sampler2D dfgTable;
 #include "lib/voxel_storage.glsl"
 #include "lib/voxel_workgroup.glsl"
 #include "lib/voxel_packing.glsl"
+#include "lib/voxel_sheet.glsl"
 
 layout(push_constant) uniform Push { InjectPushConstants push; };
 
@@ -84,51 +85,6 @@ void storeRadiance(uint k, ivec3 brick, ivec3 local, const vec4 slabs[VOXEL_SLAB
     }
 }
 
-// Whether voxel `local` of brick k holds a surface (its resolved opacity).
-bool brickVoxelOccupied(uint k, ivec3 local) {
-    return imageLoad(albedoImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local)).a > 0.0;
-}
-
-// The same for `voxel` in grid coordinates, in any brick; outside the grid or its storage it holds none.
-bool voxelOccupied(ivec3 voxel) {
-    const int n = int(frame.voxels.resolution);
-    if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(n)))) return false;
-    const uint k = brickIndex(voxelBrickOf(voxel));
-    return k != VCT_BRICK_NONE && brickVoxelOccupied(k, voxel % VOXEL_BRICK);
-}
-
-// A voxel whose surfaces' normals cancel (|n̄| below SHEET_MAX_NORMAL_LENGTH) may hold both faces of a thin sheet
-// (a wall or roof of no thickness): its averaged normal no longer says which side each face's light leaves by, and
-// voxelCosine / voxelFacing send the lit face's light to both sides, into the room behind the sheet (docs/design.md
-// §5.6). The sheet's plane is read from its neighbours instead: the one axis along which the occupied run through
-// the voxel is at most two voxels long (a sheet on a voxel face fills the layers on both sides) while along another
-// axis both neighbours are occupied. Returns that axis as a unit vector, or 0 where the neighbours say no one plane
-// (a corner, a lone voxel, an oblique sheet): the averaged normal then stays in charge.
-const float SHEET_MAX_NORMAL_LENGTH = 0.5;
-vec3 sheetAxis(ivec3 voxel) {
-    bvec3 thin = bvec3(false), continues = bvec3(false);
-    for (int axis = 0; axis < 3; ++axis) {
-        ivec3 step = ivec3(0);
-        step[axis] = 1;
-        const bool below = voxelOccupied(voxel - step), above = voxelOccupied(voxel + step);
-        continues[axis] = below && above;
-        // The run's length: this voxel, and one more on at most one side, with empty space past it.
-        thin[axis] = (!below && !above) || (below && !above && !voxelOccupied(voxel - 2 * step)) ||
-                     (!below && above && !voxelOccupied(voxel + 2 * step));
-    }
-    const int thins = int(thin.x) + int(thin.y) + int(thin.z);
-    if (thins != 1 || !any(continues)) return vec3(0.0);
-    return vec3(thin);
-}
-
-// Which slabs a sheet's face of unit normal n sends its light into: those on its side (n·e > ½: the one slab facing
-// away from the sheet), not the sideways ones. A one-sided surface's sideways slabs carry its light to the cones
-// that see it obliquely (voxelFacing); a sheet's are read from both sides, and carried the lit face's light into
-// the room behind it: a roof of no thickness under the sun sent 0.12–0.14 of its radiance into the room below with
-// them (0.003 without), and the hall, whose roof and walls are such sheets, got 2.06× its true indirect light at
-// 64³ with them (1.29× without; docs/design.md §5.6).
-float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) > 0.5 ? 1.0 : 0.0; }
-
 // The light occupied voxel `local` of brick k (at `brick`) sends to each side, stored.
 void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     const uint side = frame.voxels.brickAtlasSide;
@@ -148,6 +104,13 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     const float voxelSize = frame.voxels.voxelSize;
     const vec3 center = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
 
+    // Both faces of a thin sheet (lib/voxel_sheet.glsl): each light lights the face turned towards it, and that
+    // face's light leaves on its side only (per slab, like the lobes), not through the sheet.
+    const vec3 sheet = nbarLength < VOXEL_TWO_SIDED_NORMAL_LENGTH ? sheetAxis(voxel) : vec3(0.0);
+    const bool isSheet = any(notEqual(sheet, vec3(0.0)));
+    // What leaves per slab: the specular lobes of the lights (lib/voxel_specular.glsl), and a sheet's faces' light.
+    vec3 specular[VOXEL_SLAB_COUNT];
+    for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] = vec3(0.0);
     // What leaves to every side alike: emission, the diffuse part of the direct light, and (multiple bounces)
     // the light that has bounced before, diffuse and specular alike (bouncedLightReflectance,
     // lib/voxel_specular.glsl): the bounce gathers' light is not resolved by direction, so it has no lobe to follow.
@@ -157,12 +120,19 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         // Lambertian voxels reflect the diffuse albedo alone: no table read.
         const vec2 dfg =
             glossy ? textureLod(dfgTable, vec2(BOUNCE_MEAN_COSINE, perceptualRoughness), 0.0).rg : vec2(0.0);
-        radiance +=
-            bouncedLightReflectance(baseColor, metallic, dfg, glossy) * imageLoad(bounceImage, texel).rgb;
+        const vec4 gathered = imageLoad(bounceImage, texel);
+        const vec3 bounced = bouncedLightReflectance(baseColor, metallic, dfg, glossy) * gathered.rgb;
+        if (isSheet) {
+            // A sheet's gather looked to each side apart (voxel_bounce.comp): rgb their mean, a the share of it
+            // that came from the sheet's +axis side. Each face sends what reached it into the slab on its side:
+            // a sunlit roof's sky light no longer falls into the room below it.
+            for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
+                specular[slab] += bounced * (2.0 * (sheetFacing(sheet, slab) * gathered.a +
+                                                    sheetFacing(-sheet, slab) * (1.0 - gathered.a)));
+        } else {
+            radiance += bounced;
+        }
     }
-    // What leaves in the specular lobes of the lights, per slab (lib/voxel_specular.glsl).
-    vec3 specular[VOXEL_SLAB_COUNT];
-    for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] = vec3(0.0);
     // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light, and its lobes' isotropic
     // part (their axis part goes where the reflection points: specularSlabShare).
     float facing[VOXEL_SLAB_COUNT];
@@ -170,10 +140,6 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         facing[slab] = voxelFacing(nbar, -voxelSlabDirection(slab));
     const int lightCount = int(frame.lighting.lightCount);
     const int shadowLight = frame.lighting.shadowLight;
-    // Both faces of a thin sheet (sheetAxis): each light lights the face turned towards it, and that face's light
-    // leaves on its side only (per slab, like the lobes), not through the sheet.
-    const vec3 sheet = nbarLength < SHEET_MAX_NORMAL_LENGTH ? sheetAxis(voxel) : vec3(0.0);
-    const bool isSheet = any(notEqual(sheet, vec3(0.0)));
     for (int i = 0; i < lightCount; ++i) {
         const IncidentLight light = incidentLight(lights[i], center);
         const vec3 incident = light.radiance;

@@ -4,12 +4,14 @@
 // send on as albedo × it. The 6 diffuse cones of a surface pixel (lib/cone_trace.glsl's traceDiffuse), from the
 // voxel's centre about its averaged normal: the cosine-weighted mean incoming radiance, the Lambertian bounce's
 // albedo/π · E. Voxels whose surfaces disagree on a side (|n̄| short: both faces of a thin wall) gather about
-// n̄'s side only when it is clear, and over both sides (the mean of ±n̂) when it is not. Cones that leave the grid
+// n̄'s side only when it is clear, and over both sides when it is not, apart (gatheredLight: their mean and the
+// share of one side, which inject.comp splits between a thin sheet's faces again). Cones that leave the grid
 // see the environment (lib/cone_trace.glsl), so sky light bounces too. One workgroup per allocated brick
 // (lib/voxel_storage.glsl), its invocations packed onto the brick's occupied voxels (lib/voxel_packing.glsl).
 #include "lib/shared.h"
 #include "lib/constants.glsl"
 #include "lib/brdf.glsl"
+#include "lib/color.glsl"
 #include "lib/cone.glsl"
 #include "lib/gbuffer_read.glsl"
 #include "lib/voxel_bricks.glsl"
@@ -36,12 +38,12 @@ layout(push_constant) uniform Push { VoxelBouncePushConstants push; };
 #include "lib/cone_trace.glsl"
 #include "lib/voxel_workgroup.glsl"
 #include "lib/voxel_packing.glsl"
-
-// Below this |n̄| a voxel's surfaces face both ways about equally: gather both hemispheres.
-const float BOUNCE_ONE_SIDED = 0.5;
+#include "lib/voxel_sheet.glsl"
 
 // Where voxel `local` of brick k (at `brick`) gathers from: its centre, lifted one voxel along its axis (and against
-// it where its surfaces face both ways: twoSided).
+// it where its surfaces face both ways, |n̄| below VOXEL_TWO_SIDED_NORMAL_LENGTH: twoSided). A thin sheet's axis is
+// its plane's normal (sheetAxis), so that each side's gather is that face's, for inject.comp to send back out on
+// that side alone; other two-sided voxels gather about n̄ (or +y when nothing is left of it).
 struct GatherPoint {
     vec3 p;
     vec3 axis;
@@ -56,8 +58,9 @@ GatherPoint gatherPoint(uint k, ivec3 brick, ivec3 local) {
     GatherPoint g;
     g.p = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
     // No direction at all (rare: opposite faces in one voxel cancelling exactly): +y's two sides.
-    g.axis = r > 1e-3 ? nbar / r : vec3(0.0, 1.0, 0.0);
-    g.twoSided = r < BOUNCE_ONE_SIDED;
+    g.twoSided = r < VOXEL_TWO_SIDED_NORMAL_LENGTH;
+    const vec3 sheet = g.twoSided ? sheetAxis(voxel) : vec3(0.0);
+    g.axis = any(notEqual(sheet, vec3(0.0))) ? sheet : (r > 1e-3 ? nbar / r : vec3(0.0, 1.0, 0.0));
     return g;
 }
 
@@ -68,12 +71,21 @@ GatherPoint gatherPoint(uint k, ivec3 brick, ivec3 local) {
 // dB (docs/design.md §5.7).
 vec3 gatherOrigin(GatherPoint g, float side) { return g.p + side * frame.voxels.voxelSize * g.axis; }
 
+// What a voxel stores of its gathers: one side's light (rgb; a: 1, all of it from its axis's side), or the mean of
+// both sides' (a: the share of it that came from the +axis side, by luminance; ½ when neither side sees light),
+// which inject.comp splits again between a sheet's two faces.
+vec4 gatheredLight(vec3 front, vec3 back, bool twoSided) {
+    if (!twoSided) return vec4(front, 1.0);
+    const float f = luminance(front), b = luminance(back);
+    return vec4(0.5 * (front + back), f + b > 0.0 ? f / (f + b) : 0.5);
+}
+
 // The light voxel `local` of brick k (at `brick`) receives through the grid, its cones one after the other.
-vec3 gather(uint k, ivec3 brick, ivec3 local) {
+vec4 gather(uint k, ivec3 brick, ivec3 local) {
     const GatherPoint g = gatherPoint(k, brick, local);
-    vec3 gathered = traceDiffuse(voxels, gatherOrigin(g, 1.0), g.axis);
-    if (g.twoSided) gathered = 0.5 * (gathered + traceDiffuse(voxels, gatherOrigin(g, -1.0), -g.axis));
-    return gathered;
+    const vec3 front = traceDiffuse(voxels, gatherOrigin(g, 1.0), g.axis);
+    const vec3 back = g.twoSided ? traceDiffuse(voxels, gatherOrigin(g, -1.0), -g.axis) : vec3(0.0);
+    return gatheredLight(front, back, g.twoSided);
 }
 
 // The cone layout's radiances, per side, cone and listed voxel of the workgroup's current batch.
@@ -90,11 +102,11 @@ void main() {
     const uint invocations = gl_WorkGroupSize.x * gl_WorkGroupSize.z;
     clearOccupancy();
     for (uint voxel = gl_LocalInvocationIndex; voxel < 64u; voxel += invocations) {
-        const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, brickVoxel(voxel));
-        if (imageLoad(albedoImage, texel).a > 0.0)
+        const ivec3 local = brickVoxel(voxel);
+        if (brickVoxelOccupied(k, local))
             markOccupied(voxel);
         else
-            imageStore(bounceImage, texel, vec4(0.0));
+            imageStore(bounceImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local), vec4(0.0));
     }
     const uint count = listOccupiedVoxels(invocations);
     if (!CONE_LANES) {
@@ -102,7 +114,7 @@ void main() {
         for (uint i = gl_LocalInvocationIndex; i < count; i += lanes) {
             const ivec3 local = brickVoxel(packedVoxels[i]);
             imageStore(bounceImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local),
-                       vec4(gather(k, brick, local), 0.0));
+                       gather(k, brick, local));
         }
         return;
     }
@@ -124,13 +136,14 @@ void main() {
         if (listed && cone == 0) {
             vec3 radiance[DIFFUSE_CONE_COUNT];
             for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) radiance[i] = gatherRadiance[0][i][lane];
-            vec3 gathered = diffuseFromCones(radiance);
+            const vec3 front = diffuseFromCones(radiance);
+            vec3 back = vec3(0.0);
             if (g.twoSided) {
                 for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) radiance[i] = gatherRadiance[1][i][lane];
-                gathered = 0.5 * (gathered + diffuseFromCones(radiance));
+                back = diffuseFromCones(radiance);
             }
             imageStore(bounceImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local),
-                       vec4(gathered, 0.0));
+                       gatheredLight(front, back, g.twoSided));
         }
         barrier();  // before the next batch overwrites the radiances
     }

@@ -1,0 +1,57 @@
+// Thin sheets in the voxels (docs/design.md §5.6): a voxel whose surfaces' normals cancel may hold both faces of a
+// wall or roof of no thickness, and its averaged normal then no longer says which side each face's light leaves by.
+// Shared by inject.comp (where each face's direct and bounced light goes) and voxel_bounce.comp (which side each
+// gather looks to). GLSL only. Expects before inclusion: `frame` (FrameUniforms), the `albedoImage` of the resolved
+// voxels (alpha: opacity), lib/voxel.glsl, lib/voxel_bricks.glsl, lib/voxel_storage.glsl.
+#ifndef VCT_VOXEL_SHEET_GLSL
+#define VCT_VOXEL_SHEET_GLSL
+
+// Below this |n̄| a voxel's surfaces face both ways about equally: it is looked at as a sheet (sheetAxis), and the
+// voxels' gathers look to both sides of it (voxel_bounce.comp).
+const float VOXEL_TWO_SIDED_NORMAL_LENGTH = 0.5;
+
+// Whether voxel `local` of brick k holds a surface (its resolved opacity).
+bool brickVoxelOccupied(uint k, ivec3 local) {
+    return imageLoad(albedoImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local)).a > 0.0;
+}
+
+// The same for `voxel` in grid coordinates, in any brick; outside the grid or its storage it holds none.
+bool voxelOccupied(ivec3 voxel) {
+    const int n = int(frame.voxels.resolution);
+    if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(n)))) return false;
+    const uint k = brickIndex(voxelBrickOf(voxel));
+    return k != VCT_BRICK_NONE && brickVoxelOccupied(k, voxel % VOXEL_BRICK);
+}
+
+// A voxel whose surfaces' normals cancel (|n̄| below VOXEL_TWO_SIDED_NORMAL_LENGTH) may hold both faces of a thin sheet
+// (a wall or roof of no thickness): its averaged normal no longer says which side each face's light leaves by, and
+// voxelCosine / voxelFacing send the lit face's light to both sides, into the room behind the sheet (docs/design.md
+// §5.6). The sheet's plane is read from its neighbours instead: the one axis along which the occupied run through
+// the voxel is at most two voxels long (a sheet on a voxel face fills the layers on both sides) while along another
+// axis both neighbours are occupied. Returns that axis as a unit vector, or 0 where the neighbours say no one plane
+// (a corner, a lone voxel, an oblique sheet): the averaged normal then stays in charge.
+vec3 sheetAxis(ivec3 voxel) {
+    bvec3 thin = bvec3(false), continues = bvec3(false);
+    for (int axis = 0; axis < 3; ++axis) {
+        ivec3 step = ivec3(0);
+        step[axis] = 1;
+        const bool below = voxelOccupied(voxel - step), above = voxelOccupied(voxel + step);
+        continues[axis] = below && above;
+        // The run's length: this voxel, and one more on at most one side, with empty space past it.
+        thin[axis] = (!below && !above) || (below && !above && !voxelOccupied(voxel - 2 * step)) ||
+                     (!below && above && !voxelOccupied(voxel + 2 * step));
+    }
+    const int thins = int(thin.x) + int(thin.y) + int(thin.z);
+    if (thins != 1 || !any(continues)) return vec3(0.0);
+    return vec3(thin);
+}
+
+// Which slabs a sheet's face of unit normal n sends its light into: those on its side (n·e > ½: the one slab facing
+// away from the sheet), not the sideways ones. A one-sided surface's sideways slabs carry its light to the cones
+// that see it obliquely (voxelFacing); a sheet's are read from both sides, and carried the lit face's light into
+// the room behind it: a roof of no thickness under the sun sent 0.12–0.14 of its radiance into the room below with
+// them (0.003 without), and the hall, whose roof and walls are such sheets, got 2.06× its true indirect light at
+// 64³ with them (1.29× without; docs/design.md §5.6).
+float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) > 0.5 ? 1.0 : 0.0; }
+
+#endif  // VCT_VOXEL_SHEET_GLSL
