@@ -13,7 +13,8 @@ namespace {
 // bounds touch (no conservative dilation beyond), so one is enough.
 constexpr uint32_t kResolveMargin = 1;
 // For the injected light: the shadow lookup steps up to ~1.7 voxels out along the light and the normal
-// (inject.comp) and filters 2×2 shadow texels.
+// (inject.comp) and filters 2×2 shadow texels; a thin sheet's test (lib/voxel_sheet.glsl's sheetAxis) reads the
+// occupancy up to 2 voxels away, whose resolve reaches a voxel further (kResolveMargin): 3 covers both.
 constexpr uint32_t kInjectMargin = 3;
 // Above this share of the grid a region saves little and the whole grid is updated instead.
 constexpr double kMaxRegionShare = 0.5;
