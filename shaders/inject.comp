@@ -98,7 +98,6 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     const vec3 baseColor = albedoOpacity.rgb;
     const float nbarLength = length(nbar);
     const float metallic = emissionMetallic.w;
-    const float perceptualRoughness = voxelLobeRoughness(normalRoughness.w, nbarLength);
     const vec3 f0 = f0FromMetallic(baseColor, metallic);
     const vec3 albedo = diffuseAlbedo(baseColor, metallic);
     const float voxelSize = frame.voxels.voxelSize;
@@ -108,6 +107,9 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     // face's light leaves on its side only (per slab, like the lobes), not through the sheet.
     const vec3 sheet = nbarLength < VOXEL_TWO_SIDED_NORMAL_LENGTH ? sheetAxis(voxel) : vec3(0.0);
     const bool isSheet = any(notEqual(sheet, vec3(0.0)));
+    // The lobes' roughness, widened by the spread of the normals in the voxel (Toksvig): not a sheet's, whose two
+    // faces are flat and cancel in n̄ only by facing away from each other.
+    const float perceptualRoughness = voxelLobeRoughness(normalRoughness.w, isSheet ? 1.0 : nbarLength);
     // What leaves per slab: the specular lobes of the lights (lib/voxel_specular.glsl), and a sheet's faces' light.
     vec3 specular[VOXEL_SLAB_COUNT];
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] = vec3(0.0);
@@ -180,8 +182,10 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         float shares[VOXEL_SLAB_COUNT];
         float exitance = 0.0;  // of the shares as radiance
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
-            const float slabFacing = isSheet ? sheetFacing(litNormal, slab) : facing[slab];
-            shares[slab] = specularSlabShare(lobe, slab, slabFacing);
+            // A sheet's lobe leaves whole by the slab on its lit side: its sideways slabs are read from both sides,
+            // and the part of a grazing light's reflection that runs along the sheet would cross it there.
+            shares[slab] =
+                isSheet ? sheetFacing(litNormal, slab) : specularSlabShare(lobe, slab, facing[slab]);
             exitance += shares[slab] * slabExitance(towardsLightSide, slab);
         }
         // A guard: r lies in front of the surface (r·n = n·l > 0), so the axis part sends some light through it
