@@ -295,20 +295,22 @@ TEST(Cone, NestedCompositeCountsAnObjectOnceWhereItStaysInTheFootprint) {
 }
 
 TEST(Cone, SlabsSeenByCoverageKeepAnObliqueWallOpaque) {
-    // A one-voxel wall across x (opaque in the x slab, 1/8 of the y slab's texel covered: it is a thin layer seen
+    // A one-voxel wall across x (0.8 of the x slab's texel covered, 1/8 of the y slab's: it is a thin layer seen
     // along it) read by a cone 60° from its normal, in the xy plane (the z slab has no weight and is not read). The
-    // wall shows radiance 2 across it and 4 along it (its sideways slab holds another light): the mean opacity 0.34
-    // lets 2/3 through where counted once; the coverage form takes the x slab's 1, with the slabs' weighted colour.
+    // wall shows radiance 2 across it and 4 along it (its sideways slab holds another light): the mean opacity 0.29
+    // lets most of what lies behind through where counted once; the coverage form takes the x slab's 0.8, with the
+    // slabs' weighted colour.
     const glm::vec3 dir = glm::normalize(glm::vec3(0.5f, std::sqrt(0.75f), 0.0f));
     const glm::vec3 w = voxelSlabWeights(dir);
     EXPECT_EQ(w.z, 0.0f);
-    const glm::vec4 x(2.0f, 2.0f, 2.0f, 1.0f), y(0.5f, 0.5f, 0.5f, 0.125f), z(9.0f, 9.0f, 9.0f, 1.0f);
+    // The wall covers 0.8 of the x slab's texel; the z slab, not read, is fully opaque and must not count.
+    const glm::vec4 x(1.6f, 1.6f, 1.6f, 0.8f), y(0.5f, 0.5f, 0.5f, 0.125f), z(9.0f, 9.0f, 9.0f, 1.0f);
     const glm::vec4 mean = voxelSlabsSeen(w, x, y, z, false), seen = voxelSlabsSeen(w, x, y, z, true);
-    EXPECT_NEAR(mean.a, 0.25f * 1.0f + 0.75f * 0.125f, 1e-5f);
-    EXPECT_FLOAT_EQ(seen.a, 1.0f);  // the z slab's opacity, not read, does not count either
-    // The colour: the slabs' premultiplied radiance weighted, over their weighted opacity (2·0.25 + 0.5·0.75) /
-    // (0.25 + 0.125·0.75) = 2.545..., in both forms.
-    const float colour = (2.0f * 0.25f + 0.5f * 0.75f) / (0.25f + 0.125f * 0.75f);
+    EXPECT_NEAR(mean.a, 0.25f * 0.8f + 0.75f * 0.125f, 1e-5f);
+    EXPECT_FLOAT_EQ(seen.a, 0.8f);  // the x slab's; the z slab's 1 would be the largest if it counted
+    // The colour: the slabs' premultiplied radiance weighted, over their weighted opacity (1.6·0.25 + 0.5·0.75) /
+    // (0.8·0.25 + 0.125·0.75), in both forms.
+    const float colour = (1.6f * 0.25f + 0.5f * 0.75f) / (0.8f * 0.25f + 0.125f * 0.75f);
     EXPECT_NEAR(seen.r / seen.a, colour, 1e-5f);
     EXPECT_NEAR(mean.r / mean.a, colour, 1e-5f);
     // Nothing there: nothing seen, no division by zero.

@@ -332,7 +332,7 @@ TEST(VoxelGi, AClosedRoomLetsNoSkyIn) {
                 percentile99);
     EXPECT_GT(sum[0], 0.0);
     EXPECT_LE(whole, 1.01);
-    EXPECT_LE(percentile99, 1.2);
+    EXPECT_LE(percentile99, 1.05);
 }
 
 // vct compare --json of `image` against `reference`: the report's JSON.
@@ -522,15 +522,16 @@ TEST(VoxelGi, ARoofOfNoThicknessLitFromAboveSendsNothingIntoTheRoomBelow) {
     sun.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0));  // −Z turned to −Y
     const std::string file = sceneFile("roofed_room", room, glm::vec3(0.0f, 1.0f, 1.5f), 0.0f);
     const double roofRadiance = sunIlluminance * 0.5 / M_PI;
-    // The roof is lit as meant (else no leak would mean nothing): seen from above it shows that radiance, less the
-    // Fresnel share the BRDF's diffuse lobe gives up to its specular one (measured 0.917).
+    // The roof is lit as meant (else no leak would mean nothing): seen from above (a view 2.9 × 1.6 m, all roof) it
+    // shows that radiance, less the Fresnel share the BRDF's diffuse lobe gives up to its specular one (measured:
+    // see the bounds).
     const std::string above = sceneFile("roofed_room_above", room, glm::vec3(0.0f, 4.0f, 0.0f),
-                                        glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0)), 1.2f);
+                                        glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0)), 0.8f);
     const double roofLit = meanLuminance(vct::readExr(
                                renderVct("roofed_room_above", above, {"--voxels", "32"}) / "direct.exr")) /
                            roofRadiance;
     std::printf("the roof seen from above: %.3f of its radiance\n", roofLit);
-    EXPECT_GE(roofLit, 0.88);
+    EXPECT_GE(roofLit, 0.95);  // measured 0.985
     EXPECT_LE(roofLit, 1.0);
     const std::pair<const char*, double> bounds[] = {{"32", 0.01}, {"64", 0.01}};
     for (const auto& [voxels, bound] : bounds) {
@@ -579,7 +580,7 @@ std::string skylitRoomFile(const std::string& name, float height, float hole) {
 
 TEST(VoxelGi, ASkylightInAClosedRoomLetsTheSkyIn) {
     // Skylit rooms (skylitRoomFile) under a constant sky (a scene with only a point light has the constant ambient
-    // 0.03, × 30 here): the sky through the hole is all the indirect light there is. The hole is 3–5 % of the
+    // 0.03, × 30 here): the sky through the hole is all the indirect light there is. The hole is 4.8 % / 1.6 % of the
     // ceiling, so the ceiling still counts as a closed face of the cones' closure box (render/voxel_bricks.h,
     // kClosedFaceCoverage), and a cone that passes that face through the hole must see the sky, not a wall that is
     // not there. The image's mean diffuse indirect light against the path tracer's (one bounce, 256 spp).
@@ -597,7 +598,7 @@ TEST(VoxelGi, ASkylightInAClosedRoomLetsTheSkyIn) {
         double bounds[2][2];  // per grid (32³, 64³): the ratio's lower and upper bound
     };
     const Room rooms[] = {{"low", 0.6f, 0.4375f, {{0.75, 1.1}, {0.85, 1.1}}},
-                          {"tall", 2.0f, 0.25f, {{0.0, 1.1}, {0.1, 1.1}}}};
+                          {"tall", 2.0f, 0.25f, {{0.03, 1.1}, {0.1, 1.1}}}};
     const std::vector<std::string> sky = {"--environment-intensity", "30"};
     for (const Room& room : rooms) {
         const std::string name = std::string("skylit_room_") + room.name;

@@ -142,10 +142,11 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // grid's elsewhere. With the grid's faces alone, a cone crossing cornell's floor or ceiling obliquely (both lie
     // 8 voxels inside the cubic grid) met nothing more and saw the sky: with the sky 30× brighter the gold sphere's
     // one-bounce light rose 40 % / 47 % (64³ / 128³); closed at them (round 18, by a few samples past them), 5 % /
-    // 10 % (docs/design.md §5.3, §5.6), and since round 23 a cone ends on the face it passes (closedFaceRead). A closed face reaches as far as the content does on the
-    // other axes: a cone that leaves the box beyond that (over the top of a courtyard's wall, into the open) has
-    // left through an open side, and closes at the grid's faces from there on, as a cone that starts outside the
-    // box does (nothing lies beyond the grid; from outside a room its faces would be in every cone's way).
+    // 10 % (docs/design.md §5.3, §5.6), and since round 23 a cone ends on the face it passes (closedFaceRead). A
+    // closed face reaches as far as the content does on the other axes: a cone that leaves the box beyond that (over
+    // the top of a courtyard's wall, into the open) has left through an open side, and closes at the grid's faces
+    // from there on, as a cone that starts outside the box does (nothing lies beyond the grid; from outside a room
+    // its faces would be in every cone's way).
     const vec3 gridMax = gridOrigin + vec3(gridSize);
     const vec3 closureMin = frame.voxels.closureMin.xyz, closureMax = frame.voxels.closureMax.xyz;
     const vec3 contentMin = frame.voxels.contentMin.xyz, contentMax = frame.voxels.contentMax.xyz;
@@ -170,13 +171,14 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
         const float d = coneSurfaceFootprint(coneD, dot(x - p, n), v0, clearance);
-        // The axis leaves the closure box (above): nothing lies beyond, or a closed room's wall stands at it, but
-        // the footprint still covers the box's outermost texels. A cone meeting a wall obliquely sees it
-        // opaque only in the slab across the wall and partly in the others (an oblique crossing within one
-        // texel is not certain), so a room's walls at the grid's edge would pass (1 − α) of the environment:
-        // a closed emissive room gathered 0.79 of its radiance. CONE_STEPS_PAST_GRID more samples of the edge
-        // texels (clamped to the box; the sampler clamps to the grid's edge) close it: 0.99. A fixed count, not a
-        // margin that grows with d: wide cones would then never leave.
+        // The axis leaves the box (above). Through a closed face of the closure box the cone ends on that face
+        // (below). Past the grid's faces nothing lies beyond, but the footprint still covers the grid's outermost
+        // texels, and a cone meeting a wall there obliquely sees it opaque only in the slab across the wall and
+        // partly in the others (an oblique crossing within one texel is not certain): a room's walls at the grid's
+        // edge passed (1 − α) of the environment, a closed emissive room gathered 0.79 of its radiance.
+        // CONE_STEPS_PAST_GRID more samples of the edge texels (clamped to the box; the sampler clamps to the
+        // grid's edge) close it: 0.99. A fixed count, not a margin that grows with d: wide cones would then never
+        // leave.
         bool outside = any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax));
         bool closing = false;
         vec3 face = vec3(0.0);  // 1 on the axis of the closed face the cone has just passed
@@ -193,10 +195,12 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
                 closeMax = gridMax;
                 outside = any(lessThan(x, gridOrigin)) || any(greaterThan(x, gridMax));
             } else {
-                // Past a closed face (the one it has passed farthest): the cone ends on that face's layer where its
-                // axis crossed it (closedFaceRead), which lets the sky in only through an opening in the face.
+                // Past a closed face (the one its axis crossed first, the farthest back along it): the cone ends on
+                // that face's layer where its axis crossed it (closedFaceRead), which lets the sky in only through an
+                // opening in the face.
                 closing = true;
-                const vec3 past = max(closureMin - x, x - closureMax) * beyondClosed;
+                const vec3 past =
+                    max(closureMin - x, x - closureMax) * beyondClosed / max(abs(dir), vec3(1e-6));
                 const bool alongX = past.x >= past.y && past.x >= past.z;
                 face = vec3(alongX, !alongX && past.y >= past.z, !alongX && past.y < past.z);
             }

@@ -6,6 +6,9 @@
 #ifndef VCT_VOXEL_SHEET_GLSL
 #define VCT_VOXEL_SHEET_GLSL
 
+// A sheet's two faces share one colour in the bounced light: voxel_bounce.comp keeps the mean of their gathers
+// (rgb) and the share of one side (a, by luminance), four channels; a blue sky above a warm room tints both faces.
+
 // Below this |n̄| a voxel's surfaces face both ways about equally: it is looked at as a sheet (sheetAxis), and the
 // voxels' gathers look to both sides of it (voxel_bounce.comp).
 const float VOXEL_TWO_SIDED_NORMAL_LENGTH = 0.5;
