@@ -165,8 +165,10 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
     int stepsPastBox = 0;
     float previousCoverage = 0.0;  // the last sample's (whole mips)
-    // The slabs the cone reads, for the closed face below.
+    // The slabs the cone reads, for the closed face below, and how far back along the axis a distance past a face
+    // on each axis lies (which face it crossed first).
     const vec3 slabWeights = voxelSlabWeights(dir);
+    const vec3 inverseSpeed = 1.0 / max(abs(dir), vec3(1e-6));
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
@@ -199,8 +201,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
                 // that face's layer where its axis crossed it (closedFaceRead), which lets the sky in only through an
                 // opening in the face.
                 closing = true;
-                const vec3 past =
-                    max(closureMin - x, x - closureMax) * beyondClosed / max(abs(dir), vec3(1e-6));
+                const vec3 past = max(closureMin - x, x - closureMax) * beyondClosed * inverseSpeed;
                 const bool alongX = past.x >= past.y && past.x >= past.z;
                 face = vec3(alongX, !alongX && past.y >= past.z, !alongX && past.y < past.z);
             }
