@@ -186,8 +186,8 @@ VCT_INLINE vec4 coneComposite(vec4 acc, vec4 s, float stepLength, float mipVoxel
 // rays are taken as nested, as they are for one object: a rise in coverage blocks that part of the rays the
 // previous step left, (c − c₋₁)/(1 − c₋₁), and a fall blocks nothing. Two objects one behind the other each count
 // (coverage falls between them and rises again). The colour of a step is its sample's, s.rgb/s.a; `coverage` is
-// the sample's opacity, or on the closed face a cone ends at, that face's (cone_trace.glsl's closedFaceCoverage). No step-length
-// correction: coverage is a share of rays, not a density along them. Measured (docs/design.md §5.3, round 22):
+// the sample's opacity, or on the closed face a cone ends at, that face's (cone_trace.glsl's closedFaceCoverage).
+// No step-length correction: coverage is a share of rays, not a density along them. Measured (docs/design.md §5.3, round 22):
 // the indirect light against the path tracer +0.4 to +2.2 dB on cornell, plane, courtyard and DamagedHelmet.
 VCT_INLINE vec4 coneCompositeNested(vec4 acc, vec4 s, float coverage, float previousCoverage) {
     const float c = saturate(coverage);

@@ -112,15 +112,13 @@ ClosedFaceRead closedFaceRead(ConeSampleAt at, vec3 face, vec3 faceAt, vec3 boxM
     return read;
 }
 
-// The face's read `s` as a coverage of the cone: its opacity over what a whole face shows there (`solid`), so that
-// a whole face closes the cone (coverage 1) while a window or skylight in it (a face counts as closed with 95 % of
-// its bricks holding surfaces, render/voxel_bricks.h) lets through its share of the footprint, and the sky beyond.
-// Where a whole face would show almost nothing the read says nothing either: closed. Premultiplied colour and
-// coverage.
-vec4 closedFaceCoverage(vec4 s, float solid) {
-    const float coverage = solid > 0.05 ? saturate(s.a / solid) : 1.0;
-    const vec3 colour = s.a > 1e-6 ? vec3(s) / s.a : vec3(0.0);
-    return vec4(colour * coverage, coverage);
+// The face's read, of opacity `opacity`, as a coverage of the cone: that opacity over what a whole face shows there
+// (`solid`), so that a whole face closes the cone (coverage 1) while a window or skylight in it (a face counts as
+// closed with 95 % of its bricks holding surfaces, render/voxel_bricks.h) lets through its share of the footprint,
+// and the sky beyond. Where a whole face would show almost nothing the read says nothing either: closed. The colour
+// is the read's own (coneCompositeNested takes it from the sample).
+float closedFaceCoverage(float opacity, float solid) {
+    return solid > 0.05 ? saturate(opacity / solid) : 1.0;
 }
 
 // Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
@@ -182,8 +180,11 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         // grid's edge) close it: 0.99. A fixed count, not a margin that grows with d: wide cones would then never
         // leave.
         bool outside = any(lessThan(x, closeMin)) || any(greaterThan(x, closeMax));
+        // The closed face the cone has just passed, if it has: 1 on its axis (`face`), where it lies (`faceAt`, on that
+        // axis) and how far back along the cone's axis it was crossed (`back`).
         bool closing = false;
-        vec3 face = vec3(0.0);  // 1 on the axis of the closed face the cone has just passed
+        vec3 face = vec3(0.0), faceAt = vec3(0.0);
+        float back = 0.0;
         if (outside && !open) {
             // Through a closed face: beyond a closed side on some axis, and on each other axis within the content
             // or beyond a closed side too (a room's edge or corner). Else through an open side: the grid's box.
@@ -204,15 +205,15 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
                 const vec3 past = max(closureMin - x, x - closureMax) * beyondClosed * inverseSpeed;
                 const bool alongX = past.x >= past.y && past.x >= past.z;
                 face = vec3(alongX, !alongX && past.y >= past.z, !alongX && past.y < past.z);
+                faceAt = mix(closureMin, closureMax, greaterThan(x, closureMax));
+                back = dot(past, face);
             }
         }
         if (outside && !closing && ++stepsPastBox > CONE_STEPS_PAST_GRID) break;
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
         const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);
-        // Where the cone's axis crossed the closed face, if it has just passed one (`face` is 0 otherwise).
-        const vec3 faceAt = mix(closureMin, closureMax, greaterThan(x, closureMax));
-        const vec3 readFrom = x - dir * (dot(x - faceAt, face) / (closing ? dot(dir, face) : 1.0));
-        ConeSampleAt at = coneSampleAt(readFrom, min(mip, maxMip), p, n, v0, closeMin, closeMax);
+        // Read where the cone's axis crossed the closed face, if it has just passed one (`back` is 0 otherwise).
+        ConeSampleAt at = coneSampleAt(x - dir * back, min(mip, maxMip), p, n, v0, closeMin, closeMax);
         float solid = 1.0;
         if (closing) {
             const ClosedFaceRead read = closedFaceRead(at, face, faceAt, closureMin, closureMax);
@@ -227,8 +228,8 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             // Counted as a coverage whatever the composite; the cone ends here. A cone that meets the face at
             // under 18° does not read the slab across it (voxelSlabWeights), where alone the face is opaque at any
             // angle: the face closes it.
-            const vec4 faceSeen = closedFaceCoverage(s, dot(slabWeights, face) > 0.0 ? solid : 0.0);
-            acc = coneCompositeNested(acc, faceSeen, faceSeen.a, wholeMips ? previousCoverage : 0.0);
+            const float coverage = closedFaceCoverage(s.a, dot(slabWeights, face) > 0.0 ? solid : 0.0);
+            acc = coneCompositeNested(acc, s, coverage, wholeMips ? previousCoverage : 0.0);
             break;
         }
         const float dt = coneStep(coneD);

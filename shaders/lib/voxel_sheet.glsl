@@ -26,10 +26,10 @@ bool voxelOccupied(ivec3 voxel) {
     return k != VCT_BRICK_NONE && brickVoxelOccupied(k, voxel % VOXEL_BRICK);
 }
 
-// A voxel whose surfaces' normals cancel (|n̄| below VOXEL_TWO_SIDED_NORMAL_LENGTH) may hold both faces of a thin sheet
-// (a wall or roof of no thickness): its averaged normal no longer says which side each face's light leaves by, and
-// voxelCosine / voxelFacing send the lit face's light to both sides, into the room behind the sheet (docs/design.md
-// §5.6). The sheet's plane is read from its neighbours instead: the one axis along which the occupied run through
+// A voxel whose surfaces' normals cancel (|n̄| below VOXEL_TWO_SIDED_NORMAL_LENGTH) may hold both faces of a thin
+// sheet (a wall or roof of no thickness): its averaged normal no longer says which side each face's light leaves by,
+// and voxelCosine / voxelFacing send the lit face's light to both sides, into the room behind the sheet
+// (docs/design.md §5.6). The sheet's plane is read from its neighbours instead: the one axis along which the occupied run through
 // the voxel is at most two voxels long (a sheet on a voxel face fills the layers on both sides) while along another
 // axis both neighbours are occupied. Returns that axis as a unit vector, or 0 where the neighbours say no one plane
 // (a corner, a lone voxel, an oblique sheet): the averaged normal then stays in charge.
