@@ -136,10 +136,14 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         }
     }
     // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light, and its lobes' isotropic
-    // part (their axis part goes where the reflection points: specularSlabShare).
+    // part (their axis part goes where the reflection points: specularSlabShare). A face of a wall two voxels thick
+    // (lib/voxel_sheet.glsl): only its own side, all of it, lobes included.
+    const vec3 wallFace = isSheet ? vec3(0.0) : wallFaceNormal(voxel, nbar);
+    const bool isWallFace = any(notEqual(wallFace, vec3(0.0)));
     float facing[VOXEL_SLAB_COUNT];
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
-        facing[slab] = voxelFacing(nbar, -voxelSlabDirection(slab));
+        facing[slab] =
+            isWallFace ? sheetFacing(wallFace, slab) : voxelFacing(nbar, -voxelSlabDirection(slab));
     const int lightCount = int(frame.lighting.lightCount);
     const int shadowLight = frame.lighting.shadowLight;
     for (int i = 0; i < lightCount; ++i) {
@@ -182,10 +186,12 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         float shares[VOXEL_SLAB_COUNT];
         float exitance = 0.0;  // of the shares as radiance
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) {
-            // A sheet's lobe leaves whole by the slab on its lit side: its sideways slabs are read from both sides,
-            // and the part of a grazing light's reflection that runs along the sheet would cross it there.
-            shares[slab] =
-                isSheet ? sheetFacing(litNormal, slab) : specularSlabShare(lobe, slab, facing[slab]);
+            // A sheet's lobe leaves whole by the slab on its lit side, a wall face's by the slab on its own side:
+            // their sideways slabs are read from both sides, and the part of a grazing light's reflection that runs
+            // along the wall would cross it there.
+            shares[slab] = isSheet      ? sheetFacing(litNormal, slab)
+                           : isWallFace ? facing[slab]
+                                        : specularSlabShare(lobe, slab, facing[slab]);
             exitance += shares[slab] * slabExitance(towardsLightSide, slab);
         }
         // A guard: r lies in front of the surface (r·n = n·l > 0), so the axis part sends some light through it

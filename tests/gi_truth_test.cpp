@@ -561,6 +561,42 @@ TEST(VoxelGi, ARoofOfNoThicknessLitFromAboveSendsNothingIntoTheRoomBelow) {
 
 // A closed room (albedo 0.5, 4 m × `height` × 4 m) whose ceiling has a square hole of half-side `hole` in its
 // middle, lit only by a point light too faint to matter, with a camera looking at the floor under the hole.
+TEST(VoxelGi, ARoofTwoVoxelsThickLitFromAboveSendsNothingIntoTheRoomBelow) {
+    // The same closed room under a roof one voxel thick: the room's ceiling (facing down) and the roof's top (facing
+    // up) lie a quarter voxel into two neighbouring voxel layers, each one-sided (|n̄| ≈ 1: no sheet), as the hall's
+    // 0.3 m roof does at 64³ and 128³. The exact answer is again 0. The top layer sent its sunlit face's light
+    // sideways too, as a one-sided voxel does (a floor seen obliquely from above is lit), and every mip texel and
+    // trilinear read that holds both layers averages their sideways slabs, which the room's cones read from below:
+    // the room got 0.0223 / 0.0216 of the roof's radiance (32³ / 64³). A face of a wall two voxels thick now sends its
+    // light into the slab on its own side only (lib/voxel_sheet.glsl, wallFaceNormal; docs/design.md §5.6):
+    // 0.0024 / 0.0011.
+    const std::pair<const char*, double> bounds[] = {{"32", 0.004}, {"64", 0.002}};
+    for (const auto& [voxels, bound] : bounds) {
+        // The grid fits the room's 4 m to N − 2 voxels, centred: the ceiling at y = v·(2k + 1.5) and the roof's
+        // top a voxel v above it put both a quarter voxel into their layers.
+        const int n = std::stoi(voxels);
+        const float voxel = 4.0f / float(n - 2), ceiling = voxel * (n == 32 ? 15.5f : 31.5f);
+        vct::Scene room = emptyScene("thick roofed room", diffuseMaterial(0.5f, 0.0f));
+        addClosedBox(room, {-2.0f, 0.0f, -2.0f}, {2.0f, ceiling, 2.0f}, 0);
+        addQuad(room, glm::vec3(0.0f, ceiling + voxel, 0.0f), glm::vec3(0, 0, 2), glm::vec3(2, 0, 0), 0);
+        const float sunIlluminance = 3.0f;
+        vct::Node& sun = addLight(room, "sun", vct::LightType::Directional, sunIlluminance);
+        sun.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0));  // −Z turned to −Y
+        const std::string file =
+            sceneFile(std::string("thick_roofed_room_") + voxels, room, glm::vec3(0.0f, 1.0f, 1.5f), 0.0f);
+        const double roofRadiance = sunIlluminance * 0.5 / M_PI;
+        const fs::path dir = renderVct(std::string("thick_roofed_room_") + voxels, file,
+                                       {"--voxels", voxels, "--environment-intensity", "0.001"});
+        const double leak = meanLuminance(vct::readExr(dir / "diffuse_indirect.exr")) / roofRadiance;
+        std::printf(
+            "a roof one voxel thick at %s^3: the room's indirect light %.4f of the roof's radiance (exact "
+            "0)\n",
+            voxels, leak);
+        EXPECT_LE(leak, bound) << voxels;
+        EXPECT_TRUE(std::isfinite(leak));
+    }
+}
+
 std::string skylitRoomFile(const std::string& name, float height, float hole) {
     vct::Scene room = emptyScene("skylit room", diffuseMaterial(0.5f, 0.0f));
     addClosedBox(room, {-2.0f, 0.0f, -2.0f}, {2.0f, height, 2.0f}, 0, /*leftOut: the ceiling*/ 3);

@@ -1,8 +1,8 @@
 // Thin sheets in the voxels (docs/design.md §5.6): a voxel whose surfaces' normals cancel may hold both faces of a
 // wall or roof of no thickness, and its averaged normal then no longer says which side each face's light leaves by.
 // Shared by inject.comp (where each face's direct and bounced light goes) and voxel_bounce.comp (which side each
-// gather looks to). GLSL only. Expects before inclusion: `frame` (FrameUniforms), the `albedoImage` of the resolved
-// voxels (alpha: opacity), lib/voxel.glsl, lib/voxel_bricks.glsl, lib/voxel_storage.glsl.
+// gather looks to). GLSL only. Expects before inclusion: `frame` (FrameUniforms), the `albedoImage` (alpha: opacity)
+// and `normalImage` of the resolved voxels, lib/voxel.glsl, lib/voxel_bricks.glsl, lib/voxel_storage.glsl.
 #ifndef VCT_VOXEL_SHEET_GLSL
 #define VCT_VOXEL_SHEET_GLSL
 
@@ -56,5 +56,43 @@ vec3 sheetAxis(ivec3 voxel) {
 // them (0.003 without), and the hall, whose roof and walls are such sheets, got 2.06× its true indirect light at
 // 64³ with them (1.29× without; docs/design.md §5.6).
 float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) > 0.5 ? 1.0 : 0.0; }
+
+// ---- the faces of a wall two voxels thick ----
+// A wall or roof thicker than a voxel but thinner than two (the hall's 0.3 m shell at 64³ and 128³) puts its faces in
+// two neighbouring voxel layers, each one-sided (|n̄| ≈ 1, no sheet). A one-sided voxel sends its light sideways too
+// (voxelFacing: a floor seen obliquely from above is lit), but every mip texel that holds both layers, and the
+// trilinear reads between them, average the two faces' sideways slabs, which cones read from either side: the
+// sunlit top of the hall's roof lit the hall below through them (docs/design.md §5.6: 2.06× the hall's true sun
+// light at 64³). Such a face sends its light only into the slab on its own side, like a sheet's faces.
+
+// A wall's face: the averaged normal within ~25° of an axis (cos ≥ 0.9), and so is the voxel's behind it.
+const float WALL_FACE_AXIS_COSINE = 0.9;
+
+// The averaged normal of `voxel` (0 outside the grid, in unallocated bricks and in empty voxels).
+vec3 voxelNormalAt(ivec3 voxel) {
+    const int n = int(frame.voxels.resolution);
+    if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(n)))) return vec3(0.0);
+    const uint k = brickIndex(voxelBrickOf(voxel));
+    if (k == VCT_BRICK_NONE) return vec3(0.0);
+    const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, voxel % VOXEL_BRICK);
+    return imageLoad(albedoImage, texel).a > 0.0 ? imageLoad(normalImage, texel).xyz : vec3(0.0);
+}
+
+// The unit axis a one-sided voxel (averaged normal nbar) faces along, if it is one face of a wall whose other face
+// fills the voxel right behind it: both normals within WALL_FACE_AXIS_COSINE of that axis, opposite. Else 0.
+vec3 wallFaceNormal(ivec3 voxel, vec3 nbar) {
+    const float r = length(nbar);
+    if (r < VOXEL_TWO_SIDED_NORMAL_LENGTH) return vec3(0.0);
+    const vec3 n = nbar / r;
+    const vec3 a = abs(n);
+    const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    if (a[axis] < WALL_FACE_AXIS_COSINE) return vec3(0.0);
+    vec3 face = vec3(0.0);
+    face[axis] = n[axis] > 0.0 ? 1.0 : -1.0;
+    const vec3 behind = voxelNormalAt(voxel - ivec3(face));
+    const float behindLength = length(behind);
+    if (behindLength < VOXEL_TWO_SIDED_NORMAL_LENGTH) return vec3(0.0);
+    return dot(behind, face) / behindLength <= -WALL_FACE_AXIS_COSINE ? face : vec3(0.0);
+}
 
 #endif  // VCT_VOXEL_SHEET_GLSL
