@@ -87,12 +87,12 @@ vec3 closedFaceShare(vec3 at, float texel, vec3 lo, vec3 hi) {
 
 // Where a cone reads the closed face it has passed (traceCone), so that it ends on that face: where the cone's axis
 // crossed the face (`at`, kept inside the closure box [boxMin, boxMax] by coneSampleAt), at level ⌈m⌉, on the texel
-// boundary nearest the face along its axis (`face`: 1 on that axis; the face at `faceAt` on it). The face is the
-// content's bound, on a voxel boundary or within a voxel, and the conservative voxelizer marks the voxels touching
-// it on one side or both: the read there takes half of each texel beside the boundary, one of which holds the
-// face's layer, and no more of what lies beyond. `solid`: the opacity a whole face shows in that read, ½ along the
-// axis (both sides holding it: ≥ 1, closed) times closedFaceShare on its two other axes (a coarse texel reaches
-// past the room's other walls). The read itself is the march's one read per step, by the cone's direction: a
+// boundary just beyond the face along its axis (`face`: 1 on that axis; the face at `faceAt` on it, on the box's
+// upper side where `high` is 1). The face is the content's bound, on a voxel boundary or within a voxel, and the
+// conservative voxelizer marks the voxels touching it on one side or both: the read there takes half of the texel
+// that holds the face's layer and half of the one beyond it, outside the room. `solid`: the opacity a whole face
+// shows in that read, ½ along the axis (both sides holding it: ≥ 1, closed) times closedFaceShare on its two other
+// axes (a coarse texel reaches past the room's other walls). The read itself is the march's one read per step, by the cone's direction: a
 // separate read of the slab across the face for each closing cone cost the trace 2.9× on lavapipe, whose SIMD
 // lanes run every branch that any lane takes (so this is vector arithmetic, no index by axis).
 struct ClosedFaceRead {
@@ -100,12 +100,18 @@ struct ClosedFaceRead {
     float mip;
     float solid;
 };
-ClosedFaceRead closedFaceRead(ConeSampleAt at, vec3 face, vec3 faceAt, vec3 boxMin, vec3 boxMax) {
+ClosedFaceRead closedFaceRead(ConeSampleAt at, vec3 face, vec3 faceAt, vec3 high, vec3 boxMin, vec3 boxMax) {
     const vec3 gridOrigin = frame.voxels.origin;
+    const float v0 = frame.voxels.voxelSize;
     ClosedFaceRead read;
     read.mip = ceil(at.mip);
-    const float texel = ldexp(frame.voxels.voxelSize, int(read.mip));
-    const vec3 boundary = gridOrigin + floor((faceAt - gridOrigin) / texel + 0.5) * texel;
+    const float texel = ldexp(v0, int(read.mip));
+    // The texel boundary just beyond the face (the texel holding the face's layer inside it, the one beyond it
+    // outside the room), not the nearest: at a coarse level the nearest can lie inside the room, and the read there
+    // took in the room itself (the hall's roof 10 m up, read at 20 m texels, took in the floor, and its skylights let
+    // in 0.18 of the true sky). A face on a voxel boundary, to 1/64 voxel, is on it.
+    const vec3 q = (faceAt - gridOrigin) / texel, onBoundary = vec3(v0 / (64.0 * texel));
+    const vec3 boundary = gridOrigin + mix(floor(q + onBoundary), ceil(q - onBoundary), high) * texel;
     read.position = mix(at.position, boundary, face);
     const vec3 share = mix(closedFaceShare(at.position, texel, boxMin, boxMax), vec3(1.0), face);
     read.solid = 0.5 * share.x * share.y * share.z;
@@ -183,7 +189,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         // The closed face the cone has just passed, if it has: 1 on its axis (`face`), where it lies (`faceAt`, on that
         // axis) and how far back along the cone's axis it was crossed (`back`).
         bool closing = false;
-        vec3 face = vec3(0.0), faceAt = vec3(0.0);
+        vec3 face = vec3(0.0), faceAt = vec3(0.0), high = vec3(0.0);
         float back = 0.0;
         if (outside && !open) {
             // Through a closed face: beyond a closed side on some axis, and on each other axis within the content
@@ -205,7 +211,8 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
                 const vec3 past = max(closureMin - x, x - closureMax) * beyondClosed * inverseSpeed;
                 const bool alongX = past.x >= past.y && past.x >= past.z;
                 face = vec3(alongX, !alongX && past.y >= past.z, !alongX && past.y < past.z);
-                faceAt = mix(closureMin, closureMax, greaterThan(x, closureMax));
+                high = vec3(greaterThan(x, closureMax));
+                faceAt = mix(closureMin, closureMax, high);
                 back = dot(past, face);
             }
         }
@@ -216,7 +223,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         ConeSampleAt at = coneSampleAt(x - dir * back, min(mip, maxMip), p, n, v0, closeMin, closeMax);
         float solid = 1.0;
         if (closing) {
-            const ClosedFaceRead read = closedFaceRead(at, face, faceAt, closureMin, closureMax);
+            const ClosedFaceRead read = closedFaceRead(at, face, faceAt, high, closureMin, closureMax);
             at.position = read.position;
             at.mip = read.mip;
             solid = read.solid;
