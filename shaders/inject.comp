@@ -136,9 +136,9 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         }
     }
     // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light, and its lobes' isotropic
-    // part (their axis part goes where the reflection points: specularSlabShare). A face of a wall two voxels thick
-    // (lib/voxel_sheet.glsl): only its own side, all of it, lobes included.
-    const vec3 wallFace = isSheet ? vec3(0.0) : wallFaceNormal(voxel, nbar);
+    // part (their axis part goes where the reflection points: specularSlabShare). The outer face of a closed room's
+    // wall two voxels thick (lib/voxel_sheet.glsl): only its own side, all of it, lobes included.
+    const vec3 wallFace = isSheet ? vec3(0.0) : outerWallFaceNormal(voxel, nbar);
     const bool isWallFace = any(notEqual(wallFace, vec3(0.0)));
     float facing[VOXEL_SLAB_COUNT];
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)

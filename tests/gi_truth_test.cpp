@@ -504,6 +504,56 @@ TEST(VoxelGi, LightLeakingThroughAOneVoxelWallIsBounded) {
     }
 }
 
+TEST(VoxelGi, LightLeakingThroughAWallOneVoxelThickBetweenTwoRoomsIsBounded) {
+    // Two closed rooms (albedo 0.5) side by side along x, the left one lit by a point light, the right one dark,
+    // sharing a wall one voxel thick: its faces lie a quarter voxel into two neighbouring voxel layers, each
+    // one-sided. Every bit of indirect light in the right room leaked through the wall (exact 0). The wall's faces
+    // are inner faces of the rooms, not a closed room's outer faces (lib/voxel_sheet.glsl's outerWallFaceNormal), so
+    // the lit face keeps its sideways light, which the mips average with the dark face's. Measured: the dark room gets
+    // 0.187 / 0.212 of the lit room's diffuse indirect light (32³ / 64³); with every face of such a wall sending
+    // light along its own slab alone (round 24's first version) 0.190 / 0.220, round 23 0.187 / 0.212. The same
+    // rooms sharing a wall of no thickness (a sheet) leak more: 0.248 / 0.262. What leaks is mostly not the wall's
+    // sideways light but the lit room's floor and ceiling, which the coarse texels that straddle the wall average
+    // with the dark room's (docs/design.md §5.6). The lamp lights them directly; the emissive ceiling of
+    // LightLeakingThroughAOneVoxelWallIsBounded lights them only through the cones, and leaks 0.07 / 0.06.
+    const std::pair<const char*, double> bounds[] = {{"32", 0.2}, {"64", 0.225}};
+    for (const auto& [voxels, bound] : bounds) {
+        const int n = std::stoi(voxels);
+        const float voxel = 4.0f / float(n - 2);
+        double leak[2] = {0.0, 0.0};  // through the thick wall, through the wall of no thickness
+        for (const bool thick : {true, false}) {
+            // The bounds' 4 m along x put x = 0 on a voxel boundary (the grid is centred): the wall [−¾v, ¼v].
+            const float wallLow = thick ? -0.75f * voxel : 0.0f, wallHigh = thick ? 0.25f * voxel : 0.0f;
+            vct::Scene rooms = emptyScene("two rooms, thick wall", diffuseMaterial(0.5f, 0.0f));
+            addClosedBox(rooms, {-2.0f, -1.0f, -1.0f}, {wallLow, 1.0f, 1.0f}, 0);
+            addClosedBox(rooms, {wallHigh, -1.0f, -1.0f}, {2.0f, 1.0f, 1.0f}, 0);
+            vct::Node& lamp = addLight(rooms, "lamp", vct::LightType::Point, 20.0f);
+            lamp.translation = glm::vec3(-1.0f, 0.0f, 0.0f);
+            const std::string tag = std::string(thick ? "thick" : "thin") + "_wall_rooms_" + voxels;
+            const std::string litFile =
+                sceneFile(tag + "_lit", rooms, glm::vec3(-1.6f, 0.0f, 0.0f), -1.5708f);
+            const std::string darkFile =
+                sceneFile(tag + "_dark", rooms, glm::vec3(1.6f, 0.0f, 0.0f), 1.5708f);
+            const auto diffuseIn = [&](const std::string& name, const std::string& file) {
+                const fs::path dir =
+                    renderVct(name, file, {"--voxels", voxels, "--environment-intensity", "0.001"});
+                return meanLuminance(vct::readExr(dir / "diffuse_indirect.exr"));
+            };
+            const double lit = diffuseIn(tag + "_lit", litFile), dark = diffuseIn(tag + "_dark", darkFile);
+            double& through = leak[thick ? 0 : 1];
+            through = dark / lit;
+            std::printf("two lamp-lit rooms, a wall %s at %s^3: lit room %.4f, dark room %.5f: leak %.4f\n",
+                        thick ? "one voxel thick" : "of no thickness", voxels, lit, dark, through);
+            EXPECT_GE(lit, 1.5)
+                << "the lit room must be lit for the ratio to mean anything (measured 1.65-1.85)";
+            EXPECT_TRUE(std::isfinite(through));
+        }
+        EXPECT_LE(leak[0], bound) << voxels;
+        // The thick wall's sideways light adds no leak of its own: measured 0.76 / 0.81 of the thin wall's.
+        EXPECT_LE(leak[0], 0.85 * leak[1]) << voxels;
+    }
+}
+
 TEST(VoxelGi, ARoofOfNoThicknessLitFromAboveSendsNothingIntoTheRoomBelow) {
     // A closed room (albedo 0.5) whose ceiling is also the top face of a roof of no thickness (two quads in one
     // plane, facing up and down), under a sun straight above: no light gets into the room (exact 0). The roof's
@@ -567,9 +617,9 @@ TEST(VoxelGi, ARoofTwoVoxelsThickLitFromAboveSendsNothingIntoTheRoomBelow) {
     // 0.3 m roof does at 64³ and 128³. The exact answer is again 0. The top layer sent its sunlit face's light
     // sideways too, as a one-sided voxel does (a floor seen obliquely from above is lit), and every mip texel and
     // trilinear read that holds both layers averages their sideways slabs, which the room's cones read from below:
-    // the room got 0.0223 / 0.0216 of the roof's radiance (32³ / 64³). A face of a wall two voxels thick now sends its
-    // light into the slab on its own side only (lib/voxel_sheet.glsl, wallFaceNormal; docs/design.md §5.6):
-    // 0.0024 / 0.0011.
+    // the room got 0.0223 / 0.0216 of the roof's radiance (32³ / 64³). The outer face of a closed room's wall two
+    // voxels thick now sends its light into the slab on its own side only (lib/voxel_sheet.glsl,
+    // outerWallFaceNormal; docs/design.md §5.6): 0.0028 / 0.0013.
     const std::pair<const char*, double> bounds[] = {{"32", 0.004}, {"64", 0.002}};
     for (const auto& [voxels, bound] : bounds) {
         // The grid fits the room's 4 m to N − 2 voxels, centred: the ceiling at y = v·(2k + 1.5) and the roof's

@@ -57,13 +57,18 @@ vec3 sheetAxis(ivec3 voxel) {
 // 64³ with them (1.29× without; docs/design.md §5.6).
 float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) > 0.5 ? 1.0 : 0.0; }
 
-// ---- the faces of a wall two voxels thick ----
+// ---- the outer faces of a wall two voxels thick ----
 // A wall or roof thicker than a voxel but thinner than two (the hall's 0.3 m shell at 64³ and 128³) puts its faces in
 // two neighbouring voxel layers, each one-sided (|n̄| ≈ 1, no sheet). A one-sided voxel sends its light sideways too
 // (voxelFacing: a floor seen obliquely from above is lit), but every mip texel that holds both layers, and the
-// trilinear reads between them, average the two faces' sideways slabs, which cones read from either side: the
-// sunlit top of the hall's roof lit the hall below through them (docs/design.md §5.6: 2.06× the hall's true sun
-// light at 64³). Such a face sends its light only into the slab on its own side, like a sheet's faces.
+// trilinear reads between them, average the two faces' sideways slabs, which cones read from either side. The six
+// slabs cannot tell a viewer above a lit roof from one below it. The sunlit top of the hall's roof lit the hall below
+// that way (docs/design.md §5.6: 2.06× the hall's true sun light at 64³).
+// Such a face on the outside of a closed room (within a voxel of a closed face of the cones' closure box, facing out
+// of it) sends its light only into the slab on its own side, like a sheet's faces: nothing inside the room can see
+// it, and nothing lies beyond the content to see it sideways. The inner faces keep their sideways light: sent along
+// the one slab alone, the hall's floor and walls, seen obliquely, gave the hall 0.58× of its true second bounce at
+// 128³ (0.86× with the sideways light). Between two rooms such a wall still lets some light through (§5.6).
 
 // A wall's face: the averaged normal within ~25° of an axis (cos ≥ 0.9), and so is the voxel's behind it.
 const float WALL_FACE_AXIS_COSINE = 0.9;
@@ -78,9 +83,11 @@ vec3 voxelNormalAt(ivec3 voxel) {
     return imageLoad(albedoImage, texel).a > 0.0 ? imageLoad(normalImage, texel).xyz : vec3(0.0);
 }
 
-// The unit axis a one-sided voxel (averaged normal nbar) faces along, if it is one face of a wall whose other face
-// fills the voxel right behind it: both normals within WALL_FACE_AXIS_COSINE of that axis, opposite. Else 0.
-vec3 wallFaceNormal(ivec3 voxel, vec3 nbar) {
+// The unit axis a one-sided voxel (averaged normal nbar) faces along, if it is the outer face of a closed room's
+// wall whose inner face fills the voxel right behind it: both normals within WALL_FACE_AXIS_COSINE of that axis,
+// opposite, and the voxel within a voxel of a closed face of the closure box that its axis points out through.
+// Else 0.
+vec3 outerWallFaceNormal(ivec3 voxel, vec3 nbar) {
     const float r = length(nbar);
     if (r < VOXEL_TWO_SIDED_NORMAL_LENGTH) return vec3(0.0);
     const vec3 n = nbar / r;
@@ -89,6 +96,17 @@ vec3 wallFaceNormal(ivec3 voxel, vec3 nbar) {
     if (a[axis] < WALL_FACE_AXIS_COSINE) return vec3(0.0);
     vec3 face = vec3(0.0);
     face[axis] = n[axis] > 0.0 ? 1.0 : -1.0;
+    // Out through a closed face: the closure box's side on that axis lies inside the grid (else it is the grid's
+    // own, open), and the voxel's centre lies within a voxel of it.
+    const vec4 originSize = vec4(frame.voxels.origin, frame.voxels.voxelSize);
+    const vec3 centre = voxelCenterWorld(voxel, originSize);
+    const vec3 gridMax = frame.voxels.origin + vec3(float(frame.voxels.resolution) * originSize.w);
+    const vec3 closureMin = frame.voxels.closureMin.xyz, closureMax = frame.voxels.closureMax.xyz;
+    const bool outward =
+        face[axis] > 0.0
+            ? closureMax[axis] < gridMax[axis] && closureMax[axis] - centre[axis] < originSize.w
+            : closureMin[axis] > frame.voxels.origin[axis] && centre[axis] - closureMin[axis] < originSize.w;
+    if (!outward) return vec3(0.0);
     const vec3 behind = voxelNormalAt(voxel - ivec3(face));
     const float behindLength = length(behind);
     if (behindLength < VOXEL_TWO_SIDED_NORMAL_LENGTH) return vec3(0.0);
