@@ -554,6 +554,24 @@ TEST(VoxelGi, LightLeakingThroughAWallOneVoxelThickBetweenTwoRoomsIsBounded) {
     }
 }
 
+// A sun of `illuminance` straight above `scene`.
+void addSunAbove(vct::Scene& scene, float illuminance) {
+    vct::Node& sun = addLight(scene, "sun", vct::LightType::Directional, illuminance);
+    sun.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0));  // −Z turned to −Y
+}
+
+// The mean diffuse indirect light in the room of `file` under its sunlit roof (the sky all but off, one bounce), over
+// the roof's radiance; printed as `what`.
+double roofLeak(const std::string& name, const std::string& file, const char* voxels, double roofRadiance,
+                const char* what) {
+    const fs::path dir = renderVct(name, file, {"--voxels", voxels, "--environment-intensity", "0.001"});
+    const double leak = meanLuminance(vct::readExr(dir / "diffuse_indirect.exr")) / roofRadiance;
+    std::printf("%s at %s^3: the room's indirect light %.4f of the roof's radiance (exact 0)\n", what, voxels,
+                leak);
+    EXPECT_TRUE(std::isfinite(leak)) << name;
+    return leak;
+}
+
 TEST(VoxelGi, ARoofOfNoThicknessLitFromAboveSendsNothingIntoTheRoomBelow) {
     // A closed room (albedo 0.5) whose ceiling is also the top face of a roof of no thickness (two quads in one
     // plane, facing up and down), under a sun straight above: no light gets into the room (exact 0). The roof's
@@ -568,8 +586,7 @@ TEST(VoxelGi, ARoofOfNoThicknessLitFromAboveSendsNothingIntoTheRoomBelow) {
     addClosedBox(room, {-2.0f, 0.0f, -2.0f}, {2.0f, 2.05f, 2.0f}, 0);
     addQuad(room, glm::vec3(0.0f, 2.05f, 0.0f), glm::vec3(0, 0, 2), glm::vec3(2, 0, 0), 0);  // the roof, +y
     const float sunIlluminance = 3.0f;
-    vct::Node& sun = addLight(room, "sun", vct::LightType::Directional, sunIlluminance);
-    sun.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0));  // −Z turned to −Y
+    addSunAbove(room, sunIlluminance);
     const std::string file = sceneFile("roofed_room", room, glm::vec3(0.0f, 1.0f, 1.5f), 0.0f);
     const double roofRadiance = sunIlluminance * 0.5 / M_PI;
     // The roof is lit as meant (else no leak would mean nothing): seen from above (a view 2.9 × 1.6 m, all roof) it
@@ -584,17 +601,11 @@ TEST(VoxelGi, ARoofOfNoThicknessLitFromAboveSendsNothingIntoTheRoomBelow) {
     EXPECT_GE(roofLit, 0.95);  // measured 0.985
     EXPECT_LE(roofLit, 1.0);
     const std::pair<const char*, double> bounds[] = {{"32", 0.01}, {"64", 0.01}};
-    for (const auto& [voxels, bound] : bounds) {
-        const fs::path dir = renderVct(std::string("roofed_room_") + voxels, file,
-                                       {"--voxels", voxels, "--environment-intensity", "0.001"});
-        const double leak = meanLuminance(vct::readExr(dir / "diffuse_indirect.exr")) / roofRadiance;
-        std::printf(
-            "a roof of no thickness at %s^3: the room's indirect light %.4f of the roof's radiance (exact "
-            "0)\n",
-            voxels, leak);
-        EXPECT_LE(leak, bound) << voxels;
-        EXPECT_TRUE(std::isfinite(leak));
-    }
+    for (const auto& [voxels, bound] : bounds)
+        EXPECT_LE(roofLeak(std::string("roofed_room_") + voxels, file, voxels, roofRadiance,
+                           "a roof of no thickness"),
+                  bound)
+            << voxels;
     // The default (every bounce) under the sky: the roof's voxels gather the sky above and the dark room below
     // (voxel_bounce.comp gathers a sheet's two sides), and sent the mean to both sides: the room got 0.103 of the
     // roof's direct radiance (64³, 16 frames). Each side's gather now goes back out on its side alone (inject.comp,
@@ -630,20 +641,11 @@ TEST(VoxelGi, ARoofTwoVoxelsThickLitFromAboveSendsNothingIntoTheRoomBelow) {
         addClosedBox(room, {-2.0f, 0.0f, -2.0f}, {2.0f, ceiling, 2.0f}, 0);
         addQuad(room, glm::vec3(0.0f, ceiling + voxel, 0.0f), glm::vec3(0, 0, 2), glm::vec3(2, 0, 0), 0);
         const float sunIlluminance = 3.0f;
-        vct::Node& sun = addLight(room, "sun", vct::LightType::Directional, sunIlluminance);
-        sun.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0));  // −Z turned to −Y
-        const std::string file =
-            sceneFile(std::string("thick_roofed_room_") + voxels, room, glm::vec3(0.0f, 1.0f, 1.5f), 0.0f);
-        const double roofRadiance = sunIlluminance * 0.5 / M_PI;
-        const fs::path dir = renderVct(std::string("thick_roofed_room_") + voxels, file,
-                                       {"--voxels", voxels, "--environment-intensity", "0.001"});
-        const double leak = meanLuminance(vct::readExr(dir / "diffuse_indirect.exr")) / roofRadiance;
-        std::printf(
-            "a roof one voxel thick at %s^3: the room's indirect light %.4f of the roof's radiance (exact "
-            "0)\n",
-            voxels, leak);
-        EXPECT_LE(leak, bound) << voxels;
-        EXPECT_TRUE(std::isfinite(leak));
+        addSunAbove(room, sunIlluminance);
+        const std::string name = std::string("thick_roofed_room_") + voxels;
+        const std::string file = sceneFile(name, room, glm::vec3(0.0f, 1.0f, 1.5f), 0.0f);
+        EXPECT_LE(roofLeak(name, file, voxels, sunIlluminance * 0.5 / M_PI, "a roof one voxel thick"), bound)
+            << voxels;
     }
 }
 
