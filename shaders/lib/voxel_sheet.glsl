@@ -58,8 +58,8 @@ vec3 sheetAxis(ivec3 voxel) {
 float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) > 0.5 ? 1.0 : 0.0; }
 
 // ---- the outer faces of a wall two voxels thick ----
-// A wall or roof thicker than a voxel but thinner than two (the hall's 0.3 m shell at 64³ and 128³) puts its faces in
-// two neighbouring voxel layers, each one-sided (|n̄| ≈ 1, no sheet). A one-sided voxel sends its light sideways too
+// A wall or roof up to two voxels thick (the hall's 0.3 m shell at 64³ and 128³) whose faces fall in different voxel
+// layers (neighbouring ones, or with one empty layer between) has one-sided voxels on each face (|n̄| ≈ 1, no sheet). A one-sided voxel sends its light sideways too
 // (voxelFacing: a floor seen obliquely from above is lit), but every mip texel that holds both layers, and the
 // trilinear reads between them, average the two faces' sideways slabs, which cones read from either side. The six
 // slabs cannot tell a viewer above a lit roof from one below it. The sunlit top of the hall's roof lit the hall below
@@ -84,7 +84,8 @@ vec3 voxelNormalAt(ivec3 voxel) {
 }
 
 // The unit axis a one-sided voxel (averaged normal nbar) faces along, if it is the outer face of a closed room's
-// wall whose inner face fills the voxel right behind it: both normals within WALL_FACE_AXIS_COSINE of that axis,
+// wall whose inner face fills the voxel behind it, or the one past that when the one right behind is empty: both
+// normals within WALL_FACE_AXIS_COSINE of that axis,
 // opposite, and the voxel within a voxel of a closed face of the closure box that its axis points out through.
 // Else 0.
 vec3 outerWallFaceNormal(ivec3 voxel, vec3 nbar) {
@@ -107,7 +108,10 @@ vec3 outerWallFaceNormal(ivec3 voxel, vec3 nbar) {
             ? closureMax[axis] < gridMax[axis] && closureMax[axis] - centre[axis] < originSize.w
             : closureMin[axis] > frame.voxels.origin[axis] && centre[axis] - closureMin[axis] < originSize.w;
     if (!outward) return vec3(0.0);
-    const vec3 behind = voxelNormalAt(voxel - ivec3(face));
+    // The inner face: in the voxel right behind, or past one empty voxel (a wall up to two voxels thick may leave
+    // one between its faces, by where it lies in the grid).
+    vec3 behind = voxelNormalAt(voxel - ivec3(face));
+    if (all(equal(behind, vec3(0.0)))) behind = voxelNormalAt(voxel - 2 * ivec3(face));
     const float behindLength = length(behind);
     if (behindLength < VOXEL_TWO_SIDED_NORMAL_LENGTH) return vec3(0.0);
     return dot(behind, face) / behindLength <= -WALL_FACE_AXIS_COSINE ? face : vec3(0.0);
