@@ -137,7 +137,7 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     }
     // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light, and its lobes' isotropic
     // part (their axis part goes where the reflection points: specularSlabShare). The outer face of a closed room's
-    // wall two voxels thick (lib/voxel_sheet.glsl): only its own side, all of it, lobes included.
+    // wall up to two voxels thick (lib/voxel_sheet.glsl): only its own side, all of it, lobes included.
     const vec3 wallFace = isSheet ? vec3(0.0) : outerWallFaceNormal(voxel, nbar);
     const bool isWallFace = any(notEqual(wallFace, vec3(0.0)));
     float facing[VOXEL_SLAB_COUNT];
