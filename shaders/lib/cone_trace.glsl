@@ -92,9 +92,11 @@ vec3 closedFaceShare(vec3 at, float texel, vec3 lo, vec3 hi) {
 // conservative voxelizer marks the voxels touching it on one side or both: the read there takes half of the texel
 // that holds the face's layer and half of the one beyond it, outside the room. `solid`: the opacity a whole face
 // shows in that read, ½ along the axis (both sides holding it: ≥ 1, closed) times closedFaceShare on its two other
-// axes (a coarse texel reaches past the room's other walls). The read itself is the march's one read per step, by the cone's direction: a
-// separate read of the slab across the face for each closing cone cost the trace 2.9× on lavapipe, whose SIMD
-// lanes run every branch that any lane takes (so this is vector arithmetic, no index by axis).
+// axes (a coarse texel reaches past the room's other walls). The read itself is the march's one read per step, by
+// the cone's direction: a separate read of the slab across the face for each closing cone cost the trace 2.9× on
+// lavapipe, whose SIMD lanes run every branch that any lane takes (so this is vector arithmetic, no index by axis).
+// At the grid's own edge the sampler's clamp reads the whole face texel, not half, and a skylight under half its
+// texel reads closed (docs/design.md §5.3: found, measured, not fixed).
 struct ClosedFaceRead {
     vec3 position;
     float mip;

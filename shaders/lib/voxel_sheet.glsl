@@ -57,18 +57,20 @@ vec3 sheetAxis(ivec3 voxel) {
 // 64³ with them (1.29× without; docs/design.md §5.6).
 float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) > 0.5 ? 1.0 : 0.0; }
 
-// ---- the outer faces of a wall two voxels thick ----
+// ---- the outer faces of a wall up to two voxels thick ----
 // A wall or roof up to two voxels thick (the hall's 0.3 m shell at 64³ and 128³) whose faces fall in different voxel
-// layers (neighbouring ones, or with one empty layer between) has one-sided voxels on each face (|n̄| ≈ 1, no sheet). A one-sided voxel sends its light sideways too
-// (voxelFacing: a floor seen obliquely from above is lit), but every mip texel that holds both layers, and the
-// trilinear reads between them, average the two faces' sideways slabs, which cones read from either side. The six
+// layers (neighbouring ones, or with one empty layer between) has one-sided voxels on each face (|n̄| ≈ 1, no
+// sheet). A one-sided voxel sends its light sideways too (voxelFacing: a floor seen obliquely from above is lit),
+// but every mip texel that holds both layers, and the trilinear reads between them, average the two faces' sideways
+// slabs, which cones read from either side. The six
 // slabs cannot tell a viewer above a lit roof from one below it. The sunlit top of the hall's roof lit the hall below
 // that way (docs/design.md §5.6: 2.06× the hall's true sun light at 64³).
 // Such a face on the outside of a closed room (within a voxel of a closed face of the cones' closure box, facing out
 // of it) sends its light only into the slab on its own side, like a sheet's faces: nothing inside the room can see
 // it, and nothing lies beyond the content to see it sideways. The inner faces keep their sideways light: sent along
 // the one slab alone, the hall's floor and walls, seen obliquely, gave the hall 0.58× of its true second bounce at
-// 128³ (0.86× with the sideways light). Between two rooms such a wall still lets some light through (§5.6).
+// 128³ (0.86× with the sideways light). Between two rooms such a wall leaks as it did before (§5.6: 0.019 of a
+// spot-lit room's light, a third of what a wall of no thickness lets through).
 
 // A wall's face: the averaged normal within ~25° of an axis (cos ≥ 0.9), and so is the voxel's behind it.
 const float WALL_FACE_AXIS_COSINE = 0.9;
