@@ -95,8 +95,9 @@ vec3 closedFaceShare(vec3 at, float texel, vec3 lo, vec3 hi) {
 // axes (a coarse texel reaches past the room's other walls). The read itself is the march's one read per step, by
 // the cone's direction: a separate read of the slab across the face for each closing cone cost the trace 2.9× on
 // lavapipe, whose SIMD lanes run every branch that any lane takes (so this is vector arithmetic, no index by axis).
-// At the grid's own edge the sampler's clamp reads the whole face texel, not half, and a skylight under half its
-// texel reads closed (docs/design.md §5.3: found, measured, not fixed).
+// At the grid's own edge the sampler's clamp reads the whole face texel, not half, so a whole face counts twice
+// over there; counted once, the sky came in through walls on the grid's outermost voxel boundary (docs/design.md
+// §5.3).
 struct ClosedFaceRead {
     vec3 position;
     float mip;
