@@ -18,12 +18,22 @@ bool brickVoxelOccupied(uint k, ivec3 local) {
     return imageLoad(albedoImage, materialAtlasTexel(k, frame.voxels.brickAtlasSide, local)).a > 0.0;
 }
 
-// The same for `voxel` in grid coordinates, in any brick; outside the grid or its storage it holds none.
-bool voxelOccupied(ivec3 voxel) {
+// Where `voxel` (grid coordinates, in any brick) lies in the material atlas, if it has storage: false outside the
+// grid and in unallocated bricks.
+bool voxelMaterialTexel(ivec3 voxel, out ivec3 texel) {
+    texel = ivec3(0);
     const int n = int(frame.voxels.resolution);
     if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(n)))) return false;
     const uint k = brickIndex(voxelBrickOf(voxel));
-    return k != VCT_BRICK_NONE && brickVoxelOccupied(k, voxel % VOXEL_BRICK);
+    if (k == VCT_BRICK_NONE) return false;
+    texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, voxel % VOXEL_BRICK);
+    return true;
+}
+
+// Whether `voxel` holds a surface; outside the grid or its storage it holds none.
+bool voxelOccupied(ivec3 voxel) {
+    ivec3 texel;
+    return voxelMaterialTexel(voxel, texel) && imageLoad(albedoImage, texel).a > 0.0;
 }
 
 // A voxel whose surfaces' normals cancel (|n̄| below VOXEL_TWO_SIDED_NORMAL_LENGTH) may hold both faces of a thin
@@ -62,9 +72,9 @@ float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) >
 // layers (neighbouring ones, or with one empty layer between) has one-sided voxels on each face (|n̄| ≈ 1, no
 // sheet). A one-sided voxel sends its light sideways too (voxelFacing: a floor seen obliquely from above is lit),
 // but every mip texel that holds both layers, and the trilinear reads between them, average the two faces' sideways
-// slabs, which cones read from either side. The six
-// slabs cannot tell a viewer above a lit roof from one below it. The sunlit top of the hall's roof lit the hall below
-// that way (docs/design.md §5.6: 2.06× the hall's true sun light at 64³).
+// slabs, which cones read from either side. The six slabs cannot tell a viewer above a lit roof from one below it.
+// The sunlit top of the hall's roof lit the hall below that way (docs/design.md §5.6: 2.06× the hall's true sun
+// light at 64³).
 // Such a face on the outside of a closed room (within a voxel of a closed face of the cones' closure box, facing out
 // of it) sends its light only into the slab on its own side, like a sheet's faces: nothing inside the room can see
 // it, and nothing lies beyond the content to see it sideways. The inner faces keep their sideways light: sent along
@@ -77,19 +87,15 @@ const float WALL_FACE_AXIS_COSINE = 0.9;
 
 // The averaged normal of `voxel` (0 outside the grid, in unallocated bricks and in empty voxels).
 vec3 voxelNormalAt(ivec3 voxel) {
-    const int n = int(frame.voxels.resolution);
-    if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(n)))) return vec3(0.0);
-    const uint k = brickIndex(voxelBrickOf(voxel));
-    if (k == VCT_BRICK_NONE) return vec3(0.0);
-    const ivec3 texel = materialAtlasTexel(k, frame.voxels.brickAtlasSide, voxel % VOXEL_BRICK);
-    return imageLoad(albedoImage, texel).a > 0.0 ? imageLoad(normalImage, texel).xyz : vec3(0.0);
+    ivec3 texel;
+    if (!voxelMaterialTexel(voxel, texel) || !(imageLoad(albedoImage, texel).a > 0.0)) return vec3(0.0);
+    return imageLoad(normalImage, texel).xyz;
 }
 
 // The unit axis a one-sided voxel (averaged normal nbar) faces along, if it is the outer face of a closed room's
 // wall whose inner face fills the voxel behind it, or the one past that when the one right behind is empty: both
-// normals within WALL_FACE_AXIS_COSINE of that axis,
-// opposite, and the voxel within a voxel of a closed face of the closure box that its axis points out through.
-// Else 0.
+// normals within WALL_FACE_AXIS_COSINE of that axis, opposite, and the voxel within a voxel of a closed face of the
+// closure box that its axis points out through. Else 0.
 vec3 outerWallFaceNormal(ivec3 voxel, vec3 nbar) {
     const float r = length(nbar);
     if (r < VOXEL_TWO_SIDED_NORMAL_LENGTH) return vec3(0.0);
