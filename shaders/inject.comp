@@ -201,6 +201,9 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
         const vec3 reflected = irradiance * (f0 * dfg.x + dfg.y) / exitance;
         for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab) specular[slab] += reflected * shares[slab];
     }
+    // A sheet's sideways slabs carry the light of its dimmer face (lib/voxel_sheet.glsl's sheetSideways): a cone
+    // seeing the sheet obliquely, from either side, sees at most what that side's face sends.
+    if (isSheet) sheetSideways(sheet, specular);
     // Each slab sees the light that leaves towards the cones reading it, i.e. against its direction (the
     // specular shares have the facing in them already: specularSlabShare).
     for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)

@@ -130,16 +130,32 @@ float closedFaceCoverage(float opacity, float solid) {
     return solid > 0.05 ? saturate(opacity / solid) : 1.0;
 }
 
+// How a cone reads and composites its samples (traceCone's `march`, a constant at every call, so that each march
+// compiles with one of them; lavapipe would run every branch):
+// - CONE_MARCH_WHOLE_MIPS: every sample reads the whole level ⌈m⌉ of its fractional mip m alone (coneWholeMip), and
+//   counts what its coverage adds to the last one's (coneCompositeNested): a pixel's fixed and turned diffuse cones,
+//   and every specular cone;
+// - CONE_MARCH_BLENDED: a blend of ⌊m⌋ and ⌈m⌉, each sample's opacity counted over its step (coneComposite, the fog
+//   of classic cone tracing): the jittered set's narrow diffuse cones;
+// - CONE_MARCH_BLENDED_COVERAGE: a blend of the two levels, coverage counted once: the voxels' bounce gathers
+//   (traceDiffuse). Counted over every step, a coarse texel that holds a closed face and an opening in it (the
+//   hall's roof and its skylights, 10 m up) closed the gathers before they reached the face's read: the hall's
+//   second bounce was 0.77× / 0.68× of the truth (64³ / 128³), 1.15× / 1.13× counted once (docs/design.md §5.7).
+const int CONE_MARCH_WHOLE_MIPS = 0;
+const int CONE_MARCH_BLENDED = 1;
+const int CONE_MARCH_BLENDED_COVERAGE = 2;
+
 // Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
 // Light that leaves the grid unoccluded sees the environment (docs/design.md §5.9): the map read along the cone
 // at the mip whose texels are as wide as the cone, times what the cone left unoccluded (the background shows
 // the same map, so the two agree).
 // The cone leaves the surface at p with unit normal n (coneSurfaceFootprint, with `clearance`, keeps that
-// surface out of it). `wholeMips` (a constant at each call): every sample reads the whole level ⌈m⌉ of its
-// fractional mip m alone (coneWholeMip), not a blend of ⌊m⌋ and ⌈m⌉. `stepPhase` in [0, 1): the first sample that
-// part of its step farther out (ConeSet).
+// surface out of it). `march`: CONE_MARCH_*. `stepPhase` in [0, 1): the first sample that part of its step farther
+// out (ConeSet).
 vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle, float clearance,
-               const bool wholeMips, float stepPhase) {
+               const int march, float stepPhase) {
+    const bool wholeMips = march == CONE_MARCH_WHOLE_MIPS;
+    const bool countsCoverage = march != CONE_MARCH_BLENDED;
     const vec3 gridOrigin = frame.voxels.origin;
     const float v0 = frame.voxels.voxelSize;
     const float gridSize = float(frame.voxels.resolution) * v0;
@@ -171,7 +187,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // Bounded even for a mirror cone (footprint v0): the grid diagonal is √3·N voxels, steps ≥ v0/2.
     const int maxSteps = 4 * int(frame.voxels.resolution) + 8;
     int stepsPastBox = 0;
-    float previousCoverage = 0.0;  // the last sample's (whole mips)
+    float previousCoverage = 0.0;  // the last sample's (where coverage is counted once)
     // The slabs the cone reads, for the closed face below, and how far back along the axis a distance past a face
     // on each axis lies (which face it crossed first).
     const vec3 slabWeights = voxelSlabWeights(dir);
@@ -231,20 +247,20 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             at.mip = read.mip;
             solid = read.solid;
         }
-        // Opacity as a coverage (voxelSlabsSeen) for the whole-mip cones, and on a closed face for every cone.
+        // Opacity as a coverage (voxelSlabsSeen) where it is counted once, and on a closed face for every cone.
         const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips,
-                                    wholeMips || closing);
+                                    countsCoverage || closing);
         if (closing) {
             // Counted as a coverage whatever the composite; the cone ends here. A cone that meets the face at
             // under 18° does not read the slab across it (voxelSlabWeights), where alone the face is opaque at any
             // angle: the face closes it.
             const float coverage = closedFaceCoverage(s.a, dot(slabWeights, face) > 0.0 ? solid : 0.0);
-            acc = coneCompositeNested(acc, s, coverage, wholeMips ? previousCoverage : 0.0);
+            acc = coneCompositeNested(acc, s, coverage, countsCoverage ? previousCoverage : 0.0);
             break;
         }
         const float dt = coneStep(coneD);
-        if (wholeMips) {
-            // Whole mips: what the sample's coverage adds to the last one's (coneCompositeNested).
+        if (countsCoverage) {
+            // What the sample's coverage adds to the last one's (coneCompositeNested).
             acc = coneCompositeNested(acc, s, s.a, previousCoverage);
             previousCoverage = saturate(s.a);
         } else {
@@ -351,22 +367,21 @@ void diffuseConeDirectionsOf(vec3 n, ConeSet set, out vec3 directions[DIFFUSE_CO
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) directions[i] = diffuseConeDirectionOf(n, i, set);
 }
 
-// The incoming radiance along diffuse cone `direction` of `set` from surface point p with unit normal n, every
-// sample reading the whole level ⌈m⌉ or a blend of two (`wholeMips`, traceCone: a constant at every call, so that
-// each march compiles with one of the two; lavapipe would run both sides of a branch). Every diffuse march, a
-// pixel's or voxel's cones one after the other or one per invocation (the cone layout), is this call.
-vec3 marchDiffuseCone(sampler3D voxels, vec3 p, vec3 n, ConeSet set, vec3 direction, const bool wholeMips) {
+// The incoming radiance along diffuse cone `direction` of `set` from surface point p with unit normal n, marched as
+// `march` says (CONE_MARCH_*, a constant at every call). Every diffuse march, a pixel's or voxel's cones one after
+// the other or one per invocation (the cone layout), is this call.
+vec3 marchDiffuseCone(sampler3D voxels, vec3 p, vec3 n, ConeSet set, vec3 direction, const int march) {
     return traceCone(voxels, p, n, coneOrigin(p, n, set), direction, DIFFUSE_CONE_TAN_HALF,
-                     coneClearance(set), wholeMips, set.stepPhase)
+                     coneClearance(set), march, set.stepPhase)
         .rgb;
 }
 
 // The same along each of the set's 6 `directions`.
 void marchDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
-                       const vec3 directions[DIFFUSE_CONE_COUNT], const bool wholeMips,
+                       const vec3 directions[DIFFUSE_CONE_COUNT], const int march,
                        out vec3 radiance[DIFFUSE_CONE_COUNT]) {
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i)
-        radiance[i] = marchDiffuseCone(voxels, p, n, set, directions[i], wholeMips);
+        radiance[i] = marchDiffuseCone(voxels, p, n, set, directions[i], march);
 }
 
 // The same for a pixel: the fixed and turned sets read whole mips (coneWholeMip); the jittered set's narrow
@@ -374,9 +389,9 @@ void marchDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
 void traceDiffuseCones(sampler3D voxels, vec3 p, vec3 n, ConeSet set,
                        const vec3 directions[DIFFUSE_CONE_COUNT], out vec3 radiance[DIFFUSE_CONE_COUNT]) {
     if (set.jittered)
-        marchDiffuseCones(voxels, p, n, set, directions, false, radiance);
+        marchDiffuseCones(voxels, p, n, set, directions, CONE_MARCH_BLENDED, radiance);
     else
-        marchDiffuseCones(voxels, p, n, set, directions, true, radiance);
+        marchDiffuseCones(voxels, p, n, set, directions, CONE_MARCH_WHOLE_MIPS, radiance);
 }
 
 // Their cosine-weighted mean.
@@ -391,12 +406,13 @@ vec3 diffuseFromCones(const vec3 radiance[DIFFUSE_CONE_COUNT]) {
 // fixed and turned cones read the whole level ⌈m⌉: a wider footprint over a room-sized cone takes in more of what
 // lies beside its path. From cornell's ceiling (not in the default view) a cone straight down read 0.56 of the
 // floor's light with whole mips and 0.73 blended, and the ceiling got 0.53 of its true one-bounce light; the
-// blended gathers took every bounce from 0.928 to 0.949 of the full GI (64³; docs/design.md §5.7).
+// blended gathers took every bounce from 0.928 to 0.949 of the full GI (64³; docs/design.md §5.7). They count a
+// coverage once, as the pixels' cones do (CONE_MARCH_BLENDED_COVERAGE: why there).
 vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
     vec3 directions[DIFFUSE_CONE_COUNT];
     diffuseConeDirectionsOf(n, FIXED_CONE_SET, directions);
     vec3 radiance[DIFFUSE_CONE_COUNT];
-    marchDiffuseCones(voxels, p, n, FIXED_CONE_SET, directions, false, radiance);
+    marchDiffuseCones(voxels, p, n, FIXED_CONE_SET, directions, CONE_MARCH_BLENDED_COVERAGE, radiance);
     return diffuseFromCones(radiance);
 }
 
@@ -406,7 +422,7 @@ vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
 vec3 traceDiffuseCone(sampler3D voxels, vec3 p, vec3 n, int i) {
     vec3 directions[DIFFUSE_CONE_COUNT];
     diffuseConeDirectionsOf(n, FIXED_CONE_SET, directions);  // all of them: why at traceSurfaceCone
-    return marchDiffuseCone(voxels, p, n, FIXED_CONE_SET, directions[i], false);
+    return marchDiffuseCone(voxels, p, n, FIXED_CONE_SET, directions[i], CONE_MARCH_BLENDED_COVERAGE);
 }
 
 // The specular cone of a surface with unit normal n seen along unit v, of GGX roughness alpha, in `set`: the GGX lobe
@@ -439,7 +455,7 @@ SpecularCone specularConeOf(vec3 n, vec3 v, float alpha, ConeSet set) {
 // trace (docs/design.md §5.3).
 vec3 marchSpecularCone(sampler3D voxels, vec3 p, vec3 n, ConeSet set, SpecularCone cone) {
     return traceCone(voxels, p, n, coneOrigin(p, n, set), cone.direction, cone.tanHalf, coneClearance(set),
-                     true, set.stepPhase)
+                     CONE_MARCH_WHOLE_MIPS, set.stepPhase)
         .rgb;
 }
 
@@ -505,8 +521,8 @@ vec3 traceSurfaceCone(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perceptual
     vec3 directions[DIFFUSE_CONE_COUNT];
     diffuseConeDirectionsOf(n, set, directions);
     // The fixed and turned sets read whole mips, the jittered set's narrow footprints a blend (traceDiffuseCones).
-    if (set.jittered) return marchDiffuseCone(voxels, p, n, set, directions[index], false);
-    return marchDiffuseCone(voxels, p, n, set, directions[index], true);
+    if (set.jittered) return marchDiffuseCone(voxels, p, n, set, directions[index], CONE_MARCH_BLENDED);
+    return marchDiffuseCone(voxels, p, n, set, directions[index], CONE_MARCH_WHOLE_MIPS);
 }
 
 // The surface's light from its cones' radiances (`radiance[SPECULAR_CONE_INDEX]` the specular cone's).

@@ -67,6 +67,19 @@ vec3 sheetAxis(ivec3 voxel) {
 // 64³ with them (1.29× without; docs/design.md §5.6).
 float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) > 0.5 ? 1.0 : 0.0; }
 
+// A sheet's sideways slabs: the light of its dimmer face, per channel (`slabs`: what each face sent into the slab on
+// its side, sheetFacing; the sideways ones are added to). A cone meeting the sheet obliquely from either side reads
+// them, so they may hold no more than the face on that side sends, and the dimmer face is the most both sides allow:
+// no leak from a lit face into the room behind, and an oblique cone in the dim room still sees its own face's light.
+// With nothing sideways a cone 60° off the sheet's normal saw a quarter of it (its slab's weight, cos²): the hall's
+// partitions got 0.65× of their true second bounce at 64³, 0.89× with the dimmer face (docs/design.md §5.6).
+void sheetSideways(vec3 sheet, inout vec3 slabs[VOXEL_SLAB_COUNT]) {
+    const int axis = sheet.x > 0.5 ? 0 : (sheet.y > 0.5 ? 1 : 2);
+    const vec3 dimmer = min(slabs[2 * axis], slabs[2 * axis + 1]);
+    for (int slab = 0; slab < VOXEL_SLAB_COUNT; ++slab)
+        if (slab / 2 != axis) slabs[slab] += dimmer;
+}
+
 // ---- the outer faces of a wall up to two voxels thick ----
 // A wall or roof up to two voxels thick (the hall's 0.3 m shell at 64³ and 128³) whose faces fall in different voxel
 // layers (neighbouring ones, or with one empty layer between) has one-sided voxels on each face (|n̄| ≈ 1, no
@@ -81,6 +94,11 @@ float sheetFacing(vec3 n, int slab) { return dot(n, -voxelSlabDirection(slab)) >
 // the one slab alone, the hall's floor and walls, seen obliquely, gave the hall 0.58× of its true second bounce at
 // 128³ (0.86× with the sideways light). Between two rooms such a wall leaks as it did before (§5.6: 0.019 of a
 // spot-lit room's light, a third of what a wall of no thickness lets through).
+// So do the shell's edges and the voxels in it whose faces disagree: a voxel within a voxel of a closed face whose
+// averaged normal leans out through it, off the axes (the roof's edge along a wall's top, the rim of a skylight) or
+// short (a roof's top, underside and the side of an opening in one voxel). Their light went to every side and lit
+// the hall below its roof: with the sun alone and the marble absorbing, the floor got 2.96× its true light and the
+// hall 1.43×; 1.02× and 0.96× with the edges one-slab (docs/design.md §5.6).
 
 // A wall's face: the averaged normal within ~25° of an axis (cos ≥ 0.9), and so is the voxel's behind it.
 const float WALL_FACE_AXIS_COSINE = 0.9;
@@ -92,32 +110,44 @@ vec3 voxelNormalAt(ivec3 voxel) {
     return imageLoad(normalImage, texel).xyz;
 }
 
-// The unit axis a one-sided voxel (averaged normal nbar) faces along, if it is the outer face of a closed room's
-// wall whose inner face fills the voxel behind it, or the one past that when the one right behind is empty: both
-// normals within WALL_FACE_AXIS_COSINE of that axis, opposite, and the voxel within a voxel of a closed face of the
-// closure box that its axis points out through. Else 0.
+// Whether the voxel centred at `centre` lies within a voxel of a closed face of the closure box on `axis`, on its
+// upper side (`up`) or lower one: that side of the box lies inside the grid (else it is the grid's own, open).
+bool atClosedFace(vec3 centre, int axis, bool up) {
+    const float voxelSize = frame.voxels.voxelSize;
+    const float gridMax = frame.voxels.origin[axis] + float(frame.voxels.resolution) * voxelSize;
+    const float closureMin = frame.voxels.closureMin[axis], closureMax = frame.voxels.closureMax[axis];
+    return up ? closureMax < gridMax && closureMax - centre[axis] < voxelSize
+              : closureMin > frame.voxels.origin[axis] && centre[axis] - closureMin < voxelSize;
+}
+
+// The unit axis out of the closed room that `voxel`'s light leaves by alone, or 0 where it leaves by every side its
+// surfaces face (voxelFacing). A wall's outer face (the averaged normal n̄ within WALL_FACE_AXIS_COSINE of an axis):
+// out through a closed face it lies at, with the wall's inner face in the voxel right behind, or past one empty voxel
+// (a wall up to two voxels thick may leave one between its faces, by where it lies in the grid), its normal within
+// WALL_FACE_AXIS_COSINE of the opposite way. A shell's edge or a voxel of disagreeing faces (n̄ off the axes, or
+// shorter than VOXEL_TWO_SIDED_NORMAL_LENGTH but not a sheet: the caller's): out through the closed face it lies at
+// that n̄ leans out through the most.
 vec3 outerWallFaceNormal(ivec3 voxel, vec3 nbar) {
     const float r = length(nbar);
-    if (r < VOXEL_TWO_SIDED_NORMAL_LENGTH) return vec3(0.0);
+    if (r < 1e-3) return vec3(0.0);
     const vec3 n = nbar / r;
     const vec3 a = abs(n);
+    const vec3 centre = voxelCenterWorld(voxel, vec4(frame.voxels.origin, frame.voxels.voxelSize));
     const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-    if (a[axis] < WALL_FACE_AXIS_COSINE) return vec3(0.0);
     vec3 face = vec3(0.0);
+    if (r < VOXEL_TWO_SIDED_NORMAL_LENGTH || a[axis] < WALL_FACE_AXIS_COSINE) {
+        float most = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            if (a[k] > most && atClosedFace(centre, k, n[k] > 0.0)) {
+                most = a[k];
+                face = vec3(0.0);
+                face[k] = n[k] > 0.0 ? 1.0 : -1.0;
+            }
+        }
+        return face;
+    }
     face[axis] = n[axis] > 0.0 ? 1.0 : -1.0;
-    // Out through a closed face: the closure box's side on that axis lies inside the grid (else it is the grid's
-    // own, open), and the voxel's centre lies within a voxel of it.
-    const vec4 originSize = vec4(frame.voxels.origin, frame.voxels.voxelSize);
-    const vec3 centre = voxelCenterWorld(voxel, originSize);
-    const vec3 gridMax = frame.voxels.origin + vec3(float(frame.voxels.resolution) * originSize.w);
-    const vec3 closureMin = frame.voxels.closureMin.xyz, closureMax = frame.voxels.closureMax.xyz;
-    const bool outward =
-        face[axis] > 0.0
-            ? closureMax[axis] < gridMax[axis] && closureMax[axis] - centre[axis] < originSize.w
-            : closureMin[axis] > frame.voxels.origin[axis] && centre[axis] - closureMin[axis] < originSize.w;
-    if (!outward) return vec3(0.0);
-    // The inner face: in the voxel right behind, or past one empty voxel (a wall up to two voxels thick may leave
-    // one between its faces, by where it lies in the grid).
+    if (!atClosedFace(centre, axis, n[axis] > 0.0)) return vec3(0.0);
     vec3 behind = voxelNormalAt(voxel - ivec3(face));
     if (all(equal(behind, vec3(0.0)))) behind = voxelNormalAt(voxel - 2 * ivec3(face));
     const float behindLength = length(behind);
