@@ -397,7 +397,8 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
     // All bounces against --bounces 8: measured 0.990 of the full GI's indirect light with round 18's closure at the
     // room's floor and ceiling (the voxels' gathers leaked through them too); before it 0.943 (0.954 before round 11's cone
     // samples, which read more of the room through the grid's edge texels; 0.905 with the gathers leaving from the
-    // voxels' centres; the voxels' gathers carry diffuse transport only; one bounce gives 0.36).
+    // voxels' centres; the voxels' gathers carry diffuse transport only; one bounce gives 0.36). Round 25's gathers
+    // count a coverage once (lib/cone_trace.glsl's CONE_MARCH_BLENDED_COVERAGE: the hall's skylights): 0.978 → 0.932.
     const nlohmann::json all =
         compareWith(cornellReference("per_surface", "all"),
                     renderVct("cornell_b8", "cornell", {"--voxels", "64", "--bounces", "8"}));
@@ -412,7 +413,8 @@ TEST(VoxelGi, CornellIndirectLightPerSurfaceAgainstThePathTracedTruth) {
     // it, every surface 0.86 (red wall) to 1.11 (blue cube); round 10's 0.925 (0.85 to 1.09) had neither
     // the first frame's four bounces nor round 11's cone samples; gathering from the voxels' centres 0.890, and
     // with 8 slabs (8 rounds) 0.906. At 320×180 against 256 spp: round 11's report. Round 22 (the pixels' whole-mip
-    // cones count an object once; the gathers keep the fog composite): 0.966, every surface 0.91 to 1.07.
+    // cones count an object once; the gathers keep the fog composite): 0.966, every surface 0.91 to 1.07. Round 25
+    // (the gathers count a coverage once too): 0.971 → 0.929, every surface 0.87 (red wall, floor) to 1.05 (blue cube).
     const nlohmann::json amortised =
         compareWith(cornellReference("per_surface", "all", 63),
                     renderVct("cornell_ball", "cornell", {"--voxels", "64", "--bounces", "all"}, 64));
