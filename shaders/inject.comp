@@ -137,7 +137,8 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
     }
     // Which sides the voxel's surfaces send light to (lib/voxel.glsl): its diffuse light, and its lobes' isotropic
     // part (their axis part goes where the reflection points: specularSlabShare). The outer face of a closed room's
-    // wall up to two voxels thick (lib/voxel_sheet.glsl): only its own side, all of it, lobes included.
+    // wall up to two voxels thick, and the shell's edges (lib/voxel_sheet.glsl): only the one side out of the room,
+    // all of it, lobes included.
     const vec3 wallFace = isSheet ? vec3(0.0) : outerWallFaceNormal(voxel, nbar);
     const bool isWallFace = any(notEqual(wallFace, vec3(0.0)));
     float facing[VOXEL_SLAB_COUNT];
@@ -181,6 +182,10 @@ void injectVoxel(uint k, ivec3 brick, ivec3 local) {
             radiance += irradiance * (f0 * dfg.x + dfg.y) * INV_PI;
             continue;
         }
+        // A light on the room's side of a shell's face (lib/voxel_sheet.glsl, outerWallFaceNormal) lights it through
+        // voxelCosine's two-sided share, and its lobe would leave by the one slab out of the room, which its exitance
+        // there (as small as 1e-6) would divide it by: the room's side sends no lobe.
+        if (isWallFace && dot(towardsLightSide, wallFace) <= 0.0) continue;
         const float NoL = max(dot(towardsLightSide, l), MIN_N_DOT_V);
         const vec4 lobe = specularLobe(towardsLightSide, l, NoL, perceptualRoughness);
         float shares[VOXEL_SLAB_COUNT];

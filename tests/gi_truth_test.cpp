@@ -636,7 +636,7 @@ TEST(VoxelGi, AThickRoofLitFromAboveSendsNothingIntoTheRoomBelow) {
     // top and a side, their averaged normal 45° off the axes, and the rule above (an axis) left them out; they sent
     // their sunlit light to every side, and the room got 0.0036 / 0.0017 of the roof's radiance (32³ / 64³). The
     // shell's edges, and the voxels in it whose faces disagree, now send theirs out of the room alone as well
-    // (outerWallFaceNormal): 0.0010 / 0.0005. The hall's sunlit roof edges and skylight rims lit its floor that way
+    // (outerWallFaceNormal): 0.0009 / 0.0005. The hall's sunlit roof edges and skylight rims lit its floor that way
     // (docs/design.md §5.6).
     struct Roof {
         const char* name;

@@ -177,7 +177,8 @@ VCT_INLINE vec4 coneComposite(vec4 acc, vec4 s, float stepLength, float mipVoxel
     return vec4(vec3(acc) + transmittance * rgb, acc.a + transmittance * corrected);
 }
 
-// One step of a cone reading whole mips (the fixed and turned sets' diffuse cones, every specular cone): what the
+// One step of a cone that counts a coverage once (the fixed and turned sets' diffuse cones and every specular cone,
+// reading whole mips; the voxels' gathers, reading two blended: lib/cone_trace.glsl's CONE_MARCH_*): what the
 // step's `coverage` adds over the previous step's, `previousCoverage`. coneComposite treats the steps' coverages as
 // independent, as in a fog, but voxels hold surfaces: an object that stays in the footprint for k steps, or whose
 // back faces lie behind its front ones, blocks the same rays each time, and was counted k times: 1 − Π(1 − cᵢ)

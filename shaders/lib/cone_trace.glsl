@@ -140,7 +140,7 @@ float closedFaceCoverage(float opacity, float solid) {
 // - CONE_MARCH_BLENDED_COVERAGE: a blend of the two levels, coverage counted once: the voxels' bounce gathers
 //   (traceDiffuse). Counted over every step, a coarse texel that holds a closed face and an opening in it (the
 //   hall's roof and its skylights, 10 m up) closed the gathers before they reached the face's read: the hall's
-//   second bounce was 0.77× / 0.68× of the truth (64³ / 128³), 1.15× / 1.13× counted once (docs/design.md §5.7).
+//   second bounce was 0.77× / 0.68× of the truth (64³ / 128³), 1.18× / 1.18× counted once (docs/design.md §5.7).
 const int CONE_MARCH_WHOLE_MIPS = 0;
 const int CONE_MARCH_BLENDED = 1;
 const int CONE_MARCH_BLENDED_COVERAGE = 2;
@@ -407,7 +407,7 @@ vec3 diffuseFromCones(const vec3 radiance[DIFFUSE_CONE_COUNT]) {
 // lies beside its path. From cornell's ceiling (not in the default view) a cone straight down read 0.56 of the
 // floor's light with whole mips and 0.73 blended, and the ceiling got 0.53 of its true one-bounce light; the
 // blended gathers took every bounce from 0.928 to 0.949 of the full GI (64³; docs/design.md §5.7). They count a
-// coverage once, as the pixels' cones do (CONE_MARCH_BLENDED_COVERAGE: why there).
+// coverage once, as a pixel's fixed and turned cones do (CONE_MARCH_BLENDED_COVERAGE: why there).
 vec3 traceDiffuse(sampler3D voxels, vec3 p, vec3 n) {
     vec3 directions[DIFFUSE_CONE_COUNT];
     diffuseConeDirectionsOf(n, FIXED_CONE_SET, directions);
