@@ -137,10 +137,14 @@ float closedFaceCoverage(float opacity, float solid) {
 //   and every specular cone;
 // - CONE_MARCH_BLENDED: a blend of ⌊m⌋ and ⌈m⌉, each sample's opacity counted over its step (coneComposite, the fog
 //   of classic cone tracing): the jittered set's narrow diffuse cones;
-// - CONE_MARCH_BLENDED_COVERAGE: a blend of the two levels, coverage counted once: the voxels' bounce gathers
-//   (traceDiffuse). Counted over every step, a coarse texel that holds a closed face and an opening in it (the
-//   hall's roof and its skylights, 10 m up) closed the gathers before they reached the face's read: the hall's
-//   second bounce was 0.77× / 0.68× of the truth (64³ / 128³), 1.18× / 1.18× counted once (docs/design.md §5.7).
+// - CONE_MARCH_BLENDED_COVERAGE: a blend of the two levels, the fog, but coverage counted once where the read reaches
+//   a closed face of the closure box (within CONE_MIP_REACH texels of its level ⌈m⌉): the voxels' bounce gathers
+//   (traceDiffuse). Such a texel holds the face, which the cone's last read accounts for (closedFaceRead); counted
+//   over every step, a texel that holds a closed face and an opening in it (the hall's roof and its skylights, 10 m
+//   up) closed the gathers before they reached that read: the hall's second bounce was 0.77× / 0.68× of the truth
+//   (64³ / 128³). Counted once everywhere 1.18× / 1.18×, but cornell, whose gathers the fog suits elsewhere, lost
+//   4 % of its every-bounce light; counted once near closed faces alone 1.10× / 1.04×, cornell within 1.5 % of the
+//   fog (docs/design.md §5.7).
 const int CONE_MARCH_WHOLE_MIPS = 0;
 const int CONE_MARCH_BLENDED = 1;
 const int CONE_MARCH_BLENDED_COVERAGE = 2;
@@ -155,7 +159,7 @@ const int CONE_MARCH_BLENDED_COVERAGE = 2;
 vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle, float clearance,
                const int march, float stepPhase) {
     const bool wholeMips = march == CONE_MARCH_WHOLE_MIPS;
-    const bool countsCoverage = march != CONE_MARCH_BLENDED;
+    const bool countsCoverage = march == CONE_MARCH_WHOLE_MIPS;  // at every sample (else per sample, below)
     const vec3 gridOrigin = frame.voxels.origin;
     const float v0 = frame.voxels.voxelSize;
     const float gridSize = float(frame.voxels.resolution) * v0;
@@ -247,23 +251,35 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             at.mip = read.mip;
             solid = read.solid;
         }
+        // Whether this sample counts a coverage once: always or never by `march`, or where the read (up to
+        // CONE_MIP_REACH texels of level ⌈m⌉ about it) reaches a closed face.
+        bool counts = countsCoverage;
+        if (march == CONE_MARCH_BLENDED_COVERAGE) {
+            const float reach = CONE_MIP_REACH * ldexp(v0, int(ceil(at.mip)));
+            const vec3 fromLow = mix(vec3(1e30), at.position - closureMin, closedLow);
+            const vec3 fromHigh = mix(vec3(1e30), closureMax - at.position, closedHigh);
+            const vec3 nearest = min(fromLow, fromHigh);
+            counts = min(nearest.x, min(nearest.y, nearest.z)) < reach;
+        }
         // Opacity as a coverage (voxelSlabsSeen) where it is counted once, and on a closed face for every cone.
         const vec4 s = sampleVoxels(voxels, (at.position - gridOrigin) / gridSize, dir, at.mip, wholeMips,
-                                    countsCoverage || closing);
+                                    counts || closing);
         if (closing) {
             // Counted as a coverage whatever the composite; the cone ends here. A cone that meets the face at
             // under 18° does not read the slab across it (voxelSlabWeights), where alone the face is opaque at any
             // angle: the face closes it.
             const float coverage = closedFaceCoverage(s.a, dot(slabWeights, face) > 0.0 ? solid : 0.0);
-            acc = coneCompositeNested(acc, s, coverage, countsCoverage ? previousCoverage : 0.0);
+            acc = coneCompositeNested(acc, s, coverage, previousCoverage);
             break;
         }
         const float dt = coneStep(coneD);
-        if (countsCoverage) {
+        if (counts) {
             // What the sample's coverage adds to the last one's (coneCompositeNested).
             acc = coneCompositeNested(acc, s, s.a, previousCoverage);
             previousCoverage = saturate(s.a);
         } else {
+            // The fog counted this step's opacity already: a coverage after it adds whatever it holds.
+            previousCoverage = 0.0;
             // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
             acc = coneComposite(acc, s, dt, v0 * exp2(at.mip));
         }
