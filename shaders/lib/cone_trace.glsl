@@ -158,8 +158,8 @@ const int CONE_MARCH_BLENDED_COVERAGE = 2;
 // out (ConeSet).
 vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle, float clearance,
                const int march, float stepPhase) {
+    // Whole mips count a coverage once at every sample; the gathers' blended reads near a closed face (below).
     const bool wholeMips = march == CONE_MARCH_WHOLE_MIPS;
-    const bool countsCoverage = march == CONE_MARCH_WHOLE_MIPS;  // at every sample (else per sample, below)
     const vec3 gridOrigin = frame.voxels.origin;
     const float v0 = frame.voxels.voxelSize;
     const float gridSize = float(frame.voxels.resolution) * v0;
@@ -178,8 +178,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     const vec3 closureMin = frame.voxels.closureMin.xyz, closureMax = frame.voxels.closureMax.xyz;
     const vec3 contentMin = frame.voxels.contentMin.xyz, contentMax = frame.voxels.contentMax.xyz;
     // 1 on the sides of the box that are a closed room's faces, not the grid's.
-    const vec3 closedLow = vec3(greaterThan(closureMin, gridOrigin)),
-               closedHigh = vec3(lessThan(closureMax, gridMax));
+    const vec3 closedLow = closedLowFaces(), closedHigh = closedHighFaces();
     // The box the cone closes at: the grid's once it is open (it starts outside the closure box, or has left it
     // through an open side), else the closure box. Changed only where the cone turns open, not per step.
     bool open = !(all(greaterThan(origin, closureMin)) && all(lessThan(origin, closureMax)));
@@ -253,7 +252,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
         }
         // Whether this sample counts a coverage once: always or never by `march`, or where the read (up to
         // CONE_MIP_REACH texels of level ⌈m⌉ about it) reaches a closed face.
-        bool counts = countsCoverage;
+        bool counts = wholeMips;
         if (march == CONE_MARCH_BLENDED_COVERAGE) {
             const float reach = CONE_MIP_REACH * ldexp(v0, int(ceil(at.mip)));
             const vec3 fromLow = mix(vec3(1e30), at.position - closureMin, closedLow);

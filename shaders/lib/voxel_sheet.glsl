@@ -118,13 +118,11 @@ vec3 voxelNormalAt(ivec3 voxel) {
 }
 
 // Whether the voxel centred at `centre` lies within a voxel of a closed face of the closure box on `axis`, on its
-// upper side (`up`) or lower one: that side of the box lies inside the grid (else it is the grid's own, open).
+// upper side (`up`) or lower one (lib/voxel_storage.glsl's closedLowFaces / closedHighFaces).
 bool atClosedFace(vec3 centre, int axis, bool up) {
     const float voxelSize = frame.voxels.voxelSize;
-    const float gridMax = frame.voxels.origin[axis] + float(frame.voxels.resolution) * voxelSize;
-    const float closureMin = frame.voxels.closureMin[axis], closureMax = frame.voxels.closureMax[axis];
-    return up ? closureMax < gridMax && closureMax - centre[axis] < voxelSize
-              : closureMin > frame.voxels.origin[axis] && centre[axis] - closureMin < voxelSize;
+    return up ? closedHighFaces()[axis] > 0.5 && frame.voxels.closureMax[axis] - centre[axis] < voxelSize
+              : closedLowFaces()[axis] > 0.5 && centre[axis] - frame.voxels.closureMin[axis] < voxelSize;
 }
 
 // The unit axis out of the closed room that `voxel`'s light leaves by alone, or 0 where it leaves by every side its
