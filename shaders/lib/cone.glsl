@@ -115,6 +115,9 @@ VCT_INLINE float coneCoarseMipLift(float height, float mip, float voxelSize) {
 struct ConeSampleAt {
     vec3 position;
     float mip;
+    // The read was moved back into the box to within mip 0's reach of the surface the cone left (CONE_MIP_REACH
+    // voxels along its normal): even mip 0 reads that surface's own voxel layer there (cone_trace.glsl: what then).
+    bool ownLayer;
 };
 
 VCT_INLINE ConeSampleAt coneSampleAt(vec3 x, float mip, vec3 p, vec3 n, float voxelSize, vec3 boxMin,
@@ -124,8 +127,10 @@ VCT_INLINE ConeSampleAt coneSampleAt(vec3 x, float mip, vec3 p, vec3 n, float vo
     const vec3 lifted = edge + n * coneCoarseMipLift(dot(edge - p, n), mip, voxelSize);
     at.position = clamp(lifted, boxMin, boxMax);
     at.mip = mip;
+    at.ownLayer = false;
     if (any(notEqual(at.position, lifted))) {
         const float height = max(dot(at.position - p, n), 0.0f);
+        at.ownLayer = height < CONE_MIP_REACH * voxelSize;
         // ⌊log2 y⌋ from y's exponent (y = f·2^e, f in [0.5, 1)): e − 1, exactly, and no log2 per step.
         int e = 0;
         frexp(max(height / (CONE_MIP_REACH * voxelSize), 1e-6f), e);
