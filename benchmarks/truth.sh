@@ -8,7 +8,7 @@
 # truth_ratios.png and truth_error_vs_voxels.png and copies the ratio maps.
 # Writes benchmarks/results/<device>-truth/ (TRUTH_QUICK=1: <device>-truth-quick/; the directory is replaced).
 # Usage: benchmarks/truth.sh [SCENE...]   (build first; default scenes: cornell plane courtyard, and
-#        ../shared/scenes/DamagedHelmet/glTF/DamagedHelmet.gltf when present)
+#        ../shared/scenes/{DamagedHelmet,BoxVertexColors}/glTF/*.gltf when present)
 # Environment (defaults in brackets):
 #   TRUTH_SIZE [320x180]  TRUTH_SPP [256]  TRUTH_FRAMES [64]  TRUTH_VOXELS ["32 64 128"]  TRUTH_SCALES ["1 4"]
 #   TRUTH_REFERENCES ["1 all diffuse"]  which references: one bounce, all bounces, --secondary diffuse
@@ -50,12 +50,16 @@ mkdir -p "$work/json" "$work/maps"
 if [ "${#scenes[@]}" -eq 0 ]; then
     # courtyard: the open scene, lit mostly by the sun and the procedural sky (docs/design.md §5.9).
     scenes=(cornell plane courtyard)
-    helmet="$(realpath -m ../shared/scenes/DamagedHelmet/glTF/DamagedHelmet.gltf)"
-    if [ -f "$helmet" ]; then
-        scenes+=("$helmet")
-    else
-        echo "note: $helmet not found: DamagedHelmet skipped"
-    fi
+    # From ../shared/scenes when present: a textured model, and a lone cube under the sky, whose faces lie in the
+    # grid's edge layer (docs/design.md §5.3: a cone leaving them outwards once read its own face there).
+    for model in DamagedHelmet BoxVertexColors; do
+        file="$(realpath -m "../shared/scenes/$model/glTF/$model.gltf")"
+        if [ -f "$file" ]; then
+            scenes+=("$file")
+        else
+            echo "note: $file not found: $model skipped"
+        fi
+    done
 fi
 
 exposure_flags=()
