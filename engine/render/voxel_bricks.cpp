@@ -1,6 +1,7 @@
 #include "render/voxel_bricks.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "lib/shared.h"
@@ -38,6 +39,34 @@ bool bricksAround(glm::vec3 low, glm::vec3 high, int n, int bricksPerAxis, Brick
 
 // Samples of the animation for moving instances' bounds (as voxelSceneBounds).
 constexpr int kAnimationSamples = 32;
+
+// Calls visit(p0, p1, p2) with each triangle of the static instances at t = 0, in the voxel units of the grid at
+// originSize (origin xyz, voxel size w).
+template <typename Visit>
+void forEachStaticTriangle(const Scene& scene, glm::vec4 originSize, Visit&& visit) {
+    const glm::vec3 origin(originSize);
+    const float voxelSize = originSize.w;
+    for (const Instance& instance : scene.instances(0.0f)) {
+        if (instance.moving || instance.mesh < 0) continue;
+        for (uint32_t primitiveIndex : scene.meshes[size_t(instance.mesh)].primitives) {
+            const Primitive& primitive = scene.primitives[primitiveIndex];
+            for (uint32_t t = 0; t + 2 < primitive.indexCount; t += 3) {
+                glm::vec3 p[3];
+                bool inside = true;  // the loader checks indices; a scene built in code might not
+                for (int k = 0; k < 3; ++k) {
+                    const int64_t v = int64_t(scene.indices[primitive.firstIndex + t + uint32_t(k)]) +
+                                      primitive.vertexOffset;
+                    inside = inside && v >= 0 && size_t(v) < scene.vertices.size();
+                    if (!inside) break;
+                    const glm::vec3 world =
+                        glm::vec3(instance.world * glm::vec4(scene.vertices[size_t(v)].position, 1.0f));
+                    p[k] = (world - origin) / voxelSize;
+                }
+                if (inside) visit(p[0], p[1], p[2]);
+            }
+        }
+    }
+}
 
 }  // namespace
 
@@ -77,38 +106,17 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
     // triangle too. The test's box is widened a little for the CPU's and GPU's rounding.
     constexpr float kSlack = 1e-3f;
     const glm::vec3 blockHalf(0.5f * float(kBrick + 1) + kSlack);
-    for (const Instance& instance : scene.instances(0.0f)) {
-        if (instance.moving || instance.mesh < 0) continue;
-        for (uint32_t primitiveIndex : scene.meshes[size_t(instance.mesh)].primitives) {
-            const Primitive& primitive = scene.primitives[primitiveIndex];
-            for (uint32_t t = 0; t + 2 < primitive.indexCount; t += 3) {
-                glm::vec3 p[3];
-                bool inside = true;  // the loader checks indices; a scene built in code might not
-                for (int k = 0; k < 3; ++k) {
-                    const int64_t v = int64_t(scene.indices[primitive.firstIndex + t + uint32_t(k)]) +
-                                      primitive.vertexOffset;
-                    inside = inside && v >= 0 && size_t(v) < scene.vertices.size();
-                    if (!inside) break;
-                    const glm::vec3 world =
-                        glm::vec3(instance.world * glm::vec4(scene.vertices[size_t(v)].position, 1.0f));
-                    p[k] = (world - origin) / voxelSize;
+    forEachStaticTriangle(scene, originSize, [&](glm::vec3 p0, glm::vec3 p1, glm::vec3 p2) {
+        BrickRange range;
+        if (!bricksAround(glm::min(p0, glm::min(p1, p2)), glm::max(p0, glm::max(p1, p2)), n, perAxis, range))
+            return;
+        for (int z = range.min.z; z <= range.max.z; ++z)
+            for (int y = range.min.y; y <= range.max.y; ++y)
+                for (int x = range.min.x; x <= range.max.x; ++x) {
+                    const glm::vec3 centre = glm::vec3(x, y, z) * float(kBrick) + 0.5f * float(kBrick + 1);
+                    if (glsl::triangleBoxOverlap(centre, blockHalf, p0, p1, p2)) mark(glm::ivec3(x, y, z));
                 }
-                if (!inside) continue;
-                BrickRange range;
-                if (!bricksAround(glm::min(p[0], glm::min(p[1], p[2])), glm::max(p[0], glm::max(p[1], p[2])),
-                                  n, perAxis, range))
-                    continue;
-                for (int z = range.min.z; z <= range.max.z; ++z)
-                    for (int y = range.min.y; y <= range.max.y; ++y)
-                        for (int x = range.min.x; x <= range.max.x; ++x) {
-                            const glm::vec3 centre =
-                                glm::vec3(x, y, z) * float(kBrick) + 0.5f * float(kBrick + 1);
-                            if (glsl::triangleBoxOverlap(centre, blockHalf, p[0], p[1], p[2]))
-                                mark(glm::ivec3(x, y, z));
-                        }
-            }
-        }
-    }
+    });
 
     // Moving instances: every brick within a voxel of the box around their bounds at two consecutive sampled times
     // (what they sweep between the samples, for motion along a line; a fast object would otherwise jump over
@@ -153,11 +161,57 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
     return layout;
 }
 
-ConeClosureBox coneClosureBox(const BrickLayout& layout, glm::vec4 originSize, const Aabb& content) {
+std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 originSize,
+                                               const Aabb& content) {
+    std::array<double, 6> share{};
+    if (content.empty()) return share;
+    const glm::vec3 lo = (content.min - glm::vec3(originSize)) / originSize.w;
+    const glm::vec3 hi = (content.max - glm::vec3(originSize)) / originSize.w;
+    // The cells of each face: the voxel columns across it that the content's extent on its two other axes reaches.
+    const glm::ivec3 first(glm::floor(lo)),
+        count = glm::max(glm::ivec3(glm::ceil(hi)) - first, glm::ivec3(1));
+    std::array<std::vector<uint8_t>, 6> cells;
+    for (int face = 0; face < 6; ++face) {
+        const int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
+        cells[size_t(face)].assign(size_t(count[u]) * size_t(count[v]), 0);
+    }
+    const glm::vec3 cellHalf(0.5f);
+    forEachStaticTriangle(scene, originSize, [&](glm::vec3 p0, glm::vec3 p1, glm::vec3 p2) {
+        const glm::vec3 low = glm::min(p0, glm::min(p1, p2)), high = glm::max(p0, glm::max(p1, p2));
+        for (int face = 0; face < 6; ++face) {
+            const int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
+            const float plane = face % 2 == 0 ? lo[axis] : hi[axis];
+            if (low[axis] > plane + cellHalf[axis] || high[axis] < plane - cellHalf[axis]) continue;
+            const int u0 = std::max(int(std::floor(low[u])) - first[u], 0);
+            const int u1 = std::min(int(std::floor(high[u])) - first[u], count[u] - 1);
+            const int v0 = std::max(int(std::floor(low[v])) - first[v], 0);
+            const int v1 = std::min(int(std::floor(high[v])) - first[v], count[v] - 1);
+            for (int j = v0; j <= v1; ++j)
+                for (int i = u0; i <= u1; ++i) {
+                    uint8_t& cell = cells[size_t(face)][size_t(j) * size_t(count[u]) + size_t(i)];
+                    if (cell) continue;
+                    glm::vec3 centre;
+                    centre[axis] = plane;
+                    centre[u] = float(first[u] + i) + 0.5f;
+                    centre[v] = float(first[v] + j) + 0.5f;
+                    cell = glsl::triangleBoxOverlap(centre, cellHalf, p0, p1, p2) ? 1 : 0;
+                }
+        }
+    });
+    for (int face = 0; face < 6; ++face) {
+        const std::vector<uint8_t>& c = cells[size_t(face)];
+        share[size_t(face)] = double(std::count(c.begin(), c.end(), uint8_t(1))) / double(c.size());
+    }
+    return share;
+}
+
+ConeClosureBox coneClosureBox(const Scene& scene, const BrickLayout& layout, glm::vec4 originSize,
+                              const Aabb& content) {
     const glm::vec3 origin(originSize);
     const float voxelSize = originSize.w;
     ConeClosureBox box{origin, origin + glm::vec3(voxelSize * float(layout.resolution))};
     if (content.empty() || layout.bricksPerAxis == 0) return box;
+    const std::array<double, 6> inPlane = closureFacesInPlaneShare(scene, originSize, content);
     const int perAxis = int(layout.bricksPerAxis);
     const auto brickOf = [&](float world, int axis) {
         const int voxel = int(std::floor((world - origin[axis]) / voxelSize));
@@ -166,6 +220,7 @@ ConeClosureBox coneClosureBox(const BrickLayout& layout, glm::vec4 originSize, c
     for (int axis = 0; axis < 3; ++axis) {
         const int u = (axis + 1) % 3, v = (axis + 2) % 3;
         for (int side = 0; side < 2; ++side) {
+            if (inPlane[size_t(2 * axis + side)] < kClosedFaceInPlaneShare) continue;
             const float face = side == 0 ? content.min[axis] : content.max[axis];
             const int uLast = brickOf(content.max[u], u), vLast = brickOf(content.max[v], v);
             glm::ivec3 b(0);

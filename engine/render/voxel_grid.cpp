@@ -96,7 +96,7 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
 
     // Sparse storage (docs/design.md §5.10): which bricks the scene can reach, and the table the shaders read.
     bricks_ = allocateBricks(scene, originSize_, resolution);
-    coneClosure_ = coneClosureBox(bricks_, originSize_, contentBounds_);
+    coneClosure_ = coneClosureBox(scene, bricks_, originSize_, contentBounds_);
     const uint64_t brickCount = std::max<uint64_t>(bricks_.brickCount(), 1);  // no empty buffers or images
     const std::vector<uint32_t> table = bricks_.table();
     brickTable_ = vk::Buffer::withData(context, table.data(), table.size() * sizeof(uint32_t),
