@@ -123,6 +123,35 @@ TEST(Cone, SamplesPastTheGridKeepTheSurfaceOut) {
     at = coneSampleAt(glm::vec3(0.0f, 0.0f, 4.0f), 3.0f, glm::vec3(0.0f, 3.2f, 3.0f), up, v0, lo, hi);
     EXPECT_EQ(at.mip, 0.0f);
     EXPECT_TRUE(std::isfinite(at.position.x) && std::isfinite(at.position.y) && std::isfinite(at.position.z));
+    EXPECT_TRUE(at.ownLayer);
+    // None of the reads above reads its own surface's layer: inside, lifted, or past the grid's edge 3.2 above p.
+    EXPECT_FALSE(coneSampleAt(glm::vec3(0.3f, 1.0f, 0.0f), 2.0f, p, up, v0, lo, hi).ownLayer);
+    EXPECT_FALSE(coneSampleAt(glm::vec3(0.3f, 0.2f, 0.0f), 1.5f, p, up, v0, lo, hi).ownLayer);
+    EXPECT_FALSE(coneSampleAt(glm::vec3(0.0f, 4.0f, 0.0f), 5.6f, p, up, v0, lo, hi).ownLayer);
+    EXPECT_FALSE(coneSampleAt(glm::vec3(4.0f, 1.0f, 0.0f), 3.5f, p, up, v0, lo, hi).ownLayer);
+}
+
+// A read past the grid's edge holds the surface the cone left only where that surface lies in the edge's layer (a
+// lone object fitted to the grid: lib/cone_trace.glsl ends such a cone). A surface farther in keeps its reads, even
+// with a normal tilted towards the face the read is clamped to (a bumpy floor beside a wall at the grid's edge).
+TEST(Cone, OnlyASurfaceInTheGridsEdgeLayerReadsItselfPastTheEdge) {
+    const float v0 = 0.1f;
+    const glm::vec3 lo(-3.2f), hi(3.2f), up(0, 1, 0);
+    // A cube's top face one voxel below the grid's top, a cone straight up past it and obliquely past it.
+    const glm::vec3 top(0.0f, 3.1f, 0.0f);
+    EXPECT_TRUE(coneSampleAt(glm::vec3(0.0f, 3.3f, 0.0f), 0.0f, top, up, v0, lo, hi).ownLayer);
+    EXPECT_TRUE(coneSampleAt(glm::vec3(0.15f, 3.35f, 0.0f), 1.0f, top, up, v0, lo, hi).ownLayer);
+    // The same face 2 voxels below the edge: its layer ends below mip 0's reach of the edge.
+    const glm::vec3 lower(0.0f, 3.0f, 0.0f);
+    EXPECT_FALSE(coneSampleAt(glm::vec3(0.0f, 3.3f, 0.0f), 0.0f, lower, up, v0, lo, hi).ownLayer);
+    // A floor 2 voxels from the +x face with its normal tilted towards it, a grazing cone past that face: the clamp
+    // lowers the read's height along the tilted normal below the reach (1.8 → 0.9 voxels), but the floor is not in
+    // the face's layer.
+    const glm::vec3 tilted = glm::normalize(glm::vec3(0.5f, 1.0f, 0.0f));
+    const glm::vec3 floor(3.0f, 0.0f, 0.0f);
+    const ConeSampleAt grazing = coneSampleAt(glm::vec3(3.4f, 0.0f, 0.0f), 0.0f, floor, tilted, v0, lo, hi);
+    EXPECT_LT(glm::dot(grazing.position - floor, tilted), CONE_MIP_REACH * v0);
+    EXPECT_FALSE(grazing.ownLayer);
 }
 
 // The jittered cone set (docs/design.md §5.5): averaged over its random number, each cone's direction samples its

@@ -161,31 +161,69 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
     return layout;
 }
 
-std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 originSize,
-                                               const Aabb& content) {
+std::array<double, 6> closureFacesBrickCoverage(const BrickLayout& layout, glm::vec4 originSize,
+                                                const Aabb& content) {
+    std::array<double, 6> coverage{};
+    if (content.empty() || layout.bricksPerAxis == 0) return coverage;
+    const glm::vec3 origin(originSize);
+    const float voxelSize = originSize.w;
+    const int perAxis = int(layout.bricksPerAxis);
+    const auto brickOf = [&](float world, int axis) {
+        const int voxel = int(std::floor((world - origin[axis]) / voxelSize));
+        return std::clamp(voxel, 0, int(layout.resolution) - 1) / kBrick;
+    };
+    for (int face = 0; face < 6; ++face) {
+        const int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
+        const int uLast = brickOf(content.max[u], u), vLast = brickOf(content.max[v], v);
+        glm::ivec3 b(0);
+        b[axis] = brickOf(face % 2 == 0 ? content.min[axis] : content.max[axis], axis);
+        uint64_t covered = 0, total = 0;
+        for (b[v] = brickOf(content.min[v], v); b[v] <= vLast; ++b[v])
+            for (b[u] = brickOf(content.min[u], u); b[u] <= uLast; ++b[u]) {
+                ++total;
+                covered += layout.map[glsl::brickLinearIndex(b, perAxis)] != VCT_BRICK_NONE ? 1 : 0;
+            }
+        coverage[size_t(face)] = total ? double(covered) / double(total) : 0.0;
+    }
+    return coverage;
+}
+
+std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 originSize, const Aabb& content,
+                                               std::array<bool, 6> faces) {
     std::array<double, 6> share{};
-    if (content.empty()) return share;
+    if (content.empty() || !std::any_of(faces.begin(), faces.end(), [](bool f) { return f; })) return share;
     const glm::vec3 lo = (content.min - glm::vec3(originSize)) / originSize.w;
     const glm::vec3 hi = (content.max - glm::vec3(originSize)) / originSize.w;
-    // The cells of each face: the voxel columns across it that the content's extent on its two other axes reaches.
-    const glm::ivec3 first(glm::floor(lo)),
-        count = glm::max(glm::ivec3(glm::ceil(hi)) - first, glm::ivec3(1));
+    // The cells of each face: the voxel columns across it that the content's extent on its two other axes reaches
+    // (a bound on a voxel boundary, to rounding, adds no column beyond it).
+    constexpr float kRounding = 1e-3f;
+    const glm::ivec3 first(glm::floor(lo + kRounding));
+    const glm::ivec3 count = glm::max(glm::ivec3(glm::ceil(hi - kRounding)) - first, glm::ivec3(1));
     std::array<std::vector<uint8_t>, 6> cells;
     for (int face = 0; face < 6; ++face) {
         const int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
-        cells[size_t(face)].assign(size_t(count[u]) * size_t(count[v]), 0);
+        if (faces[size_t(face)]) cells[size_t(face)].assign(size_t(count[u]) * size_t(count[v]), 0);
     }
+    // A cell is the voxel column across the face, kClosedFacePlaneTolerance voxels either side of its plane.
     const glm::vec3 cellHalf(0.5f);
     forEachStaticTriangle(scene, originSize, [&](glm::vec3 p0, glm::vec3 p1, glm::vec3 p2) {
         const glm::vec3 low = glm::min(p0, glm::min(p1, p2)), high = glm::max(p0, glm::max(p1, p2));
+        const float huge = 1e7f;  // voxel units; also false for NaN
+        if (!glm::all(glm::lessThan(glm::abs(low), glm::vec3(huge))) ||
+            !glm::all(glm::lessThan(glm::abs(high), glm::vec3(huge))))
+            return;
         for (int face = 0; face < 6; ++face) {
+            if (!faces[size_t(face)]) continue;
             const int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
             const float plane = face % 2 == 0 ? lo[axis] : hi[axis];
-            if (low[axis] > plane + cellHalf[axis] || high[axis] < plane - cellHalf[axis]) continue;
+            const float tolerance = float(kClosedFacePlaneTolerance);
+            if (low[axis] > plane + tolerance || high[axis] < plane - tolerance) continue;
             const int u0 = std::max(int(std::floor(low[u])) - first[u], 0);
             const int u1 = std::min(int(std::floor(high[u])) - first[u], count[u] - 1);
             const int v0 = std::max(int(std::floor(low[v])) - first[v], 0);
             const int v1 = std::min(int(std::floor(high[v])) - first[v], count[v] - 1);
+            glm::vec3 half = cellHalf;
+            half[axis] = tolerance;
             for (int j = v0; j <= v1; ++j)
                 for (int i = u0; i <= u1; ++i) {
                     uint8_t& cell = cells[size_t(face)][size_t(j) * size_t(count[u]) + size_t(i)];
@@ -194,13 +232,14 @@ std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 ori
                     centre[axis] = plane;
                     centre[u] = float(first[u] + i) + 0.5f;
                     centre[v] = float(first[v] + j) + 0.5f;
-                    cell = glsl::triangleBoxOverlap(centre, cellHalf, p0, p1, p2) ? 1 : 0;
+                    cell = glsl::triangleBoxOverlap(centre, half, p0, p1, p2) ? 1 : 0;
                 }
         }
     });
     for (int face = 0; face < 6; ++face) {
         const std::vector<uint8_t>& c = cells[size_t(face)];
-        share[size_t(face)] = double(std::count(c.begin(), c.end(), uint8_t(1))) / double(c.size());
+        if (!c.empty())
+            share[size_t(face)] = double(std::count(c.begin(), c.end(), uint8_t(1))) / double(c.size());
     }
     return share;
 }
@@ -208,32 +247,20 @@ std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 ori
 ConeClosureBox coneClosureBox(const Scene& scene, const BrickLayout& layout, glm::vec4 originSize,
                               const Aabb& content) {
     const glm::vec3 origin(originSize);
-    const float voxelSize = originSize.w;
-    ConeClosureBox box{origin, origin + glm::vec3(voxelSize * float(layout.resolution))};
+    ConeClosureBox box{origin, origin + glm::vec3(originSize.w * float(layout.resolution))};
     if (content.empty() || layout.bricksPerAxis == 0) return box;
-    const std::array<double, 6> inPlane = closureFacesInPlaneShare(scene, originSize, content);
-    const int perAxis = int(layout.bricksPerAxis);
-    const auto brickOf = [&](float world, int axis) {
-        const int voxel = int(std::floor((world - origin[axis]) / voxelSize));
-        return std::clamp(voxel, 0, int(layout.resolution) - 1) / kBrick;
-    };
-    for (int axis = 0; axis < 3; ++axis) {
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        for (int side = 0; side < 2; ++side) {
-            if (inPlane[size_t(2 * axis + side)] < kClosedFaceInPlaneShare) continue;
-            const float face = side == 0 ? content.min[axis] : content.max[axis];
-            const int uLast = brickOf(content.max[u], u), vLast = brickOf(content.max[v], v);
-            glm::ivec3 b(0);
-            b[axis] = brickOf(face, axis);
-            uint64_t covered = 0, total = 0;
-            for (b[v] = brickOf(content.min[v], v); b[v] <= vLast; ++b[v])
-                for (b[u] = brickOf(content.min[u], u); b[u] <= uLast; ++b[u]) {
-                    ++total;
-                    covered += layout.map[glsl::brickLinearIndex(b, perAxis)] != VCT_BRICK_NONE ? 1 : 0;
-                }
-            if (double(covered) >= kClosedFaceCoverage * double(total))
-                (side == 0 ? box.min : box.max)[axis] = face;
-        }
+    const std::array<double, 6> bricks = closureFacesBrickCoverage(layout, originSize, content);
+    std::array<bool, 6> covered{};
+    for (int face = 0; face < 6; ++face) covered[size_t(face)] = bricks[size_t(face)] >= kClosedFaceCoverage;
+    // The in-plane test only where the bricks cover the face (most sides of most scenes fail that first).
+    const std::array<double, 6> inPlane = closureFacesInPlaneShare(scene, originSize, content, covered);
+    for (int face = 0; face < 6; ++face) {
+        if (!covered[size_t(face)] || inPlane[size_t(face)] < kClosedFaceInPlaneShare) continue;
+        const int axis = face / 2;
+        if (face % 2 == 0)
+            box.min[axis] = content.min[axis];
+        else
+            box.max[axis] = content.max[axis];
     }
     return box;
 }

@@ -54,20 +54,31 @@ glm::uvec2 brickAtlasShape(uint32_t count);
 // the slab across it) met nothing more there and saw the sky. A face counts as covered when
 //  - at least kClosedFaceCoverage of the bricks of its layer, over the content's extent, have storage (what the
 //    voxelizer writes; an opening narrower than a brick, a skylight among its rims, leaves it covered), and
-//  - the geometry lies in the face's plane: static triangles come within half a voxel of it in at least
-//    kClosedFaceInPlaneShare of the voxel columns across it (closureFacesInPlaneShare). A convex object's box
-//    touches it along a line or at points, whose bricks, 8 voxels deep, still hold its curved surface: a lone
-//    cylinder closed all six sides and its cones then ended on its own box, 0.89× of a white sky (round 26).
-//    Measured shares (tests/voxel_bricks_test.cpp, ConeClosure): rooms' faces ≥ 0.89, convex models' ≤ 0.51.
+//  - static geometry lies in the face's plane: a static triangle comes within kClosedFacePlaneTolerance voxels of
+//    it in at least kClosedFaceInPlaneShare of the voxel columns across it. A convex object touches its box along
+//    a line or at points, while the bricks of the face's layer, 8 voxels deep, hold its curved surface; a moving,
+//    skinned or morphed object has bricks for all its bounds and never closes a side (a fixed box cannot follow
+//    it). By bricks alone a lone skinned cylinder closed all six sides and its cones ended on its own box, 0.89× of
+//    a white sky (round 26; docs/design.md §5.3).
+//    Shares measured (tests/voxel_bricks_test.cpp, ConeClosure): rooms' faces ≥ 0.938 (the hall's roof with its
+//    skylights), convex objects 8 voxels across or more ≤ 0.75. A room turned 1° off the grid's axes keeps its sides
+//    closed at 64³ (0.935) but not at 128³ (0.460), nor turned 2° (0.468 at 64³): its cones then close at the grid.
 struct ConeClosureBox {
     glm::vec3 min, max;
 };
 constexpr double kClosedFaceCoverage = 0.95;
-constexpr double kClosedFaceInPlaneShare = 0.75;
+constexpr double kClosedFaceInPlaneShare = 0.85;
+constexpr double kClosedFacePlaneTolerance = 1.0;
 ConeClosureBox coneClosureBox(const Scene& scene, const BrickLayout& layout, glm::vec4 originSize,
                               const Aabb& content);
-// Per face of `content` (−x, +x, −y, +y, −z, +z), the share of the voxel columns across it, over the content's extent
-// on the two other axes, in which a static triangle comes within half a voxel of the face's plane.
-std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 originSize, const Aabb& content);
+// Per face of `content` (−x, +x, −y, +y, −z, +z): the share of the bricks of its layer, over the content's extent
+// on the two other axes, that have storage.
+std::array<double, 6> closureFacesBrickCoverage(const BrickLayout& layout, glm::vec4 originSize,
+                                                const Aabb& content);
+// Per face of `content` marked in `faces` (0 for the others): the share of the voxel columns across it, over the
+// content's extent on the two other axes, in which a static triangle comes within kClosedFacePlaneTolerance voxels of
+// the face's plane.
+std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 originSize, const Aabb& content,
+                                               std::array<bool, 6> faces);
 
 }  // namespace vct

@@ -115,8 +115,10 @@ VCT_INLINE float coneCoarseMipLift(float height, float mip, float voxelSize) {
 struct ConeSampleAt {
     vec3 position;
     float mip;
-    // The read was moved back into the box to within mip 0's reach of the surface the cone left (CONE_MIP_REACH
-    // voxels along its normal): even mip 0 reads that surface's own voxel layer there (cone_trace.glsl: what then).
+    // The read was moved back onto a face of the box that the surface the cone left lies within mip 0's reach of
+    // (CONE_MIP_REACH voxels), and there to within that reach of the surface along its normal: even mip 0 reads the
+    // surface's own voxel layer there (cone_trace.glsl: what then). A surface farther from that face (a floor beside
+    // a wall at the grid's edge) is not in the face's layer, whatever its normal's tilt.
     bool ownLayer;
 };
 
@@ -130,7 +132,11 @@ VCT_INLINE ConeSampleAt coneSampleAt(vec3 x, float mip, vec3 p, vec3 n, float vo
     at.ownLayer = false;
     if (any(notEqual(at.position, lifted))) {
         const float height = max(dot(at.position - p, n), 0.0f);
-        at.ownLayer = height < CONE_MIP_REACH * voxelSize;
+        const float reach = CONE_MIP_REACH * voxelSize;
+        // How far p lies inside the faces the read was clamped to (the others: infinitely far).
+        const vec3 inside = mix(p - boxMin, boxMax - p, vec3(greaterThan(lifted, boxMax)));
+        const vec3 fromFace = mix(vec3(1e30f), inside, vec3(notEqual(at.position, lifted)));
+        at.ownLayer = height < reach && min(fromFace.x, min(fromFace.y, fromFace.z)) < reach;
         // ⌊log2 y⌋ from y's exponent (y = f·2^e, f in [0.5, 1)): e − 1, exactly, and no log2 per step.
         int e = 0;
         frexp(max(height / (CONE_MIP_REACH * voxelSize), 1e-6f), e);
