@@ -32,6 +32,19 @@ inline void addQuad(vct::Scene& scene, glm::vec3 c, glm::vec3 u, glm::vec3 v, ui
     scene.meshes[0].primitives.push_back(uint32_t(scene.primitives.size() - 1));
 }
 
+// Appends an open column (no caps) of `sides` quads about the y axis: radius `radius` to the middle of its faces,
+// from y = −halfHeight to +halfHeight, its front faces outwards.
+inline void addColumn(vct::Scene& scene, float radius, float halfHeight, int sides, uint32_t material) {
+    const float pi = 3.14159265358979f;
+    const float halfWidth = radius * std::tan(pi / float(sides));
+    for (int i = 0; i < sides; ++i) {
+        const float a = 2.0f * pi * (float(i) + 0.5f) / float(sides);
+        const glm::vec3 out(std::cos(a), 0.0f, std::sin(a));
+        const glm::vec3 along(out.z, 0.0f, -out.x);  // cross(along, up) = out
+        addQuad(scene, out * radius, along * halfWidth, glm::vec3(0.0f, halfHeight, 0.0f), material);
+    }
+}
+
 inline vct::Scene emptyScene(const std::string& name, const vct::Material& material) {
     vct::Scene scene;
     scene.name = name;

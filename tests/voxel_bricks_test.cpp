@@ -310,18 +310,10 @@ TEST(ConeClosure, AClosedRoomClosesAtItsWallsAndAnOpenSceneAtTheGrid) {
     }
 }
 
-// A static 24-sided column (radius 0.5, height 4, no caps), built in code.
-Scene staticColumn(float radius = 0.5f) {
+// A static 24-sided column of radius `radius` and height 4, no caps, built in code.
+Scene staticColumn(float radius) {
     Scene scene = test::scenes::emptyScene("column", test::scenes::diffuseMaterial(0.8f, 0.0f));
-    constexpr int kSides = 24;
-    const float halfHeight = 2.0f, halfWidth = radius * std::tan(glm::pi<float>() / kSides);
-    for (int i = 0; i < kSides; ++i) {
-        const float a = 2.0f * glm::pi<float>() * (float(i) + 0.5f) / kSides;
-        const glm::vec3 out(std::cos(a), 0.0f, std::sin(a));
-        const glm::vec3 along(-out.z, 0.0f, out.x);  // cross(along, up) = out: the quad faces outwards
-        test::scenes::addQuad(scene, out * radius * std::cos(glm::pi<float>() / kSides), along * halfWidth,
-                              glm::vec3(0.0f, halfHeight, 0.0f), 0);
-    }
+    test::scenes::addColumn(scene, radius, 2.0f, 24, 0);
     return scene;
 }
 
