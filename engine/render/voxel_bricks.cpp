@@ -204,8 +204,6 @@ std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 ori
         const int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
         if (faces[size_t(face)]) cells[size_t(face)].assign(size_t(count[u]) * size_t(count[v]), 0);
     }
-    // A cell is the voxel column across the face, kClosedFacePlaneTolerance voxels either side of its plane.
-    const glm::vec3 cellHalf(0.5f);
     forEachStaticTriangle(scene, originSize, [&](glm::vec3 p0, glm::vec3 p1, glm::vec3 p2) {
         const glm::vec3 low = glm::min(p0, glm::min(p1, p2)), high = glm::max(p0, glm::max(p1, p2));
         const float huge = 1e7f;  // voxel units; also false for NaN
@@ -216,14 +214,14 @@ std::array<double, 6> closureFacesInPlaneShare(const Scene& scene, glm::vec4 ori
             if (!faces[size_t(face)]) continue;
             const int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
             const float plane = face % 2 == 0 ? lo[axis] : hi[axis];
-            const float tolerance = float(kClosedFacePlaneTolerance);
-            if (low[axis] > plane + tolerance || high[axis] < plane - tolerance) continue;
+            // A cell is the voxel column across the face, kClosedFacePlaneTolerance voxels either side of its plane.
+            glm::vec3 half(0.5f);
+            half[axis] = float(kClosedFacePlaneTolerance);
+            if (low[axis] > plane + half[axis] || high[axis] < plane - half[axis]) continue;
             const int u0 = std::max(int(std::floor(low[u])) - first[u], 0);
             const int u1 = std::min(int(std::floor(high[u])) - first[u], count[u] - 1);
             const int v0 = std::max(int(std::floor(low[v])) - first[v], 0);
             const int v1 = std::min(int(std::floor(high[v])) - first[v], count[v] - 1);
-            glm::vec3 half = cellHalf;
-            half[axis] = tolerance;
             for (int j = v0; j <= v1; ++j)
                 for (int i = u0; i <= u1; ++i) {
                     uint8_t& cell = cells[size_t(face)][size_t(j) * size_t(count[u]) + size_t(i)];

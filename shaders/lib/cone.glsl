@@ -139,7 +139,7 @@ VCT_INLINE ConeSampleAt coneSampleAt(vec3 x, float mip, vec3 p, vec3 n, float vo
         at.ownLayer = height < reach && min(fromFace.x, min(fromFace.y, fromFace.z)) < reach;
         // ⌊log2 y⌋ from y's exponent (y = f·2^e, f in [0.5, 1)): e − 1, exactly, and no log2 per step.
         int e = 0;
-        frexp(max(height / (CONE_MIP_REACH * voxelSize), 1e-6f), e);
+        frexp(max(height / reach, 1e-6f), e);
         const float clear = float(e - 1);
         at.mip = min(mip, max(clear, 0.0f));
     }
