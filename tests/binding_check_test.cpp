@@ -41,8 +41,9 @@ std::string errorOf(F&& f) {
 TEST(SpirvReflect, TraceShader) {
     const std::vector<vk::ShaderBinding> bindings = vk::reflectBindings(vk::readSpirv("trace.comp"));
     // 9: the environment map (issue 20); 10-13: the history at trace scale 1; the radiance atlas and the brick
-    // table (sparse voxel storage, issue 19)
-    EXPECT_EQ(bindings.size(), 15u);
+    // table (sparse voxel storage, issue 19); the environment's cone layers
+    EXPECT_EQ(bindings.size(), 16u);
+    EXPECT_EQ(find(bindings, VCT_BINDING_ENVIRONMENT_CONES).dimension, VK_IMAGE_VIEW_TYPE_3D);
     EXPECT_EQ(find(bindings, 0).type, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     EXPECT_EQ(find(bindings, VCT_BINDING_BRICKS).type, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     EXPECT_EQ(find(bindings, VCT_BINDING_VOXEL_ATLAS).dimension, VK_IMAGE_VIEW_TYPE_3D);
@@ -97,6 +98,9 @@ std::vector<vk::Binding> traceBindings() {
             // Sparse voxel storage (docs/design.md §5.10): mip 0 of the radiance and the brick table.
             {VCT_BINDING_BRICKS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs, "bricks"},
             {VCT_BINDING_VOXEL_ATLAS, sampled, cs, "radianceAtlas", VK_FORMAT_R16G16B16A16_SFLOAT,
+             VK_IMAGE_VIEW_TYPE_3D},
+            // The environment as the cones read it (render/environment_cones.h): one slice a cap size.
+            {VCT_BINDING_ENVIRONMENT_CONES, sampled, cs, "environmentCones", VK_FORMAT_R32G32B32A32_SFLOAT,
              VK_IMAGE_VIEW_TYPE_3D}};
 }
 

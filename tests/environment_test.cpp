@@ -53,15 +53,6 @@ double cosineMean(const vct::EnvironmentMap& map) {
     return sum / 3.14159265358979;
 }
 
-vct::Scene sceneWithSun(glm::vec3 towardsSun, float lux) {
-    vct::Scene scene = emptyScene("floor", diffuseMaterial(0.8f, 0.0f));
-    addQuad(scene, glm::vec3(0.0f), glm::vec3(0, 0, 100), glm::vec3(100, 0, 0), 0);
-    vct::Node& sun = addLight(scene, "sun", vct::LightType::Directional, lux);
-    // The light shines along its local −Z: turn −Z onto −towardsSun.
-    sun.rotation = glm::quatLookAtRH(-glm::normalize(towardsSun), glm::vec3(0, 1, 0));
-    return scene;
-}
-
 // ---- the sky model ----
 
 TEST(Environment, SkyIsFiniteAndPositiveForEverySunIncludingTheHorizonAndBelow) {

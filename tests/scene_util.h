@@ -83,6 +83,17 @@ inline vct::Node& addLight(vct::Scene& scene, const std::string& name, vct::Ligh
     return scene.nodes.back();
 }
 
+// A floor 200 m wide lit by a directional light from unit-ish `towardsSun` (the light's direction reversed) of
+// `lux`: the scene whose default environment is the procedural sky of that sun (render/environment.h).
+inline vct::Scene sceneWithSun(glm::vec3 towardsSun, float lux) {
+    vct::Scene scene = emptyScene("floor", diffuseMaterial(0.8f, 0.0f));
+    addQuad(scene, glm::vec3(0.0f), glm::vec3(0, 0, 100), glm::vec3(100, 0, 0), 0);
+    vct::Node& sun = addLight(scene, "sun", vct::LightType::Directional, lux);
+    // The light shines along its local −Z: turn −Z onto −towardsSun.
+    sun.rotation = glm::quatLookAtRH(-glm::normalize(towardsSun), glm::vec3(0, 1, 0));
+    return scene;
+}
+
 // Appends the six inward faces of the box [lo, hi] with `material`, all but face `leftOut` (axis · 2 + 1 for the
 // high side, axis · 2 for the low one; −1: none).
 inline void addClosedBox(vct::Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material, int leftOut = -1) {

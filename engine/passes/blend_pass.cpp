@@ -22,8 +22,7 @@ ResourceTable blendResources(DfgLut& dfg, vk::Image& voxelStandIn, vk::Buffer& b
     standIn.radianceMips = standIn.radianceAtlas = &voxelStandIn;
     standIn.brickTable = &brickStandIn;
     (voxels ? *voxels : standIn).addRows(rows, 11, fragment);
-    rows.push_back({12, Resource::image("environment", *environment.image, environment.sampler),
-                    Access::Sampled, fragment});
+    environment.addRows(rows, 12, fragment);
     rows.push_back({13, Resource::image("dfg", dfg.image(), dfg.sampler()), Access::Sampled, fragment});
     // The layer (cleared, then each surface "over" it), tested against the opaque frame's depth.
     rows.push_back({kNoBinding, Target::transparent, Access::ColorAttachment});

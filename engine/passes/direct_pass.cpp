@@ -22,19 +22,20 @@ ResourceTable selectResources() {
 
 // Binding numbers: shaders/direct.comp's.
 ResourceTable directResources(const EnvironmentSource& environment) {
-    return {"direct",
-            {{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-             {1, Resource::scene(SceneBuffer::Lights), Access::Read},
-             {2, Target::depth, Access::Sampled},
-             {3, Target::normalRoughness, Access::Sampled},
-             {4, Target::baseColorMetallic, Access::Sampled},
-             {5, Target::emissiveOcclusion, Access::Sampled},
-             {6, Target::shadowMap, Access::SampledCompare},
-             {7, Target::direct, Access::Write},
-             {8, Resource::image("environment", *environment.image, environment.sampler), Access::Sampled},
-             // The list of a partial run: its entries and its indirect dispatch (the LIST pipeline's).
-             {10, directList(), Access::Read},
-             {kNoBinding, directList(), Access::IndirectRead}}};
+    std::vector<ResourceRow> rows{
+        {VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+        {1, Resource::scene(SceneBuffer::Lights), Access::Read},
+        {2, Target::depth, Access::Sampled},
+        {3, Target::normalRoughness, Access::Sampled},
+        {4, Target::baseColorMetallic, Access::Sampled},
+        {5, Target::emissiveOcclusion, Access::Sampled},
+        {6, Target::shadowMap, Access::SampledCompare},
+        {7, Target::direct, Access::Write},
+        // The list of a partial run: its entries and its indirect dispatch (the LIST pipeline's).
+        {10, directList(), Access::Read},
+        {kNoBinding, directList(), Access::IndirectRead}};
+    environment.addRows(rows, 8);
+    return {"direct", std::move(rows)};
 }
 
 }  // namespace

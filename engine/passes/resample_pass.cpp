@@ -15,13 +15,12 @@ ResourceTable resampleResources(const VoxelSource& voxels) {
         {4, Target::indirect, Access::ReadWrite},
         // The list upsample made: this pass's indirect dispatch, its shader's input and a copy's source.
         {6, list, Access::Read},
-        {9, Resource::image("environment", *voxels.environment.image, voxels.environment.sampler),
-         Access::Sampled},
         {kNoBinding, list, Access::IndirectRead},
         {kNoBinding, list, Access::TransferRead},
         {kNoBinding, Resource::targetBuffer("resampleCount", &FrameTargets::resampleCount),
          Access::TransferWrite}};
     voxels.addRows(rows, 3);
+    voxels.environment.addRows(rows, 9);
     return {"resample", std::move(rows)};
 }
 

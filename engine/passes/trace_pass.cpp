@@ -20,14 +20,13 @@ ResourceTable traceResources(Target output, const VoxelSource& voxels) {
         {6, Target::guidePosition, Access::Write},
         {7, Target::guideNormal, Access::Write},
         {8, Target::guideAxis, Access::Write},
-        {9, Resource::image("environment", *voxels.environment.image, voxels.environment.sampler),
-         Access::Sampled},
         // Trace scale 1: the history its sample is added to (trace.comp, accumulateHistory).
         {10, Target::motion, Access::Sampled},
         {11, Target::prevDepth, Access::Sampled},
         {12, Target::prevNormalRoughness, Access::Sampled},
         {13, Target::indirectHistory, Access::Sampled}};
     voxels.addRows(rows, 3);
+    voxels.environment.addRows(rows, 9);
     return {"trace", std::move(rows)};
 }
 

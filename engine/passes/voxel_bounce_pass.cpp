@@ -24,14 +24,13 @@ constexpr uint32_t kWarmStartBounces = 4;
 
 // Binding numbers: shaders/voxel_bounce.comp's.
 ResourceTable bounceResources(VoxelGrid& grid, const EnvironmentSource& environment) {
-    std::vector<ResourceRow> rows{
-        {VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
-        {1, Resource::image("albedo", grid.albedo()), Access::Read},
-        {2, Resource::image("normal", grid.normal()), Access::Read},
-        {4, Resource::image("bounce", grid.bounce()), Access::Write},
-        // Cones that leave the grid see the environment: sky light bounces too.
-        {5, Resource::image("environment", *environment.image, environment.sampler), Access::Sampled}};
+    std::vector<ResourceRow> rows{{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
+                                  {1, Resource::image("albedo", grid.albedo()), Access::Read},
+                                  {2, Resource::image("normal", grid.normal()), Access::Read},
+                                  {4, Resource::image("bounce", grid.bounce()), Access::Write}};
     VoxelSource::of(grid).addRows(rows, 3);
+    // Cones that leave the grid see the environment: sky light bounces too.
+    environment.addRows(rows, 5);
     return {"bounce", std::move(rows)};
 }
 

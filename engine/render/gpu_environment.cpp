@@ -1,7 +1,9 @@
 #include "render/gpu_environment.h"
 
+#include <algorithm>
 #include <cstring>
 
+#include "render/environment_cones.h"
 #include "vk/buffer.h"
 
 namespace vct {
@@ -21,8 +23,21 @@ GpuEnvironment::GpuEnvironment(const vk::Context& context, const EnvironmentMap&
 
     size_t texels = 0;
     for (size_t l = first; l < map.levels.size(); ++l) texels += map.levels[l].size();
-    vk::Buffer staging(context, texels * sizeof(glm::vec4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                       vk::MemoryUsage::HostVisible);
+    // The cones' layers, one slice each; at least two slices, so that the image is 3D for every map (a constant
+    // map has one layer: both slices hold it).
+    const EnvironmentConeLayers layers = environmentConeLayers(map);
+    const uint32_t slices = std::max(layers.count, 2u);
+    vk::ImageDesc conesDesc;
+    conesDesc.width = layers.width;
+    conesDesc.height = layers.height;
+    conesDesc.depth = slices;
+    conesDesc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    conesDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    cones_ = vk::Image(context, conesDesc);
+    const size_t sliceTexels = size_t(layers.width) * layers.height;
+
+    vk::Buffer staging(context, (texels + sliceTexels * slices) * sizeof(glm::vec4),
+                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::HostVisible);
     auto* out = static_cast<glm::vec4*>(staging.mapped());
     std::vector<VkBufferImageCopy> regions;
     size_t offset = 0;
@@ -35,11 +50,24 @@ GpuEnvironment::GpuEnvironment(const vk::Context& context, const EnvironmentMap&
         regions.push_back(region);
         offset += map.levels[l].size();
     }
+    VkBufferImageCopy conesRegion{};
+    conesRegion.bufferOffset = offset * sizeof(glm::vec4);
+    conesRegion.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    conesRegion.imageExtent = {layers.width, layers.height, slices};
+    for (uint32_t slice = 0; slice < slices; ++slice) {
+        const size_t from = size_t(std::min(slice, layers.count - 1)) * sliceTexels;
+        for (size_t i = 0; i < sliceTexels; ++i)
+            out[offset + slice * sliceTexels + i] = glm::vec4(layers.texels[from + i], 1.0f);
+    }
     context.submitAndWait([&](VkCommandBuffer cmd) {
         image_.use(cmd, vk::ImageAccess::TransferDst);
         vkCmdCopyBufferToImage(cmd, staging.handle(), image_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                uint32_t(regions.size()), regions.data());
         image_.use(cmd, vk::ImageAccess::Sampled);
+        cones_.use(cmd, vk::ImageAccess::TransferDst);
+        vkCmdCopyBufferToImage(cmd, staging.handle(), cones_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               1, &conesRegion);
+        cones_.use(cmd, vk::ImageAccess::Sampled);
     });
 
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};

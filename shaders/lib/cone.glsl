@@ -319,12 +319,61 @@ VCT_INLINE float specularConeShare(float alpha, float nov) {
                     max(sgShareInCone(invLambda, lobeTan), 1e-6f));
 }
 
+// tan of the half-angle of the cap of the environment (render/environment_cones.h) whose mean radiance stands for
+// an SG lobe of inverse sharpness 1/λ cut at 1 − cos θ ≤ xMax (2: the whole lobe): the cap with the lobe's mean of
+// x = 1 − cos θ, so that the two weigh alike any radiance that varies linearly in x about the axis. The lobe's is
+// E[x] = 1/λ − xMax/(e^{λ·xMax} − 1) (an exponential in x), a uniform cap's x_c/2; x_c = 2·E[x]. The cone's own
+// aperture, the GGX lobe's half-maximum (specularLobeTanHalf), is narrower: read with it, the long tails of a
+// rough lobe were missing, and an open plane of perceptual roughness 0.6 under the sky got 0.86× its specular
+// light (docs/design.md §5.9). At most 89.9° (a tangent); 0 for a mirror.
+VCT_INLINE float sgEquivalentCapTanHalf(float invLambda, float xMax) {
+    if (invLambda <= 1e-6f) return 0.0f;
+    const float lx = xMax / invLambda;
+    const float meanX =
+        lx > 60.0f ? invLambda : (lx < 1e-3f ? 0.5f * xMax : invLambda - xMax / (exp(lx) - 1.0f));
+    const float cosCap = max(1.0f - 2.0f * meanX, 1e-3f);
+    return sqrt(max(1.0f - cosCap * cosCap, 0.0f)) / cosCap;
+}
+
+// The environment aperture of the specular cone (traceCone's environmentTanHalf): for the part of its lobe the cone
+// stands for (specularConeShare), the whole lobe or the part inside SPECULAR_CONE_MAX_TAN_HALF.
+VCT_INLINE float specularEnvironmentTanHalf(float alpha, float nov) {
+    const float xMax =
+        specularLobeTanHalf(alpha) <= SPECULAR_CONE_MAX_TAN_HALF
+            ? 2.0f
+            : 1.0f - inversesqrt(1.0f + SPECULAR_CONE_MAX_TAN_HALF * SPECULAR_CONE_MAX_TAN_HALF);
+    return sgEquivalentCapTanHalf(specularLobeInverseSharpness(alpha, nov), xMax);
+}
+
 // Weight of diffuse cone direction ω in the estimate of a lobe (unit axis ξ, inverse sharpness 1/λ) from the
 // diffuse cones: the SG at ω times the cosine n·ω (the lobe as it meets the surface). The exponent is
 // clamped so that a sharp lobe far from every cone gives 0, not a NaN from 0 · ∞.
 VCT_INLINE float sgDiffuseConeWeight(vec3 xi, float invLambda, vec3 n, vec3 omega) {
     const float exponent = (dot(omega, xi) - 1.0f) / max(invLambda, 1e-6f);
     return exp(max(exponent, -80.0f)) * max(dot(n, omega), 0.0f);
+}
+
+// The specular light from the specular cone's radiance and the diffuse cones' (`directions`, `cones`), for a
+// surface of unit normal n seen at n·v = nov with GGX roughness alpha, its lobe about xi with inverse sharpness
+// invLambda: the share of the lobe that the specular cone stands for is read from that cone; the rest, which a
+// rough lobe spreads beyond the widest cone, from the diffuse cones weighted by the lobe at their directions. A
+// single cone capped at 45° saw only the lobe's centre: on cornell's rough walls (α = 0.81) it reflected the dark
+// front wall and ceiling where the path-traced truth also sees the lit floor. Shared with the CPU tests
+// (lib/cone_trace.glsl's traceSurface combines the GPU's cones with it).
+VCT_INLINE vec3 specularFromCones(vec3 n, float nov, float alpha, vec3 xi, float invLambda, vec3 specular,
+                                  const vec3 directions[DIFFUSE_CONE_COUNT],
+                                  const vec3 cones[DIFFUSE_CONE_COUNT]) {
+    const float share = specularConeShare(alpha, nov);
+    if (share >= 1.0f) return specular;
+    vec3 lobe = vec3(0.0f);
+    float lobeWeight = 0.0f;
+    for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
+        const float w = sgDiffuseConeWeight(xi, invLambda, n, directions[i]);
+        lobe += w * cones[i];
+        lobeWeight += w;
+    }
+    // No diffuse cone under the lobe at all: the specular cone stands for all of it.
+    return lobeWeight > 0.0f ? share * specular + (1.0f - share) * lobe / lobeWeight : specular;
 }
 
 // cos θ of a direction drawn from an SG lobe of inverse sharpness 1/λ about its axis, truncated to the cone of

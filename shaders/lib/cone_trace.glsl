@@ -150,14 +150,14 @@ const int CONE_MARCH_BLENDED = 1;
 const int CONE_MARCH_BLENDED_COVERAGE = 2;
 
 // Marches one cone from `origin` along unit `dir`; returns premultiplied radiance (rgb) and opacity (a).
-// Light that leaves the grid unoccluded sees the environment (docs/design.md §5.9): the map read along the cone
-// at the mip whose texels are as wide as the cone, times what the cone left unoccluded (the background shows
-// the same map, so the two agree).
+// Light that leaves the grid unoccluded sees the environment (docs/design.md §5.9): its mean over the cap of
+// half-angle atan(environmentTanHalf) about the cone's axis (the cone's own aperture for a diffuse cone, the lobe's
+// equivalent cap for a specular one: specularEnvironmentTanHalf), times what the cone left unoccluded.
 // The cone leaves the surface at p with unit normal n (coneSurfaceFootprint, with `clearance`, keeps that
 // surface out of it). `march`: CONE_MARCH_*. `stepPhase` in [0, 1): the first sample that part of its step farther
 // out (ConeSet).
 vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float tanHalfAngle, float clearance,
-               const int march, float stepPhase) {
+               const int march, float stepPhase, float environmentTanHalf) {
     // Whole mips count a coverage once at every sample; the gathers' blended reads near a closed face (below).
     const bool wholeMips = march == CONE_MARCH_WHOLE_MIPS;
     const vec3 gridOrigin = frame.voxels.origin;
@@ -291,7 +291,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // Stopped as nearly opaque: what lies behind the last CONE_MAX_OPACITY would add its share of the cone in
     // any case, and is estimated as what the cone saw (else a closed room gathers 0.95 of its radiance).
     if (acc.a >= CONE_MAX_OPACITY) acc = vec4(acc.rgb / acc.a, 1.0);
-    acc.rgb += (1.0 - saturate(acc.a)) * environmentCone(dir, tanHalfAngle);
+    acc.rgb += (1.0 - saturate(acc.a)) * environmentCone(dir, environmentTanHalf);
     return acc;
 }
 
@@ -391,7 +391,7 @@ void diffuseConeDirectionsOf(vec3 n, ConeSet set, out vec3 directions[DIFFUSE_CO
 // the other or one per invocation (the cone layout), is this call.
 vec3 marchDiffuseCone(sampler3D voxels, vec3 p, vec3 n, ConeSet set, vec3 direction, const int march) {
     return traceCone(voxels, p, n, coneOrigin(p, n, set), direction, DIFFUSE_CONE_TAN_HALF,
-                     coneClearance(set), march, set.stepPhase)
+                     coneClearance(set), march, set.stepPhase, DIFFUSE_CONE_TAN_HALF)
         .rgb;
 }
 
@@ -447,10 +447,11 @@ vec3 traceDiffuseCone(sampler3D voxels, vec3 p, vec3 n, int i) {
 // The specular cone of a surface with unit normal n seen along unit v, of GGX roughness alpha, in `set`: the GGX lobe
 // as an SG (lib/cone.glsl) about xi, the cone along `direction` (xi, or a direction of the lobe for the jittered set).
 struct SpecularCone {
-    vec3 xi;          // the lobe's axis
-    vec3 direction;   // the cone's
-    float tanHalf;    // its aperture
-    float invLambda;  // the lobe's inverse sharpness
+    vec3 xi;                   // the lobe's axis
+    vec3 direction;            // the cone's
+    float tanHalf;             // its aperture
+    float invLambda;           // the lobe's inverse sharpness
+    float environmentTanHalf;  // the aperture of its environment read (specularEnvironmentTanHalf)
 };
 
 SpecularCone specularConeOf(vec3 n, vec3 v, float alpha, ConeSet set) {
@@ -458,6 +459,7 @@ SpecularCone specularConeOf(vec3 n, vec3 v, float alpha, ConeSet set) {
     cone.xi = specularConeDirection(n, v);
     cone.tanHalf = specularConeTanHalf(alpha);
     cone.invLambda = specularLobeInverseSharpness(alpha, dot(n, v));
+    cone.environmentTanHalf = specularEnvironmentTanHalf(alpha, dot(n, v));
     cone.direction = cone.xi;
     if (set.jittered) {
         // A direction of the lobe inside the cone; one that would leave below the surface (a grazing lobe's
@@ -465,6 +467,9 @@ SpecularCone specularConeOf(vec3 n, vec3 v, float alpha, ConeSet set) {
         const float cosTheta = sgConeSampleCosine(cone.invLambda, cone.tanHalf, set.u.z);
         const vec3 w = coneDirectionAt(cone.xi, 1.0 - cosTheta * cosTheta, 2.0 * PI * set.u.w);
         cone.direction = dot(w, n) > 0.02 ? w : cone.xi;
+        // A direction drawn from the lobe already spreads the reads over it: the environment at the cone's own
+        // aperture, as its voxels.
+        cone.environmentTanHalf = cone.tanHalf;
     }
     return cone;
 }
@@ -474,30 +479,8 @@ SpecularCone specularConeOf(vec3 n, vec3 v, float alpha, ConeSet set) {
 // trace (docs/design.md §5.3).
 vec3 marchSpecularCone(sampler3D voxels, vec3 p, vec3 n, ConeSet set, SpecularCone cone) {
     return traceCone(voxels, p, n, coneOrigin(p, n, set), cone.direction, cone.tanHalf, coneClearance(set),
-                     CONE_MARCH_WHOLE_MIPS, set.stepPhase)
+                     CONE_MARCH_WHOLE_MIPS, set.stepPhase, cone.environmentTanHalf)
         .rgb;
-}
-
-// The specular light from the specular cone's radiance and the diffuse cones' (`directions`, `cones`): the share
-// of the lobe that the specular cone stands for is read from that cone; the rest, which a rough lobe spreads beyond
-// the widest cone, from the diffuse cones weighted by the lobe at their directions. A single cone capped at 45° saw
-// only the lobe's centre: on cornell's rough walls (α = 0.81) it reflected the dark front wall and ceiling where the
-// path-traced truth also sees the lit floor.
-vec3 specularFromCones(vec3 n, vec3 v, float alpha, SpecularCone cone, vec3 specular,
-                       const vec3 directions[DIFFUSE_CONE_COUNT], const vec3 cones[DIFFUSE_CONE_COUNT]) {
-    const float share = specularConeShare(alpha, dot(n, v));
-    if (share < 1.0) {
-        vec3 lobe = vec3(0.0);
-        float lobeWeight = 0.0;
-        for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
-            const float w = sgDiffuseConeWeight(cone.xi, cone.invLambda, n, directions[i]);
-            lobe += w * cones[i];
-            lobeWeight += w;
-        }
-        // No diffuse cone under the lobe at all: the specular cone stands for all of it.
-        if (lobeWeight > 0.0) specular = share * specular + (1.0 - share) * lobe / lobeWeight;
-    }
-    return specular;
 }
 
 // Both cone sets from surface point p with unit normal n, seen along unit v (towards the camera), one cone after the
@@ -511,8 +494,9 @@ IndirectSample traceSurface(sampler3D voxels, vec3 p, vec3 n, vec3 v, float perc
     const float alpha = alphaFromPerceptual(perceptualRoughness);
     const SpecularCone cone = specularConeOf(n, v, alpha, set);
     const vec3 specular = marchSpecularCone(voxels, p, n, set, cone);
-    return IndirectSample(diffuseFromCones(cones),
-                          specularFromCones(n, v, alpha, cone, specular, directions, cones));
+    return IndirectSample(
+        diffuseFromCones(cones),
+        specularFromCones(n, dot(n, v), alpha, cone.xi, cone.invLambda, specular, directions, cones));
 }
 
 // ---- one invocation per cone (the cone layout: RenderSettings::TraceLayout, docs/design.md §5.5) ----
@@ -553,9 +537,9 @@ IndirectSample surfaceFromCones(vec3 n, vec3 v, float perceptualRoughness, ConeS
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) cones[i] = radiance[i];
     const float alpha = alphaFromPerceptual(perceptualRoughness);
     const SpecularCone cone = specularConeOf(n, v, alpha, set);
-    return IndirectSample(
-        diffuseFromCones(cones),
-        specularFromCones(n, v, alpha, cone, radiance[SPECULAR_CONE_INDEX], directions, cones));
+    return IndirectSample(diffuseFromCones(cones),
+                          specularFromCones(n, dot(n, v), alpha, cone.xi, cone.invLambda,
+                                            radiance[SPECULAR_CONE_INDEX], directions, cones));
 }
 
 // ---- a full-res pixel ----

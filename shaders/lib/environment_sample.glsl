@@ -1,16 +1,24 @@
 // Reading the environment map on the GPU (lib/environment.glsl: layout and mip; docs/design.md §5.9).
 // GLSL only. Expects before inclusion: `frame` (FrameUniforms), `environmentMap` (sampler2D: the map with its
-// prefiltered mips, linear filtering, u repeated, v clamped), lib/constants, lib/cone.
+// prefiltered mips, linear filtering, u repeated, v clamped), lib/constants, lib/cone. Declares
+// `environmentCones`, the cones' layers (render/environment_cones.h: one slice a layer, the same filtering, w
+// clamped), at binding VCT_BINDING_ENVIRONMENT_CONES.
 #ifndef VCT_ENVIRONMENT_SAMPLE_GLSL
 #define VCT_ENVIRONMENT_SAMPLE_GLSL
 
 #include "lib/environment.glsl"
 
-// Radiance arriving from unit direction `dir`, averaged over a cone of half-angle atan(tanHalfAngle) (the mip
-// whose texels are as wide as the cone).
+layout(set = 0, binding = VCT_BINDING_ENVIRONMENT_CONES) uniform sampler3D environmentCones;
+
+// Radiance arriving from unit direction `dir`, averaged over a cone of half-angle atan(tanHalfAngle): the mean
+// over the cap of that half-angle, between the two layers whose caps hold it (render/environment_cones.h; the
+// map's own mips are boxes in azimuth and polar angle, a sector near the poles). render/environment_cones.cpp's
+// sampleEnvironmentCone is the CPU twin.
 vec3 environmentCone(vec3 dir, float tanHalfAngle) {
-    const float mip = environmentMip(tanHalfAngle, float(textureSize(environmentMap, 0).x));
-    return textureLod(environmentMap, equirectUv(dir, frame.lighting.environmentRotation), mip).rgb;
+    const ivec3 size = textureSize(environmentCones, 0);
+    const float layer = min(environmentMip(tanHalfAngle, float(size.x)), float(size.z - 1));
+    const vec2 uv = equirectUv(dir, frame.lighting.environmentRotation);
+    return textureLod(environmentCones, vec3(uv, (layer + 0.5) / float(size.z)), 0.0).rgb;
 }
 
 // Radiance seen along `dir` at full resolution (the background).
@@ -35,7 +43,9 @@ vec3 environmentReflected(vec3 n, vec3 v, vec3 baseColor, float metallic, float 
     const vec3 albedo = diffuseAlbedo(baseColor, metallic);
     const vec3 f0 = f0FromMetallic(baseColor, metallic);
     const float alpha = alphaFromPerceptual(perceptualRoughness);
-    const vec3 specular = environmentCone(specularConeDirection(n, v), specularConeTanHalf(alpha));
+    const vec3 specular =
+        environmentCone(specularConeDirection(n, v),
+                        sgEquivalentCapTanHalf(specularLobeInverseSharpness(alpha, dot(n, v)), 2.0));
     return environmentDiffuse(n) * albedo + specular * f0;
 }
 

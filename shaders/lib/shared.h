@@ -222,11 +222,14 @@ struct SkinPushConstants {
 // ---- binding numbers ----
 // Each pass declares its resources, with their binding numbers, once in its resource table
 // (engine/passes/NAME_pass.cpp, render/pass_resources.h); its shader declares the same numbers, and the
-// pipeline's creation checks the two against each other (vk/binding_check.h). Only the frame's and the sparse
-// voxel storage's are common (lib/voxel_storage.glsl declares those):
+// pipeline's creation checks the two against each other (vk/binding_check.h). Only the frame's, the sparse
+// voxel storage's (lib/voxel_storage.glsl declares those) and the environment's cone layers
+// (lib/environment_sample.glsl) are common:
 #define VCT_BINDING_FRAME 0         // FrameUniforms, in every pass that needs it
 #define VCT_BINDING_BRICKS 20       // the brick table (map, then coordinates), in every pass reading voxels
 #define VCT_BINDING_VOXEL_ATLAS 21  // mip 0 of the radiance (the radiance atlas), where cones are traced
+#define VCT_BINDING_ENVIRONMENT_CONES \
+    22  // the environment's cone layers, in every pass reading the environment
 
 // upsample's specialization constants (one pipeline per configuration), after VCT_SPEC_TRACE_SCALE (2 or 4)
 #define VCT_UPSAMPLE_SPEC_WEIGHTS 1      // VCT_WEIGHTS_*
