@@ -26,8 +26,8 @@ const vct::EnvironmentMap& defaultSky() {
 }
 
 vec3 texelDirection(const vct::EnvironmentMap& map, uint32_t x, uint32_t y) {
-    return g::equirectDirection(vec2((float(x) + 0.5f) / float(map.width()), (float(y) + 0.5f) / float(map.height())),
-                                0.0f);
+    return g::equirectDirection(
+        vec2((float(x) + 0.5f) / float(map.width()), (float(y) + 0.5f) / float(map.height())), 0.0f);
 }
 
 // The exact weighted mean of level 0 over the sphere: Σ weight(d)·L·ω / Σ weight(d)·ω over its texels.
@@ -47,8 +47,8 @@ vec3 weightedMean(const vct::EnvironmentMap& map, Weight weight) {
 }
 
 // The normals and views of the open-sky sweeps: up, four sides, a diagonal, down; head-on to grazing, four azimuths.
-const vec3 kNormals[] = {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0.57735f, 0.57735f, 0.57735f},
-                         {0, -1, 0}};
+const vec3 kNormals[] = {
+    {0, 1, 0}, {0, 0, 1}, {1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0.57735f, 0.57735f, 0.57735f}, {0, -1, 0}};
 
 // The six diffuse cones' estimate of the cosine-weighted mean radiance, averaged over eight turns of the set (the
 // trace turns it per pixel and frame).
@@ -56,9 +56,10 @@ vec3 sixConeEstimate(const vct::EnvironmentConeLayers& layers, vec3 n) {
     vec3 sum(0.0f);
     for (int turn = 0; turn < 8; ++turn)
         for (int i = 0; i < g::DIFFUSE_CONE_COUNT; ++i)
-            sum += g::diffuseConeWeight(i) *
-                   vct::sampleEnvironmentCone(layers, g::turnedDiffuseConeDirection(n, i, float(turn) * 0.157f),
-                                              g::DIFFUSE_CONE_TAN_HALF, 0.0f);
+            sum +=
+                g::diffuseConeWeight(i) *
+                vct::sampleEnvironmentCone(layers, g::turnedDiffuseConeDirection(n, i, float(turn) * 0.157f),
+                                           g::DIFFUSE_CONE_TAN_HALF, 0.0f);
     return sum / 8.0f;
 }
 
@@ -116,11 +117,14 @@ TEST(EnvironmentCones, EachLayerHoldsTheCapMeanOfTheMap) {
             for (uint32_t x : {0u, 77u, 200u}) {
                 const vec3 d = texelDirection(map, x, y);
                 // The builder's cap: θ_k, a hair wider so that texel centres exactly θ_k away count in.
-                const double cosCap =
-                    std::cos(std::min(3.14159265358979 * double(1u << k) / map.width(), 3.14159265358979) * 1.0001);
+                const double cosCap = std::cos(
+                    std::min(3.14159265358979 * double(1u << k) / map.width(), 3.14159265358979) * 1.0001);
                 // Every texel centre inside the cap, from level 0 (the layers take a coarser level for wide caps).
-                const vec3 exact = weightedMean(map, [&](vec3 w) { return glm::dot(glm::dvec3(w), glm::dvec3(d)) >= cosCap ? 1.0 : 0.0; });
-                const double error = std::abs(g::luminance(layers.texel(k, x, y)) / g::luminance(exact) - 1.0);
+                const vec3 exact = weightedMean(map, [&](vec3 w) {
+                    return glm::dot(glm::dvec3(w), glm::dvec3(d)) >= cosCap ? 1.0 : 0.0;
+                });
+                const double error =
+                    std::abs(g::luminance(layers.texel(k, x, y)) / g::luminance(exact) - 1.0);
                 worst = std::max(worst, error);
                 EXPECT_LT(error, 0.025) << "layer " << k << " texel " << x << ", " << y;
             }
@@ -154,7 +158,8 @@ TEST(EnvironmentCones, TheWidestLayerIsTheMapsMean) {
     const float mean = g::luminance(map.meanRadiance());
     for (uint32_t y = 0; y < layers.height; y += 9)
         for (uint32_t x = 0; x < layers.width; x += 13)
-            EXPECT_NEAR(g::luminance(layers.texel(layers.count - 1, x, y)) / mean, 1.0f, 1e-4f) << x << ", " << y;
+            EXPECT_NEAR(g::luminance(layers.texel(layers.count - 1, x, y)) / mean, 1.0f, 1e-4f)
+                << x << ", " << y;
 }
 
 // The six cones' sky light against the exact cosine-weighted mean. Measured (eight turns): 0.925 (the diagonal)
@@ -182,16 +187,17 @@ TEST(EnvironmentCones, SixConesUnderTheSkyGetItsIrradiance) {
 }
 
 // The specular estimate of an open surface against the GGX integral, rms over 7 normals × 4 view angles × 4
-// azimuths per roughness. Measured: 0.007 / 0.032 / 0.061 / 0.105 / 0.097 at perceptual roughness 0.2 / 0.4 / 0.6 /
+// azimuths per roughness. Measured: 0.007 / 0.032 / 0.061 / 0.105 / 0.075 at perceptual roughness 0.2 / 0.4 / 0.6 /
 // 0.8 / 1.0. With the cone's own aperture instead of the lobe's equivalent cap (and the map's mips): 0.016 / 0.074 /
-// 0.121 / 0.111 / 0.092. At 0.8 and above one cone (or six) cannot follow the lobe's shape: the cosine and
+// 0.121 / 0.111 / 0.092; at 1.0 with the diffuse cones weighted by the lobe alone, also where the specular cone
+// covers their tiles, 0.097. At 0.8 and above one cone (or six) cannot follow the lobe's shape: the cosine and
 // Fresnel tilt it, and its tails reach the horizon.
 TEST(EnvironmentCones, OpenSkySpecularFollowsTheGgxIntegral) {
     const vct::EnvironmentMap& map = defaultSky();
     const vct::EnvironmentConeLayers layers = vct::environmentConeLayers(map);
     const struct {
         float roughness, rms;
-    } bounds[] = {{0.2f, 0.01f}, {0.4f, 0.035f}, {0.6f, 0.065f}, {0.8f, 0.11f}, {1.0f, 0.1f}};
+    } bounds[] = {{0.2f, 0.01f}, {0.4f, 0.035f}, {0.6f, 0.065f}, {0.8f, 0.11f}, {1.0f, 0.08f}};
     for (const auto& bound : bounds) {
         const float alpha = g::alphaFromPerceptual(bound.roughness);
         double squares = 0.0;
@@ -234,6 +240,23 @@ TEST(EnvironmentCones, SpecularEnvironmentApertureCoversTheLobe) {
             const float t = g::specularEnvironmentTanHalf(alpha, nov);
             EXPECT_TRUE(std::isfinite(t) && t >= 0.0f) << roughness << " " << nov;
         }
+    }
+}
+
+// A diffuse cone's tile outside the specular cone (the rest of a rough lobe, lib/cone.glsl): none of it while the tile
+// (a cap of 30°) lies inside the specular cone's 45°, all of it from 75° off its axis, rising between.
+TEST(EnvironmentCones, DiffuseTilesCountOutsideTheSpecularCone) {
+    EXPECT_EQ(g::diffuseTileOutsideSpecularCone(1.0f), 0.0f);
+    EXPECT_EQ(g::diffuseTileOutsideSpecularCone(std::cos(glm::radians(14.9f))), 0.0f);
+    EXPECT_NEAR(g::diffuseTileOutsideSpecularCone(std::cos(glm::radians(45.0f))), 0.5f, 1e-4f);
+    EXPECT_EQ(g::diffuseTileOutsideSpecularCone(std::cos(glm::radians(75.1f))), 1.0f);
+    EXPECT_EQ(g::diffuseTileOutsideSpecularCone(-1.0f), 1.0f);
+    EXPECT_EQ(g::diffuseTileOutsideSpecularCone(1.5f), 0.0f);  // rounding past 1: clamped, no NaN
+    float last = 0.0f;
+    for (float angle = 0.0f; angle <= 180.0f; angle += 1.0f) {
+        const float share = g::diffuseTileOutsideSpecularCone(std::cos(glm::radians(angle)));
+        EXPECT_GE(share, last) << angle;
+        last = share;
     }
 }
 

@@ -38,7 +38,8 @@ struct RowSums {
 // from `source` (its texel centres inside the cap, each weighted by its solid angle). Rows are visited where
 // the cap can reach them; in each, the cap covers the columns within ±Δφ of the texel's azimuth, from the
 // spherical law of cosines: cos θ ≥ cos θ_y cos θ_r + sin θ_y sin θ_r cos Δφ.
-glm::vec3 capMean(const RowSums& source, uint32_t x, uint32_t y, uint32_t width, uint32_t height, double theta) {
+glm::vec3 capMean(const RowSums& source, uint32_t x, uint32_t y, uint32_t width, uint32_t height,
+                  double theta) {
     const double polar = kPi * (double(y) + 0.5) / double(height);
     const double azimuth = 2.0 * kPi * (double(x) + 0.5) / double(width) - kPi;
     // A hair wider than θ: the caps of layers 1, 2, … reach exactly 1, 2, … texels along a meridian, and the texel
@@ -46,12 +47,14 @@ glm::vec3 capMean(const RowSums& source, uint32_t x, uint32_t y, uint32_t width,
     const double cosCap = std::cos(theta * (1.0 + kCapSlack));
     const double rows = double(source.height);
     const int64_t r0 = std::max<int64_t>(0, int64_t(std::floor((polar - theta) / kPi * rows - 0.5)));
-    const int64_t r1 = std::min<int64_t>(source.height - 1, int64_t(std::ceil((polar + theta) / kPi * rows - 0.5)));
+    const int64_t r1 =
+        std::min<int64_t>(source.height - 1, int64_t(std::ceil((polar + theta) / kPi * rows - 0.5)));
     glm::dvec3 sum(0.0);
     double weight = 0.0;
     for (int64_t r = r0; r <= r1; ++r) {
         const double rowPolar = kPi * (double(r) + 0.5) / rows;
-        const double c = (cosCap - std::cos(polar) * std::cos(rowPolar)) / (std::sin(polar) * std::sin(rowPolar));
+        const double c =
+            (cosCap - std::cos(polar) * std::cos(rowPolar)) / (std::sin(polar) * std::sin(rowPolar));
         if (c > 1.0) continue;
         const double omega = equirectTexelSolidAngle(uint32_t(r), source.width, source.height);
         int64_t first = 0, count = source.width;
@@ -59,8 +62,8 @@ glm::vec3 capMean(const RowSums& source, uint32_t x, uint32_t y, uint32_t width,
             const double halfWidth = std::acos(c);
             const double scale = double(source.width) / (2.0 * kPi);
             first = int64_t(std::ceil((azimuth - halfWidth + kPi) * scale - 0.5));
-            count = std::min<int64_t>(int64_t(std::floor((azimuth + halfWidth + kPi) * scale - 0.5)) - first + 1,
-                                      source.width);
+            count = std::min<int64_t>(
+                int64_t(std::floor((azimuth + halfWidth + kPi) * scale - 0.5)) - first + 1, source.width);
             if (count <= 0) continue;
         }
         sum += omega * source.run(uint32_t(r), first, count);
@@ -107,7 +110,8 @@ EnvironmentConeLayers environmentConeLayers(const EnvironmentMap& map) {
 glm::vec3 sampleEnvironmentCone(const EnvironmentConeLayers& layers, glm::vec3 dir, float tanHalfAngle,
                                 float rotation) {
     const glm::vec2 uv = glsl::equirectUv(dir, rotation);
-    const float layer = std::min(glsl::environmentMip(tanHalfAngle, float(layers.width)), float(layers.count - 1));
+    const float layer =
+        std::min(glsl::environmentMip(tanHalfAngle, float(layers.width)), float(layers.count - 1));
     const float x = uv.x * float(layers.width) - 0.5f, y = uv.y * float(layers.height) - 0.5f;
     const int x0 = int(std::floor(x)), y0 = int(std::floor(y)), k0 = int(std::floor(layer));
     const float fx = x - float(x0), fy = y - float(y0), fk = layer - float(k0);

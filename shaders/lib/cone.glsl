@@ -353,12 +353,24 @@ VCT_INLINE float sgDiffuseConeWeight(vec3 xi, float invLambda, vec3 n, vec3 omeg
     return exp(max(exponent, -80.0f)) * max(dot(n, omega), 0.0f);
 }
 
+// The share of a diffuse cone's tile that lies outside the specular cone at its widest (SPECULAR_CONE_MAX_TAN_HALF),
+// from the cosine between the two axes: the tile taken as a cap of the diffuse cone's half-angle r_d, the
+// specular cone's r_s; 0 while the tile is inside (an angle <= r_s - r_d), 1 once clear of it (>= r_s + r_d), linear
+// in the angle between.
+VCT_INLINE float diffuseTileOutsideSpecularCone(float cosAngle) {
+    const float rd = atan(DIFFUSE_CONE_TAN_HALF), rs = atan(SPECULAR_CONE_MAX_TAN_HALF);
+    return saturate((acos(clamp(cosAngle, -1.0f, 1.0f)) - (rs - rd)) / (2.0f * rd));
+}
+
 // The specular light from the specular cone's radiance and the diffuse cones' (`directions`, `cones`), for a
 // surface of unit normal n seen at n·v = nov with GGX roughness alpha, its lobe about xi with inverse sharpness
 // invLambda: the share of the lobe that the specular cone stands for is read from that cone; the rest, which a
-// rough lobe spreads beyond the widest cone, from the diffuse cones weighted by the lobe at their directions. A
-// single cone capped at 45° saw only the lobe's centre: on cornell's rough walls (α = 0.81) it reflected the dark
-// front wall and ceiling where the path-traced truth also sees the lit floor. Shared with the CPU tests
+// rough lobe spreads beyond the widest cone, from the diffuse cones weighted by the lobe at their directions and by
+// how much of their tile lies beyond the specular cone (diffuseTileOutsideSpecularCone). A single cone capped at 45°
+// saw only the lobe's centre: on cornell's rough walls (α = 0.81) it reflected the dark front wall and ceiling where
+// the path-traced truth also sees the lit floor. Weighted by the lobe alone, the tiles nearest the axis, which the
+// specular cone already covers, dominated the rest too: cornell's specular sRGB PSNR was 0.5 dB lower, an open
+// plane of roughness 1 under the sky got 0.80× its specular light (0.83× now; docs/design.md §5.9). Shared with the CPU tests
 // (lib/cone_trace.glsl's traceSurface combines the GPU's cones with it).
 VCT_INLINE vec3 specularFromCones(vec3 n, float nov, float alpha, vec3 xi, float invLambda, vec3 specular,
                                   const vec3 directions[DIFFUSE_CONE_COUNT],
@@ -368,7 +380,8 @@ VCT_INLINE vec3 specularFromCones(vec3 n, float nov, float alpha, vec3 xi, float
     vec3 lobe = vec3(0.0f);
     float lobeWeight = 0.0f;
     for (int i = 0; i < DIFFUSE_CONE_COUNT; ++i) {
-        const float w = sgDiffuseConeWeight(xi, invLambda, n, directions[i]);
+        const float w = sgDiffuseConeWeight(xi, invLambda, n, directions[i]) *
+                        diffuseTileOutsideSpecularCone(dot(directions[i], xi));
         lobe += w * cones[i];
         lobeWeight += w;
     }
