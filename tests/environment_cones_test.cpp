@@ -142,7 +142,17 @@ TEST(EnvironmentCones, AConstantMapReadsItsConstantAtEveryAperture) {
     vct::buildEnvironmentMips(wide);
     const vct::EnvironmentConeLayers layers = vct::environmentConeLayers(wide);
     EXPECT_EQ(layers.count, 7u);
-    for (const auto* l : {&single, &layers})
+    // A file's size need not be a power of two: 1000 × 500 halves to 500, 250 (the layers' size), 125, 62, …
+    vct::EnvironmentMap odd;
+    odd.widths = {1000};
+    odd.heights = {500};
+    odd.levels = {std::vector<vec3>(1000 * 500, c)};
+    vct::buildEnvironmentMips(odd);
+    const vct::EnvironmentConeLayers oddLayers = vct::environmentConeLayers(odd);
+    EXPECT_EQ(oddLayers.width, 250u);
+    EXPECT_EQ(oddLayers.height, 125u);
+    EXPECT_EQ(oddLayers.count, 9u);
+    for (const auto* l : {&single, &layers, &oddLayers})
         for (float tanHalf : {0.0f, 0.01f, 0.3f, 0.577f, 1.0f, 50.0f})
             for (vec3 d : kNormals) {
                 const vec3 read = vct::sampleEnvironmentCone(*l, d, tanHalf, 1.0f);
