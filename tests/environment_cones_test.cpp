@@ -46,6 +46,16 @@ vec3 weightedMean(const vct::EnvironmentMap& map, Weight weight) {
     return vec3(sum / total);
 }
 
+// A width × height map of radiance c everywhere, with its mips.
+vct::EnvironmentMap uniformMap(uint32_t width, uint32_t height, vec3 c) {
+    vct::EnvironmentMap map;
+    map.widths = {width};
+    map.heights = {height};
+    map.levels = {std::vector<vec3>(size_t(width) * height, c)};
+    vct::buildEnvironmentMips(map);
+    return map;
+}
+
 // The normals and views of the open-sky sweeps: up, four sides, a diagonal, down; head-on to grazing, four azimuths.
 const vec3 kNormals[] = {
     {0, 1, 0}, {0, 0, 1}, {1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0.57735f, 0.57735f, 0.57735f}, {0, -1, 0}};
@@ -135,20 +145,10 @@ TEST(EnvironmentCones, AConstantMapReadsItsConstantAtEveryAperture) {
     const vec3 c(0.3f, 0.5f, 0.7f);
     const vct::EnvironmentConeLayers single = vct::environmentConeLayers(vct::constantEnvironment(c));
     EXPECT_EQ(single.count, 1u);
-    vct::EnvironmentMap wide;
-    wide.widths = {64};
-    wide.heights = {32};
-    wide.levels = {std::vector<vec3>(64 * 32, c)};
-    vct::buildEnvironmentMips(wide);
-    const vct::EnvironmentConeLayers layers = vct::environmentConeLayers(wide);
+    const vct::EnvironmentConeLayers layers = vct::environmentConeLayers(uniformMap(64, 32, c));
     EXPECT_EQ(layers.count, 7u);
     // A file's size need not be a power of two: 1000 × 500 halves to 500, 250 (the layers' size), 125, 62, …
-    vct::EnvironmentMap odd;
-    odd.widths = {1000};
-    odd.heights = {500};
-    odd.levels = {std::vector<vec3>(1000 * 500, c)};
-    vct::buildEnvironmentMips(odd);
-    const vct::EnvironmentConeLayers oddLayers = vct::environmentConeLayers(odd);
+    const vct::EnvironmentConeLayers oddLayers = vct::environmentConeLayers(uniformMap(1000, 500, c));
     EXPECT_EQ(oddLayers.width, 250u);
     EXPECT_EQ(oddLayers.height, 125u);
     EXPECT_EQ(oddLayers.count, 9u);
