@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "render/shader_math.h"
 
@@ -35,11 +36,11 @@ struct RowSums {
 };
 
 // Mean radiance over the cap of half-angle `theta` about the direction of texel (x, y) of a width × height map,
-// from `source` (its texel centres inside the cap, each weighted by its solid angle). Rows are visited where
-// the cap can reach them; in each, the cap covers the columns within ±Δφ of the texel's azimuth, from the
-// spherical law of cosines: cos θ ≥ cos θ_y cos θ_r + sin θ_y sin θ_r cos Δφ.
-glm::vec3 capMean(const RowSums& source, uint32_t x, uint32_t y, uint32_t width, uint32_t height,
-                  double theta) {
+// from `source` (its texel centres inside the cap, each weighted by its solid angle); none when no centre is
+// inside. Rows are visited where the cap can reach them; in each, the cap covers the columns within ±Δφ of the
+// texel's azimuth, from the spherical law of cosines: cos θ ≥ cos θ_y cos θ_r + sin θ_y sin θ_r cos Δφ.
+std::optional<glm::vec3> capMean(const RowSums& source, uint32_t x, uint32_t y, uint32_t width,
+                                 uint32_t height, double theta) {
     const double polar = kPi * (double(y) + 0.5) / double(height);
     const double azimuth = 2.0 * kPi * (double(x) + 0.5) / double(width) - kPi;
     // A hair wider than θ: the caps of layers 1, 2, … reach exactly 1, 2, … texels along a meridian, and the texel
@@ -69,7 +70,8 @@ glm::vec3 capMean(const RowSums& source, uint32_t x, uint32_t y, uint32_t width,
         sum += omega * source.run(uint32_t(r), first, count);
         weight += omega * double(count);
     }
-    return weight > 0.0 ? glm::vec3(sum / weight) : glm::vec3(-1.0f);
+    if (weight <= 0.0) return std::nullopt;
+    return glm::vec3(sum / weight);
 }
 
 }  // namespace
@@ -98,10 +100,9 @@ EnvironmentConeLayers environmentConeLayers(const EnvironmentMap& map) {
         const RowSums source(map, level);
         for (uint32_t y = 0; y < layers.height; ++y)
             for (uint32_t x = 0; x < layers.width; ++x) {
-                glm::vec3 mean = capMean(source, x, y, layers.width, layers.height, theta);
                 // No texel centre inside the cap (not met at these sizes): the texel itself.
-                if (mean.x < 0.0f) mean = map.texel(base, x, y);
-                layers.texels[(size_t(k) * layers.height + y) * layers.width + x] = mean;
+                layers.texels[(size_t(k) * layers.height + y) * layers.width + x] =
+                    capMean(source, x, y, layers.width, layers.height, theta).value_or(map.texel(base, x, y));
             }
     }
     return layers;

@@ -296,15 +296,26 @@ VCT_INLINE float specularLobeInverseSharpness(float alpha, float nov) {
     return 2.0f * a * a * max(nov, SG_MIN_NOV);
 }
 
+// 1 − cos θ of a cone of half-angle θ = atan(tanHalfAngle).
+VCT_INLINE float coneOneMinusCos(float tanHalfAngle) {
+    return 1.0f - inversesqrt(1.0f + tanHalfAngle * tanHalfAngle);
+}
+
 // Share of an SG lobe of inverse sharpness 1/λ (over the sphere) that falls inside a cone of half-angle θ
 // about its axis: ∫_cone G / ∫_sphere G = (1 − e^{−λ(1 − cos θ)}) / (1 − e^{−2λ}). 1 for a mirror (1/λ = 0),
 // (1 − cos θ)/2 as λ → 0 (a uniform lobe).
 VCT_INLINE float sgShareInCone(float invLambda, float tanHalfAngle) {
-    const float oneMinusCos = 1.0f - inversesqrt(1.0f + tanHalfAngle * tanHalfAngle);
+    const float oneMinusCos = coneOneMinusCos(tanHalfAngle);
     if (invLambda <= 1e-6f) return 1.0f;
     if (invLambda >= 1e6f) return 0.5f * oneMinusCos;
     const float lambda = 1.0f / invLambda;
     return saturate((1.0f - exp(-lambda * oneMinusCos)) / (1.0f - exp(-2.0f * lambda)));
+}
+
+// Whether the specular cone is as wide as its lobe's half-maximum aperture, not clamped to
+// SPECULAR_CONE_MAX_TAN_HALF: it then stands for all of the lobe.
+VCT_INLINE bool specularConeHoldsLobe(float alpha) {
+    return specularLobeTanHalf(alpha) <= SPECULAR_CONE_MAX_TAN_HALF;
 }
 
 // How much of the specular lobe the (clamped) specular cone stands for. A cone as wide as the lobe
@@ -312,11 +323,10 @@ VCT_INLINE float sgShareInCone(float invLambda, float tanHalfAngle) {
 // lobe between the two apertures, which the diffuse cones estimate instead (cone_trace.glsl, traceSurface).
 // 1 whenever the clamp is not reached; cornell's walls (α = 0.81 seen at n·v = 0.7) keep 0.74.
 VCT_INLINE float specularConeShare(float alpha, float nov) {
+    if (specularConeHoldsLobe(alpha)) return 1.0f;
     const float invLambda = specularLobeInverseSharpness(alpha, nov);
-    const float lobeTan = specularLobeTanHalf(alpha);
-    if (lobeTan <= SPECULAR_CONE_MAX_TAN_HALF) return 1.0f;
     return saturate(sgShareInCone(invLambda, SPECULAR_CONE_MAX_TAN_HALF) /
-                    max(sgShareInCone(invLambda, lobeTan), 1e-6f));
+                    max(sgShareInCone(invLambda, specularLobeTanHalf(alpha)), 1e-6f));
 }
 
 // tan of the half-angle of the cap of the environment (render/environment_cones.h) whose mean radiance stands for
@@ -338,10 +348,7 @@ VCT_INLINE float sgEquivalentCapTanHalf(float invLambda, float xMax) {
 // The environment aperture of the specular cone (traceCone's environmentTanHalf): for the part of its lobe the cone
 // stands for (specularConeShare), the whole lobe or the part inside SPECULAR_CONE_MAX_TAN_HALF.
 VCT_INLINE float specularEnvironmentTanHalf(float alpha, float nov) {
-    const float xMax =
-        specularLobeTanHalf(alpha) <= SPECULAR_CONE_MAX_TAN_HALF
-            ? 2.0f
-            : 1.0f - inversesqrt(1.0f + SPECULAR_CONE_MAX_TAN_HALF * SPECULAR_CONE_MAX_TAN_HALF);
+    const float xMax = specularConeHoldsLobe(alpha) ? 2.0f : coneOneMinusCos(SPECULAR_CONE_MAX_TAN_HALF);
     return sgEquivalentCapTanHalf(specularLobeInverseSharpness(alpha, nov), xMax);
 }
 
@@ -370,8 +377,8 @@ VCT_INLINE float diffuseTileOutsideSpecularCone(float cosAngle) {
 // saw only the lobe's centre: on cornell's rough walls (α = 0.81) it reflected the dark front wall and ceiling where
 // the path-traced truth also sees the lit floor. Weighted by the lobe alone, the tiles nearest the axis, which the
 // specular cone already covers, dominated the rest too: cornell's specular sRGB PSNR was 0.5 dB lower, an open
-// plane of roughness 1 under the sky got 0.80× its specular light (0.83× now; docs/design.md §5.9). Shared with the CPU tests
-// (lib/cone_trace.glsl's traceSurface combines the GPU's cones with it).
+// plane of roughness 1 under the sky got 0.80× its specular light (0.83× now; docs/design.md §5.9). Shared with
+// the CPU tests (lib/cone_trace.glsl's traceSurface combines the GPU's cones with it).
 VCT_INLINE vec3 specularFromCones(vec3 n, float nov, float alpha, vec3 xi, float invLambda, vec3 specular,
                                   const vec3 directions[DIFFUSE_CONE_COUNT],
                                   const vec3 cones[DIFFUSE_CONE_COUNT]) {
@@ -396,7 +403,7 @@ VCT_INLINE vec3 specularFromCones(vec3 n, float nov, float alpha, vec3 xi, float
 // u in [0, 1). A mirror (1/λ → 0) gives 1; a uniform lobe (1/λ → ∞) cos θ = 1 − u·(1 − cos θ_c), the limit of the
 // same formula, taken explicitly where the exponential form would cancel in float.
 VCT_INLINE float sgConeSampleCosine(float invLambda, float tanHalfAngle, float u) {
-    const float oneMinusCos = 1.0f - inversesqrt(1.0f + tanHalfAngle * tanHalfAngle);
+    const float oneMinusCos = coneOneMinusCos(tanHalfAngle);
     if (invLambda <= 1e-6f) return 1.0f;
     const float lambda = 1.0f / invLambda;
     if (lambda * oneMinusCos < 1e-3f) return 1.0f - u * oneMinusCos;

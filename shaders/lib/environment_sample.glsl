@@ -38,7 +38,8 @@ vec3 environmentDiffuse(vec3 n) {
 
 // The environment's light reflected by a surface with GI off (no occlusion but the material's): the
 // cosine-weighted mean radiance (what the six diffuse cones read of an open sky) × the diffuse albedo, plus the
-// mean over the specular lobe's equivalent cap (sgEquivalentCapTanHalf) × F0. A uniform environment L gives L·(albedo + F0). Expects lib/brdf.
+// mean over the specular lobe's equivalent cap (sgEquivalentCapTanHalf) × F0. A uniform environment L gives
+// L·(albedo + F0). Expects lib/brdf.
 vec3 environmentReflected(vec3 n, vec3 v, vec3 baseColor, float metallic, float perceptualRoughness) {
     const vec3 albedo = diffuseAlbedo(baseColor, metallic);
     const vec3 f0 = f0FromMetallic(baseColor, metallic);

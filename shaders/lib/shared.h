@@ -228,8 +228,7 @@ struct SkinPushConstants {
 #define VCT_BINDING_FRAME 0         // FrameUniforms, in every pass that needs it
 #define VCT_BINDING_BRICKS 20       // the brick table (map, then coordinates), in every pass reading voxels
 #define VCT_BINDING_VOXEL_ATLAS 21  // mip 0 of the radiance (the radiance atlas), where cones are traced
-#define VCT_BINDING_ENVIRONMENT_CONES \
-    22  // the environment's cone layers, in every pass reading the environment
+#define VCT_BINDING_ENVIRONMENT_CONES 22  // the environment's cone layers, where the environment is read
 
 // upsample's specialization constants (one pipeline per configuration), after VCT_SPEC_TRACE_SCALE (2 or 4)
 #define VCT_UPSAMPLE_SPEC_WEIGHTS 1      // VCT_WEIGHTS_*
