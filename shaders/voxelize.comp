@@ -155,10 +155,10 @@ ivec2 columnRange(TriangleSetup t, float cu, float cv) {
     return finite ? ivec2(max(int(first), t.extent.y), min(int(last), t.extent.z)) : t.extent.yz;
 }
 
-// Adds triangle t's material at voxel (x, y, z) to the accumulator if the triangle overlaps the voxel.
+// Adds triangle t's material at voxel (x, y, z) to the accumulator if the voxel holds the triangle (lib/voxel.glsl).
 void voxelizeVoxel(TriangleSetup t, ivec3 voxel, GpuMaterial material) {
     const vec3 center = vec3(voxel) + 0.5;
-    if (!triangleBoxOverlap(center, vec3(0.5), t.p[0], t.p[1], t.p[2])) return;
+    if (!voxelHoldsTriangle(center, t.p[0], t.p[1], t.p[2])) return;
     const bool mask = material.flags.x == VCT_ALPHA_MASK;
     // A blended surface covers its voxels by its alpha (the resolve's opacity); opaque ones add nothing here.
     const bool blend = material.flags.x == VCT_ALPHA_BLEND;

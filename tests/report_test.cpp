@@ -75,12 +75,15 @@ TEST(Report, StaticViewConvergesToTheEveryPixelTrace) {
     // Round 21's lobes light the floor with the glossy light its neighbours reflect down (lib/voxel_specular.glsl):
     // glossy 39.71 / 39.04 / 38.41 dB (Lambertian unchanged). On a GPU the glossy diffuse margin is an estimate, not
     // measured since: the H200's figure taken 0.31 dB below lavapipe's as in round 20 (39.40), less 0.25.
+    // Round 28 (voxelHoldsTriangle, the ramped voxelFacing): Lambertian 44.19 / 38.73 / 41.15 dB, glossy 43.20 / 38.43
+    // / 40.15 dB; the margins are these less 0.25 dB, the GPU's diffuse ones 0.35 dB below lavapipe's as in round 20
+    // (an estimate, not measured on a GPU since).
     struct Case {
         const char* glossy;
         double diffuse, specular, display;  // lowest PSNRs allowed
         double gpuDiffuse;                  // the diffuse part's on a GPU
     };
-    for (const Case& c : {Case{"off", 42.4, 38.3, 40.55, 42.05}, Case{"on", 39.45, 38.8, 38.15, 39.15}}) {
+    for (const Case& c : {Case{"off", 43.9, 38.45, 40.9, 43.55}, Case{"on", 42.95, 38.15, 39.9, 42.6}}) {
         const std::string suffix = std::string("_glossy_") + c.glossy;
         const fs::path reference = render("converge_s1" + suffix, {"--trace-scale", "1", "--cone-rotation",
                                                                    "off", "--voxel-glossy", c.glossy});

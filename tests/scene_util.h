@@ -45,6 +45,41 @@ inline void addColumn(vct::Scene& scene, float radius, float halfHeight, int sid
     }
 }
 
+// Appends a UV sphere (`rings` × `segments` quads, each as two triangles) about `centre`, its vertex normals
+// radial, its front faces outwards.
+inline void addSphere(vct::Scene& scene, glm::vec3 centre, float radius, int rings, int segments,
+                      uint32_t material) {
+    const float pi = 3.14159265358979f;
+    const uint32_t base = uint32_t(scene.vertices.size());
+    vct::Primitive primitive;
+    primitive.firstIndex = uint32_t(scene.indices.size());
+    primitive.vertexOffset = int32_t(base);
+    primitive.material = material;
+    for (int i = 0; i <= rings; ++i) {
+        const float polar = pi * float(i) / float(rings);
+        for (int j = 0; j <= segments; ++j) {
+            const float azimuth = 2.0f * pi * float(j) / float(segments);
+            const glm::vec3 n(std::sin(polar) * std::cos(azimuth), std::cos(polar),
+                              -std::sin(polar) * std::sin(azimuth));
+            const glm::vec3 tangent(-std::sin(azimuth), 0.0f, -std::cos(azimuth));
+            scene.vertices.push_back({centre + radius * n, n,
+                                      glm::vec2(float(j) / float(segments), float(i) / float(rings)),
+                                      glm::vec4(tangent, 1.0f)});
+            primitive.bounds.extend(centre + radius * n);
+        }
+    }
+    const uint32_t row = uint32_t(segments + 1);
+    for (uint32_t i = 0; i < uint32_t(rings); ++i)
+        for (uint32_t j = 0; j < uint32_t(segments); ++j) {
+            const uint32_t a = i * row + j, b = a + row;
+            for (uint32_t k : {a, b, a + 1, a + 1, b, b + 1}) scene.indices.push_back(k);
+        }
+    primitive.vertexCount = uint32_t(scene.vertices.size()) - base;
+    primitive.indexCount = uint32_t(scene.indices.size()) - primitive.firstIndex;
+    scene.primitives.push_back(primitive);
+    scene.meshes[0].primitives.push_back(uint32_t(scene.primitives.size() - 1));
+}
+
 inline vct::Scene emptyScene(const std::string& name, const vct::Material& material) {
     vct::Scene scene;
     scene.name = name;

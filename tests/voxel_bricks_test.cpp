@@ -42,9 +42,9 @@ TEST(BrickAtlas, ShapeHoldsEveryBrickInTheSmallestCube) {
     EXPECT_EQ(g::radianceAtlasTexel(0, 3, glm::ivec3(4, 0, 0), 1), glm::ivec3(3 * 5 + 4, 0, 0));
 }
 
-// Calls visit(voxel) for every voxel a static triangle of the scene overlaps, as the voxelizer decides it
-// (shaders/voxelize.comp: snapped voxel coordinates, the overlap test over the voxels of the triangle's bounds); a
-// voxel comes once per triangle that overlaps it.
+// Calls visit(voxel) for every voxel that holds a static triangle of the scene, as the voxelizer decides it
+// (shaders/voxelize.comp: snapped voxel coordinates, voxelHoldsTriangle over the voxels of the triangle's bounds); a
+// voxel comes once per triangle it holds.
 template <typename Visit>
 void forEachStaticTriangleVoxel(const Scene& scene, glm::vec4 grid, uint32_t n, Visit&& visit) {
     for (const Instance& instance : scene.instances(0.0f)) {
@@ -68,8 +68,7 @@ void forEachStaticTriangleVoxel(const Scene& scene, glm::vec4 grid, uint32_t n, 
                 for (int z = lo.z; z <= hi.z; ++z)
                     for (int y = lo.y; y <= hi.y; ++y)
                         for (int x = lo.x; x <= hi.x; ++x)
-                            if (g::triangleBoxOverlap(glm::vec3(x, y, z) + 0.5f, glm::vec3(0.5f), v[0], v[1],
-                                                      v[2]))
+                            if (g::voxelHoldsTriangle(glm::vec3(x, y, z) + 0.5f, v[0], v[1], v[2]))
                                 visit(glm::ivec3(x, y, z));
             }
         }

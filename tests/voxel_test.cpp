@@ -3,6 +3,7 @@
 // inject / mips passes end to end through `vct render` on lavapipe.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -66,6 +67,95 @@ TEST(VoxelOverlap, DegenerateTrianglesGiveNoNaN) {
             EXPECT_NEAR(b.x + b.y + b.z, 1.0f, 1e-5f);
         }
     }
+}
+
+bool holds(vec3 a, vec3 b, vec3 c) {
+    return g::voxelHoldsTriangle(kCenter, a, b, c);
+}
+
+// A large triangle in the plane m·p = k (m = (1, 1, 1) scaled or an axis), made of three points of it.
+std::array<vec3, 3> planeTriangle(vec3 m, float k) {
+    // Two directions in the plane, far out, so that the triangle covers any voxel near the origin.
+    const vec3 u = glm::normalize(glm::cross(m, std::abs(m.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    const vec3 v = glm::cross(glm::normalize(m), u);
+    const vec3 o = m * (k / glm::dot(m, m));
+    return {o - 100.0f * u - 100.0f * v, o + 200.0f * u - 100.0f * v, o - 100.0f * u + 200.0f * v};
+}
+
+TEST(VoxelHolds, AxisAlignedAndSinglyTiltedPlanesKeepEveryVoxelTheyTouch) {
+    // The voxel's top face, and a plane tilted about z through the voxel's edge region (x + y = 1.9: touches).
+    EXPECT_TRUE(holds(vec3(0.0f, 0.0f, 1.0f), vec3(1.0f, 0.0f, 1.0f), vec3(0.0f, 1.0f, 1.0f)));
+    const auto tilted = planeTriangle(vec3(1.0f, 1.0f, 0.0f), 1.9f);
+    EXPECT_TRUE(overlaps(tilted[0], tilted[1], tilted[2]));
+    EXPECT_TRUE(holds(tilted[0], tilted[1], tilted[2]));
+    // Separated stays separated.
+    EXPECT_FALSE(holds(vec3(0.0f, 0.0f, 1.01f), vec3(1.0f, 0.0f, 1.01f), vec3(0.0f, 1.0f, 1.01f)));
+}
+
+TEST(VoxelHolds, ADoublyObliquePlaneDropsTheVoxelsItCutsAtACorner) {
+    // x + y + z = k touches the unit voxel for k in [0, 3]; it is held for |k − 1.5| ≤ ½(3 − 1) = 1.
+    for (const auto& [k, held] :
+         {std::pair{1.5f, true}, {2.45f, true}, {2.55f, false}, {2.9f, false}, {0.45f, false}}) {
+        const auto t = planeTriangle(vec3(1.0f), k);
+        EXPECT_TRUE(overlaps(t[0], t[1], t[2])) << k;
+        EXPECT_EQ(holds(t[0], t[1], t[2]), held) << k;
+    }
+}
+
+// Over a 12³ block, the voxels that hold the plane x + 2y + 3z = k: every line of voxels along an axis still meets at
+// least one (the plane stays closed to rays along the axes), and each column along the dominant axis z holds
+// (|m_z| + |m_y|)/|m_z| = 5/3 of them on average, against 6/3 that it touches.
+TEST(VoxelHolds, ADoublyObliquePlaneStaysClosedAlongEveryAxis) {
+    const vec3 m(1.0f, 2.0f, 3.0f);
+    const float k = 36.3f;  // through the block's middle
+    const auto t = planeTriangle(m, k);
+    constexpr int n = 12;
+    std::vector<uint8_t> held(n * n * n), touched(n * n * n);
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const vec3 c = vec3(x, y, z) + 0.5f;
+                held[size_t((z * n + y) * n + x)] = g::voxelHoldsTriangle(c, t[0], t[1], t[2]);
+                touched[size_t((z * n + y) * n + x)] = g::triangleBoxOverlap(c, kHalf, t[0], t[1], t[2]);
+            }
+    // Lines along each axis whose plane crossing lies well inside the block.
+    size_t lines = 0, open = 0;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                vec3 mid(0.0f);
+                const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+                mid[a] = float(i) + 0.5f;
+                mid[b] = float(j) + 0.5f;
+                const float crossing = (k - m[a] * mid[a] - m[b] * mid[b]) / m[axis];
+                if (crossing < 1.0f || crossing > float(n - 1)) continue;
+                ++lines;
+                bool met = false;
+                for (int s = 0; s < n; ++s) {
+                    glm::ivec3 v(0);
+                    v[axis] = s;
+                    v[a] = i;
+                    v[b] = j;
+                    met = met || held[size_t((v.z * n + v.y) * n + v.x)];
+                }
+                open += !met;
+            }
+    EXPECT_GT(lines, 100u);
+    EXPECT_EQ(open, 0u);
+    size_t columns = 0, heldCount = 0, touchedCount = 0;
+    for (int y = 2; y < n - 2; ++y)
+        for (int x = 2; x < n - 2; ++x) {
+            const float crossing = (k - m.x * (float(x) + 0.5f) - m.y * (float(y) + 0.5f)) / m.z;
+            if (crossing < 2.0f || crossing > float(n - 2)) continue;
+            ++columns;
+            for (int z = 0; z < n; ++z) {
+                heldCount += held[size_t((z * n + y) * n + x)];
+                touchedCount += touched[size_t((z * n + y) * n + x)];
+            }
+        }
+    ASSERT_GT(columns, 20u);
+    EXPECT_NEAR(double(heldCount) / double(columns), 5.0 / 3.0, 0.15);
+    EXPECT_NEAR(double(touchedCount) / double(columns), 6.0 / 3.0, 0.15);
 }
 
 TEST(VoxelClosestPoint, InteriorAndVertex) {

@@ -69,6 +69,24 @@ VCT_INLINE bool triangleBoxOverlap(vec3 center, vec3 halfSize, vec3 a, vec3 b, v
     return true;
 }
 
+// Whether the unit voxel centred at `center` holds triangle (a, b, c) (voxel coordinates, voxelSnap'd): the triangle
+// overlaps the voxel (triangleBoxOverlap) and its plane passes within ½(|m_x| + |m_y| + |m_z| − min_i |m_i|) of the
+// centre, m the face normal, in m's units. The overlap alone keeps every voxel the plane touches (within ½ Σ|m_i|),
+// so a doubly oblique surface also fills the voxels it only cuts near a corner, a voxel-sized fringe on each side:
+// a sphere 6.5 voxels across (MetalRoughSpheresNoTextures at 64³, 2.8 voxels apart) occluded its neighbours' sky as
+// a larger one. A plane tilted about one axis (min |m_i| = 0) and an axis-aligned one keep every voxel they touch,
+// as before, so walls and rooms are voxelized as they were. Measured (benchmarks/README.md, round 28): indirect sRGB
+// PSNR against the path tracer +0.36 dB on MetalRoughSpheresNoTextures, +0.21 on the courtyard, within 0.03 dB of
+// before elsewhere; light through a wall between two rooms turned about an oblique axis 0.062 → 0.067 of the lit
+// room's. A degenerate triangle (m = 0) passes where it overlaps.
+VCT_INLINE bool voxelHoldsTriangle(vec3 center, vec3 a, vec3 b, vec3 c) {
+    if (!triangleBoxOverlap(center, vec3(0.5f), a, b, c)) return false;
+    vec3 m = cross(b - a, c - a);
+    vec3 am = abs(m);
+    float smallest = min(am.x, min(am.y, am.z));
+    return abs(dot(m, center - a)) <= 0.5f * (am.x + am.y + am.z - smallest);
+}
+
 // Barycentric weights of the point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision
 // Detection §5.1.5). Degenerate triangles fall back to a vertex or an edge; the weights always sum to 1.
 VCT_INLINE vec3 closestPointBarycentric(vec3 p, vec3 a, vec3 b, vec3 c) {
@@ -101,10 +119,6 @@ VCT_INLINE vec3 closestPointBarycentric(vec3 p, vec3 a, vec3 b, vec3 c) {
     float v = vb / sum, w = vc / sum;
     return vec3(1.0f - v - w, v, w);
 }
-
-// voxelFacing: cosines above this count as facing. Slightly below 0, so that exactly sideways (a floor towards
-// ±x) counts: with it excluded cornell's walls got 0.46–0.70 of their true indirect light, with it 0.73–1.03.
-const float VOXEL_FACING_MIN_COSINE = -1e-3f;
 
 // ---- fixed-point accumulation (atomicAdd on uint buffers) ----
 // Per voxel VCT_VOXEL_ACCUM_STRIDE uints: albedo rgb, normal xyz (two's complement), emission rgb, count,
@@ -204,14 +218,21 @@ VCT_INLINE float voxelSlabU(float u, int slab, float texels) {
     return (float(slab) + inside) / float(VOXEL_SLAB_COUNT);
 }
 
-// Share of a voxel's outgoing radiance that leaves towards unit `towards`: 1 on the side its surfaces face and
-// sideways (a floor seen edge-on from afar is lit; its own cones no longer see it, coneSurfaceFootprint), 0
-// behind them (a lit floor sends nothing down), blending to 1 (two sided) as the averaged normal nbar shortens (|nbar| < 1: surfaces in the voxel disagree, e.g. both sides of
-// a thin wall), as voxelCosine does for the light arriving.
+// Share of a voxel's outgoing radiance that leaves towards unit `towards` (a slab's direction, −dir_s): 1 on the side
+// its surfaces face and sideways (a floor seen edge-on from afar is lit; its own cones no longer see it,
+// coneSurfaceFootprint), falling linearly to 0 straight behind them, 1 + cos for cos = n̂·towards < 0 (a lit floor
+// sends nothing down), blending to 1 (two sided) as the averaged normal nbar shortens (|nbar| < 1: surfaces in the
+// voxel disagree, e.g. both sides of a thin wall), as voxelCosine does for the light arriving.
+// Why linear behind, not a step: a cone reads three slabs weighted d_i² (voxelSlabWeights), and a surface whose
+// normal lies off the axes faces a cone that sees it from the front through slabs that lie behind it (a wall turned
+// 30° about y, normal (0.87, 0, 0.5), is seen along (0.1, 0, −1) through the +x slab). With a step those slabs were
+// dark: an emissive room turned 30° or 45° (exact 1) gathered 0.908 / 0.898 with every cone counting its steps as a
+// fog, 0.938 / 0.926 with this ramp, 0.981 / 0.995 sending the light to every side (benchmarks/README.md, round 28).
+// On the axes (n̂·towards ∈ {−1, 0, 1}) the ramp is the step: an axis-aligned room is lit as before.
 VCT_INLINE float voxelFacing(vec3 nbar, vec3 towards) {
     float r = length(nbar);
     if (r < 1e-3f) return 1.0f;
-    float facing = dot(nbar, towards) / r > VOXEL_FACING_MIN_COSINE ? 1.0f : 0.0f;
+    float facing = clamp(1.0f + dot(nbar, towards) / r, 0.0f, 1.0f);
     return mix(1.0f, facing, min(r, 1.0f));
 }
 
