@@ -230,6 +230,24 @@ TEST(VoxelCosine, OneSidedTwoSidedAndAmbiguous) {
     EXPECT_TRUE(std::isfinite(thinWall));
 }
 
+// The share of a voxel's light a slab sends (lib/voxel.glsl's voxelFacing): on the axes the step it was before round
+// 28 (1 in front and beside, 0 straight behind), between them 1 + n̂·ω behind, and two-sided as n̄ shortens.
+TEST(VoxelFacing, StepOnTheAxesRampBehindAnObliqueNormal) {
+    const vec3 up(0.0f, 0.0f, 1.0f);
+    EXPECT_EQ(g::voxelFacing(up, vec3(0.0f, 0.0f, 1.0f)), 1.0f);
+    EXPECT_EQ(g::voxelFacing(up, vec3(1.0f, 0.0f, 0.0f)), 1.0f);   // beside
+    EXPECT_EQ(g::voxelFacing(up, vec3(0.0f, 0.0f, -1.0f)), 0.0f);  // straight behind
+    // A wall turned 30° about y, normal (0.87, 0, 0.5): the light it sends towards +x is whole, towards −z half
+    // (n̂·ω = −0.5), towards −x 0.13 (n̂·ω = −0.87).
+    const vec3 turned(std::cos(glm::radians(30.0f)), 0.0f, std::sin(glm::radians(30.0f)));
+    EXPECT_EQ(g::voxelFacing(turned, vec3(1.0f, 0.0f, 0.0f)), 1.0f);
+    EXPECT_NEAR(g::voxelFacing(turned, vec3(0.0f, 0.0f, -1.0f)), 0.5f, 1e-6f);
+    EXPECT_NEAR(g::voxelFacing(turned, vec3(-1.0f, 0.0f, 0.0f)), 1.0f - std::cos(glm::radians(30.0f)), 1e-6f);
+    // Two-sided as the averaged normal shortens; no direction left: every side.
+    EXPECT_NEAR(g::voxelFacing(0.5f * up, vec3(0.0f, 0.0f, -1.0f)), 0.5f, 1e-6f);
+    EXPECT_EQ(g::voxelFacing(vec3(0.0f), vec3(0.0f, 0.0f, -1.0f)), 1.0f);
+}
+
 // One mip texel of a direction slab (voxel_mips.comp): each pair of children along the slab's direction
 // composited front over back, the four pairs averaged, premultiplied.
 TEST(VoxelMips, PremultipliedAverageOfPairsCompositedFrontToBack) {
