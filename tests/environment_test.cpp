@@ -440,8 +440,8 @@ TEST(EnvironmentGpu, WhiteEnvironmentAroundALoneWhiteColumnGivesTheAnalyticRadia
 // an array of them has (MetalRoughSpheresNoTextures): about 5 voxels across at 64³. Seen from the front.
 std::string smallSphereFile(const std::string& name) {
     vct::Scene scene = emptyScene("sphere", diffuseMaterial(1.0f, 0.0f));
-    vct::test::scenes::addSphere(scene, glm::vec3(0.0f), 0.5f, 24, 48, 0);
-    vct::test::scenes::addSphere(scene, glm::vec3(11.5f, 0.0f, 0.0f), 0.01f, 4, 8, 0);
+    vct::test::scenes::addSphere(scene, glm::vec3(0.0f), 0.5f, 48, 24, 0);
+    vct::test::scenes::addSphere(scene, glm::vec3(11.5f, 0.0f, 0.0f), 0.01f, 8, 4, 0);
     return writeWithCamera(std::move(scene), name, glm::vec3(0.0f, 0.0f, 1.6f),
                            glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
 }

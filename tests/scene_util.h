@@ -8,6 +8,8 @@
 #include <utility>
 
 #include "scene/scene.h"
+#include "scene/scene_builder.h"
+#include "scene/tangents.h"
 
 namespace vct::test::scenes {
 
@@ -45,37 +47,22 @@ inline void addColumn(vct::Scene& scene, float radius, float halfHeight, int sid
     }
 }
 
-// Appends a UV sphere (`rings` × `segments` quads, each as two triangles) about `centre`, its vertex normals
-// radial, its front faces outwards.
-inline void addSphere(vct::Scene& scene, glm::vec3 centre, float radius, int rings, int segments,
+// Appends the engine's UV sphere (scene/scene_builder.h's sphere: `segments` around, `rings` from pole to pole, with
+// generated tangents) about `centre`, its front faces outwards.
+inline void addSphere(vct::Scene& scene, glm::vec3 centre, float radius, uint32_t segments, uint32_t rings,
                       uint32_t material) {
-    const float pi = 3.14159265358979f;
-    const uint32_t base = uint32_t(scene.vertices.size());
+    vct::Geometry g = vct::sphere(radius, segments, rings);
+    for (vct::Vertex& v : g.vertices) v.position += centre;
+    vct::generateTangents(g.vertices, g.indices);
     vct::Primitive primitive;
     primitive.firstIndex = uint32_t(scene.indices.size());
-    primitive.vertexOffset = int32_t(base);
+    primitive.indexCount = uint32_t(g.indices.size());
+    primitive.vertexOffset = int32_t(scene.vertices.size());
+    primitive.vertexCount = uint32_t(g.vertices.size());
     primitive.material = material;
-    for (int i = 0; i <= rings; ++i) {
-        const float polar = pi * float(i) / float(rings);
-        for (int j = 0; j <= segments; ++j) {
-            const float azimuth = 2.0f * pi * float(j) / float(segments);
-            const glm::vec3 n(std::sin(polar) * std::cos(azimuth), std::cos(polar),
-                              -std::sin(polar) * std::sin(azimuth));
-            const glm::vec3 tangent(-std::sin(azimuth), 0.0f, -std::cos(azimuth));
-            scene.vertices.push_back({centre + radius * n, n,
-                                      glm::vec2(float(j) / float(segments), float(i) / float(rings)),
-                                      glm::vec4(tangent, 1.0f)});
-            primitive.bounds.extend(centre + radius * n);
-        }
-    }
-    const uint32_t row = uint32_t(segments + 1);
-    for (uint32_t i = 0; i < uint32_t(rings); ++i)
-        for (uint32_t j = 0; j < uint32_t(segments); ++j) {
-            const uint32_t a = i * row + j, b = a + row;
-            for (uint32_t k : {a, b, a + 1, a + 1, b, b + 1}) scene.indices.push_back(k);
-        }
-    primitive.vertexCount = uint32_t(scene.vertices.size()) - base;
-    primitive.indexCount = uint32_t(scene.indices.size()) - primitive.firstIndex;
+    for (const vct::Vertex& v : g.vertices) primitive.bounds.extend(v.position);
+    scene.vertices.insert(scene.vertices.end(), g.vertices.begin(), g.vertices.end());
+    scene.indices.insert(scene.indices.end(), g.indices.begin(), g.indices.end());
     scene.primitives.push_back(primitive);
     scene.meshes[0].primitives.push_back(uint32_t(scene.primitives.size() - 1));
 }
