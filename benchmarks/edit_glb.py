@@ -17,6 +17,9 @@ Usage:
                                                     and z = ±(HALF + DELTA), y = 0, in the first scene: they widen
                                                     the bounds of a room centred on x = z = 0 whose walls stand at
                                                     x, z = ±HALF (cornell: 2)
+  edit_glb.py turn IN.glb OUT.glb X Y Z DEGREES     the whole first scene (camera and lights too) turned DEGREES about
+                                                    the axis (X, Y, Z) through the origin: a room off the grid's axes,
+                                                    the same light (docs/design.md §5.6)
 A name that matches nothing is an error.
 
 Example (cornell's room alone, Lambertian, against `vct reference --secondary diffuse`):
@@ -108,8 +111,20 @@ def pad(document, mesh_name, half, delta):
         document['scenes'][0]['nodes'].append(len(document['nodes']) - 1)
 
 
+def turn(document, axis, degrees):
+    import math
+    length = math.sqrt(sum(a * a for a in axis))
+    if length == 0.0:
+        sys.exit('edit_glb.py: turn: the axis is zero')
+    half = math.radians(degrees) / 2.0
+    q = [a / length * math.sin(half) for a in axis] + [math.cos(half)]  # glTF order: x, y, z, w
+    scene = document['scenes'][0]
+    document['nodes'].append({'name': 'turn', 'rotation': q, 'children': scene['nodes']})
+    scene['nodes'] = [len(document['nodes']) - 1]
+
+
 def main(argv):
-    if len(argv) < 4 or argv[1] not in ('drop', 'black', 'absorb', 'glow', 'pad'):
+    if len(argv) < 4 or argv[1] not in ('drop', 'black', 'absorb', 'glow', 'pad', 'turn'):
         sys.exit(__doc__)
     command, source, target, args = argv[1], argv[2], argv[3], argv[4:]
     document, rest = read(source)
@@ -121,6 +136,10 @@ def main(argv):
         absorb(document, set(args))
     elif command == 'glow':
         glow(document, set(args))
+    elif command == 'turn':
+        if len(args) != 4:
+            sys.exit(__doc__)
+        turn(document, [float(a) for a in args[:3]], float(args[3]))
     else:
         if len(args) != 3:
             sys.exit(__doc__)

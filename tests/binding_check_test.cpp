@@ -41,8 +41,11 @@ std::string errorOf(F&& f) {
 TEST(SpirvReflect, TraceShader) {
     const std::vector<vk::ShaderBinding> bindings = vk::reflectBindings(vk::readSpirv("trace.comp"));
     // 9: the environment map (issue 20); 10-13: the history at trace scale 1; the radiance atlas and the brick
-    // table (sparse voxel storage, issue 19); the environment's cone layers
-    EXPECT_EQ(bindings.size(), 16u);
+    // table (sparse voxel storage, issue 19); the environment's cone layers; the region labels (round 29)
+    EXPECT_EQ(bindings.size(), 17u);
+    const vk::ShaderBinding& regions = find(bindings, VCT_BINDING_VOXEL_REGIONS);
+    EXPECT_EQ(regions.dimension, VK_IMAGE_VIEW_TYPE_3D);
+    EXPECT_EQ(regions.texel, vk::TexelClass::Uint);
     EXPECT_EQ(find(bindings, VCT_BINDING_ENVIRONMENT_CONES).dimension, VK_IMAGE_VIEW_TYPE_3D);
     EXPECT_EQ(find(bindings, 0).type, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     EXPECT_EQ(find(bindings, VCT_BINDING_BRICKS).type, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -81,27 +84,30 @@ std::vector<vk::Binding> traceBindings() {
     constexpr auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                    storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     constexpr auto d2 = VK_IMAGE_VIEW_TYPE_2D;
-    return {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs, "frame"},
-            {1, sampled, cs, "depth", VK_FORMAT_D32_SFLOAT, d2},
-            {2, sampled, cs, "normalRoughness", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
-            {3, sampled, cs, "voxels", VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_VIEW_TYPE_3D},
-            {4, storage, cs, "indirectLow", VK_FORMAT_R32G32B32A32_UINT, d2},
-            {6, storage, cs, "guidePosition", VK_FORMAT_R32G32B32A32_SFLOAT, d2},
-            {7, storage, cs, "guideNormal", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
-            {8, storage, cs, "guideAxis", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
-            {9, sampled, cs, "environment", VK_FORMAT_R32G32B32A32_SFLOAT, d2},  // the map (issue 20)
-            // Trace scale 1's own history while the diffuse cones turn (docs/design.md §6.5).
-            {10, sampled, cs, "motion", VK_FORMAT_R16G16_SFLOAT, d2},
-            {11, sampled, cs, "prevDepth", VK_FORMAT_D32_SFLOAT, d2},
-            {12, sampled, cs, "prevNormalRoughness", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
-            {13, sampled, cs, "indirectHistory", VK_FORMAT_R32G32B32A32_UINT, d2},
-            // Sparse voxel storage (docs/design.md §5.10): mip 0 of the radiance and the brick table.
-            {VCT_BINDING_BRICKS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs, "bricks"},
-            {VCT_BINDING_VOXEL_ATLAS, sampled, cs, "radianceAtlas", VK_FORMAT_R16G16B16A16_SFLOAT,
-             VK_IMAGE_VIEW_TYPE_3D},
-            // The environment as the cones read it (render/environment_cones.h): one slice a cap size.
-            {VCT_BINDING_ENVIRONMENT_CONES, sampled, cs, "environmentCones", VK_FORMAT_R32G32B32A32_SFLOAT,
-             VK_IMAGE_VIEW_TYPE_3D}};
+    return {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs, "frame"},
+        {1, sampled, cs, "depth", VK_FORMAT_D32_SFLOAT, d2},
+        {2, sampled, cs, "normalRoughness", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
+        {3, sampled, cs, "voxels", VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_VIEW_TYPE_3D},
+        {4, storage, cs, "indirectLow", VK_FORMAT_R32G32B32A32_UINT, d2},
+        {6, storage, cs, "guidePosition", VK_FORMAT_R32G32B32A32_SFLOAT, d2},
+        {7, storage, cs, "guideNormal", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
+        {8, storage, cs, "guideAxis", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
+        {9, sampled, cs, "environment", VK_FORMAT_R32G32B32A32_SFLOAT, d2},  // the map (issue 20)
+        // Trace scale 1's own history while the diffuse cones turn (docs/design.md §6.5).
+        {10, sampled, cs, "motion", VK_FORMAT_R16G16_SFLOAT, d2},
+        {11, sampled, cs, "prevDepth", VK_FORMAT_D32_SFLOAT, d2},
+        {12, sampled, cs, "prevNormalRoughness", VK_FORMAT_R16G16B16A16_SFLOAT, d2},
+        {13, sampled, cs, "indirectHistory", VK_FORMAT_R32G32B32A32_UINT, d2},
+        // Sparse voxel storage (docs/design.md §5.10): mip 0 of the radiance and the brick table.
+        {VCT_BINDING_BRICKS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs, "bricks"},
+        {VCT_BINDING_VOXEL_ATLAS, sampled, cs, "radianceAtlas", VK_FORMAT_R16G16B16A16_SFLOAT,
+         VK_IMAGE_VIEW_TYPE_3D},
+        // The environment as the cones read it (render/environment_cones.h): one slice a cap size.
+        {VCT_BINDING_ENVIRONMENT_CONES, sampled, cs, "environmentCones", VK_FORMAT_R32G32B32A32_SFLOAT,
+         VK_IMAGE_VIEW_TYPE_3D},
+        // The static grid's closed regions (render/voxel_regions.h).
+        {VCT_BINDING_VOXEL_REGIONS, sampled, cs, "voxelRegions", VK_FORMAT_R8_UINT, VK_IMAGE_VIEW_TYPE_3D}};
 }
 
 std::string checkTrace(const std::vector<vk::Binding>& declared) {

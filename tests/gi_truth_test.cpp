@@ -498,8 +498,10 @@ TEST(VoxelGi, LightLeakingThroughAOneVoxelWallIsBounded) {
     // ceiling beside the wall, now blocks the cone once where the fog composite counted the wall at several steps;
     // the bounds follow (they were 0.07 and 0.055), for the truth it gains elsewhere (+0.4 to +2.2 dB). Round 23
     // (a cone ends on the closed face it passes, read where its axis crossed it: lib/cone_trace.glsl's
-    // closedFaceRead): 0.071 and 0.061, the lit room 0.23 and 0.23.
-    const std::pair<const char*, double> bounds[] = {{"32", 0.075}, {"64", 0.066}};
+    // closedFaceRead): 0.071 and 0.061, the lit room 0.23 and 0.23. Round 29 (the rooms are two closed regions
+    // inside one closure box, render/voxel_regions.h, and a cone that crosses into the other ends on the wall):
+    // 0.056 and 0.036, the lit room 0.23 and 0.23; what is left crosses in the coarse footprints.
+    const std::pair<const char*, double> bounds[] = {{"32", 0.06}, {"64", 0.04}};
     const vct::Scene rooms = twoRooms(0.5f);
     const std::string litFile = sceneFile("rooms_lit", rooms, glm::vec3(-1.6f, 0.0f, 0.0f), -1.5708f);
     const std::string darkFile = sceneFile("rooms_dark", rooms, glm::vec3(1.6f, 0.0f, 0.0f), 1.5708f);
@@ -529,16 +531,18 @@ const RoomTurn kRoomTurns[] = {
 };
 
 // The emissive furnace of EmissiveFurnaceGathersItsRadianceAtEveryResolution turned: the truth does not change (every
-// pixel gathers exactly 1), vct's voxels do. The room's walls are closed only where they lie on the faces of an
-// axis-aligned box (render/voxel_bricks.h's coneClosureBox), and a turned wall is a staircase of voxels that a cone
-// counting its coverage once (lib/cone.glsl's coneCompositeNested) passes in part: with the sky turned down to 0.001
-// and up to 1000, 6.0 % / 4.9 % of the room's cones reached it (30° / 45° about y, 64³), 0.6 % / 0.2 % with every
-// cone counting its steps as a fog. Measured (32³ / 64³, the default sky): 30° about y 0.844 / 0.831, 45° 0.851 /
-// 0.831, oblique 0.758 / 0.738; with round 27's step voxelFacing and every voxel a wall touches 0.818 / 0.808, 0.829
-// / 0.814, 0.692 / 0.678. A known bias (docs/design.md §5.6); the bounds hold these measurements.
+// pixel gathers exactly 1), vct's voxels do. The room's walls are closed by the closure box only where they lie on the
+// faces of an axis-aligned box (render/voxel_bricks.h's coneClosureBox); a turned wall is a staircase of voxels that a
+// cone counting its coverage once (lib/cone.glsl's coneCompositeNested) passes in part: with the sky turned down to
+// 0.001 and up to 1000, 6.0 % / 4.9 % of the room's cones reached it (30° / 45° about y, 64³). Since round 29 the room
+// and what lies outside it are two closed regions of the static grid (render/voxel_regions.h), and a cone that
+// crosses from one into the other ends on the wall (lib/cone_trace.glsl). Measured (32³ / 64³, the default sky): 30°
+// about y 0.909 / 0.909, 45° 0.901 / 0.902, oblique 0.883 / 0.891; without the regions (`--voxel-regions off`, round
+// 28's cones) 0.844 / 0.831, 0.851 / 0.831, 0.758 / 0.738. What is left is the slabs: a turned wall read obliquely
+// through a slab behind its normal is dimmer (docs/design.md §5.2, §5.6). The bounds hold these measurements.
 TEST(VoxelGi, TurnedEmissiveFurnaceGathersMostOfItsRadiance) {
-    const std::pair<const char*, std::array<double, 3>> bounds[] = {{"32", {0.835, 0.84, 0.745}},
-                                                                    {"64", {0.82, 0.82, 0.725}}};
+    const std::pair<const char*, std::array<double, 3>> bounds[] = {{"32", {0.90, 0.89, 0.87}},
+                                                                    {"64", {0.90, 0.89, 0.88}}};
     for (size_t turn = 0; turn < std::size(kRoomTurns); ++turn) {
         const glm::quat q = kRoomTurns[turn].rotation;
         vct::Scene room = furnaceRoom(0.0f, 1.0f);
@@ -553,18 +557,24 @@ TEST(VoxelGi, TurnedEmissiveFurnaceGathersMostOfItsRadiance) {
                         kRoomTurns[turn].name, voxels, diffuse);
             EXPECT_GE(diffuse, bound[turn]) << kRoomTurns[turn].name << " " << voxels;
             EXPECT_LE(diffuse, 1.0 + 1e-3) << kRoomTurns[turn].name << " " << voxels;
+            if (std::string(voxels) != "64") continue;
+            // The regions are what closes it: off, the cones leak as before (0.831 / 0.831 / 0.738).
+            const fs::path off = renderVct(tag + "_" + voxels + "_regions_off", file,
+                                           {"--voxels", voxels, "--voxel-regions", "off"});
+            const double leaking = meanLuminance(vct::readExr(off / "diffuse_indirect.exr"));
+            std::printf("  without the regions: %.4f\n", leaking);
+            EXPECT_LE(leaking, diffuse - 0.06) << kRoomTurns[turn].name;
         }
     }
 }
 
 // The two rooms of LightLeakingThroughAOneVoxelWallIsBounded turned: their shared wall of no thickness (and every
-// other) is a staircase of voxels. Measured: the dark room gets (32³ / 64³) 0.076 / 0.068 of the lit room's diffuse
-// light turned 30° about y, 0.076 / 0.057 turned 45°, 0.069 / 0.069 turned about the oblique axis; with round 27's step
-// voxelFacing and every voxel a wall touches 0.074 / 0.066, 0.075 / 0.054, 0.066 / 0.062 (the ramp sends a little
-// light out of the back of the turned walls). The lit room itself gathers 0.12–0.14 here against 0.23 unturned, the
-// bias TurnedEmissiveFurnaceGathersMostOfItsRadiance measures.
+// other) is a staircase of voxels. Measured (round 29, the closed regions): the dark room gets (32³ / 64³) 0.068 /
+// 0.049 of the lit room's diffuse light turned 30° about y, 0.069 / 0.041 turned 45°, 0.063 / 0.051 turned about the
+// oblique axis; without the regions (round 28) 0.076 / 0.068, 0.076 / 0.057, 0.069 / 0.069. The lit room itself gathers
+// 0.15–0.19 (0.12–0.14 without the regions, 0.23 unturned): TurnedEmissiveFurnaceGathersMostOfItsRadiance's slabs.
 TEST(VoxelGi, LightLeakingThroughATurnedWallOfNoThicknessIsBounded) {
-    const std::pair<const char*, double> bounds[] = {{"32", 0.08}, {"64", 0.075}};
+    const std::pair<const char*, double> bounds[] = {{"32", 0.075}, {"64", 0.055}};
     for (size_t turn = 0; turn < std::size(kRoomTurns); ++turn) {
         const glm::quat q = kRoomTurns[turn].rotation;
         vct::Scene rooms = twoRooms(0.5f);
@@ -579,7 +589,7 @@ TEST(VoxelGi, LightLeakingThroughATurnedWallOfNoThicknessIsBounded) {
             const double dark = diffuseWithoutSky(tag + "_dark_" + voxels, darkFile, voxels);
             std::printf("two rooms turned %s at %s^3: lit room %.4f, dark room %.4f: leak %.4f (exact 0)\n",
                         kRoomTurns[turn].name, voxels, lit, dark, dark / lit);
-            EXPECT_GE(lit, 0.11) << "the lit room must be lit for the ratio to mean anything";
+            EXPECT_GE(lit, 0.15) << "the lit room must be lit for the ratio to mean anything";
             EXPECT_LE(dark / lit, bound) << kRoomTurns[turn].name << " " << voxels;
         }
     }
@@ -626,8 +636,11 @@ TEST(VoxelGi, LightLeakingThroughAWallOneVoxelThickBetweenTwoRoomsIsBounded) {
             EXPECT_TRUE(std::isfinite(through));
         }
         EXPECT_LE(leak[0], bound) << voxels;
-        // The thick wall's sideways light adds no leak of its own: measured 0.31 / 0.34 of the thin wall's.
-        EXPECT_LE(leak[0], 0.4 * leak[1]) << voxels;
+        // The thick wall's sideways light adds no leak of its own: measured 0.31 / 0.34 of the thin wall's, and since
+        // round 29's closed regions (render/voxel_regions.h), which end the cones that cross the wall of no
+        // thickness (its leak 0.0599 / 0.0578 → 0.0447 / 0.0311) and leave the thick wall's as it was (0.0185 /
+        // 0.0168: what crosses it is the coarse footprints), 0.41 / 0.54.
+        EXPECT_LE(leak[0], 0.6 * leak[1]) << voxels;
     }
 }
 

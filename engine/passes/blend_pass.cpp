@@ -10,8 +10,9 @@ namespace {
 // shaders/blend.frag's.
 constexpr uint32_t kPreviousVertices = 8;
 
-ResourceTable blendResources(DfgLut& dfg, vk::Image& voxelStandIn, vk::Buffer& brickStandIn,
-                             const VoxelSource* voxels, const EnvironmentSource& environment) {
+ResourceTable blendResources(DfgLut& dfg, vk::Image& voxelStandIn, vk::Image& regionStandIn,
+                             vk::Buffer& brickStandIn, const VoxelSource* voxels,
+                             const EnvironmentSource& environment) {
     constexpr VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
     std::vector<ResourceRow> rows = sceneDrawRows();
     rows.push_back({kPreviousVertices, Resource::perDraw("previousVertices", true), Access::Read,
@@ -21,6 +22,7 @@ ResourceTable blendResources(DfgLut& dfg, vk::Image& voxelStandIn, vk::Buffer& b
     VoxelSource standIn;
     standIn.radianceMips = standIn.radianceAtlas = &voxelStandIn;
     standIn.brickTable = &brickStandIn;
+    standIn.regionLabels = &regionStandIn;
     (voxels ? *voxels : standIn).addRows(rows, 11, fragment);
     environment.addRows(rows, 12, fragment);
     rows.push_back({13, Resource::image("dfg", dfg.image(), dfg.sampler()), Access::Sampled, fragment});
@@ -30,11 +32,12 @@ ResourceTable blendResources(DfgLut& dfg, vk::Image& voxelStandIn, vk::Buffer& b
     return {"blend", std::move(rows)};
 }
 
-vk::Image voxelStandIn(const vk::Context& context, const VoxelSource* voxels) {
+vk::Image voxelStandIn(const vk::Context& context, const VoxelSource* voxels,
+                       VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT) {
     if (voxels) return vk::Image();
     vk::ImageDesc desc;
-    desc.depth = 2;  // a 3D image, as the shader's sampler3D
-    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    desc.depth = 2;  // a 3D image, as the shader's sampler3D (usampler3D for the region labels)
+    desc.format = format;
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     return vk::Image(context, desc);
 }
@@ -65,10 +68,11 @@ BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
                      const EnvironmentSource& environment, DfgLut& dfg, const Scene& scene, bool vertexColors,
                      bool textureLod0)
     : voxelStandIn_(voxelStandIn(context, voxels)),
+      regionStandIn_(voxelStandIn(context, voxels, VK_FORMAT_R8_UINT)),
       brickStandIn_(
           voxels ? vk::Buffer()
                  : vk::Buffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal)),
-      resources_(blendResources(dfg, voxelStandIn_, brickStandIn_, voxels, environment)) {
+      resources_(blendResources(dfg, voxelStandIn_, regionStandIn_, brickStandIn_, voxels, environment)) {
     vk::Pipeline::GraphicsDesc desc;
     desc.owner = name();
     desc.vertexShader = "gbuffer.vert";  // the same vertices and attributes as the opaque surfaces
@@ -79,8 +83,9 @@ BlendPass::BlendPass(const vk::Context& context, const VoxelSource* voxels,
     desc.pushConstantSize = sizeof(gpu::DrawPushConstants);
     desc.depthWrite = false;
     desc.blendOver = true;
-    // VCT_SPEC_VERTEX_COLORS, then VCT_SPEC_SPARSE_MIP0 (GI off: the shader reads no voxel).
-    desc.specialization = withSparseMip0({vertexColors ? 1u : 0u}, voxels && voxels->sparseMip0);
+    // VCT_SPEC_VERTEX_COLORS, then the voxels' (GI off: the shader reads no voxel).
+    desc.specialization = voxels ? voxels->specialization({vertexColors ? 1u : 0u})
+                                 : withConeVoxels({vertexColors ? 1u : 0u}, false, false);
     pipelines_ = MaterialPipelines(context, desc, scene, DrawSet::Blended, textureLod0);
 }
 

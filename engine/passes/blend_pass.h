@@ -30,6 +30,7 @@ class BlendPass : public Pass {
   private:
     // GI off: a 1×1×2 volume and a 16-byte brick table the pipeline declares and never reads.
     vk::Image voxelStandIn_;
+    vk::Image regionStandIn_;
     vk::Buffer brickStandIn_;
     ResourceTable resources_;
     MaterialPipelines pipelines_;

@@ -18,24 +18,31 @@ struct VoxelSource {
     vk::Image* radianceAtlas = nullptr;
     VkSampler atlasSampler = VK_NULL_HANDLE;
     vk::Buffer* brickTable = nullptr;
-    bool sparseMip0 = false;        // mip 0 in the atlas (VCT_SPEC_SPARSE_MIP0)
-    EnvironmentSource environment;  // what a cone that leaves the grid sees (lib/cone_trace.glsl)
+    vk::Image* regionLabels = nullptr;  // the static grid's region labels (render/voxel_regions.h)
+    bool sparseMip0 = false;            // mip 0 in the atlas (VCT_SPEC_SPARSE_MIP0)
+    bool voxelRegions = false;          // cones end at region changes (VCT_SPEC_VOXEL_REGIONS)
+    EnvironmentSource environment;      // what a cone that leaves the grid sees (lib/cone_trace.glsl)
 
     // The grid's, with `environment` (only the cone-tracing passes need one).
     static VoxelSource of(VoxelGrid& grid, const EnvironmentSource& environment = {}) {
         return {&grid.radianceMips(), grid.sampler(),     &grid.radianceAtlas(),
-                grid.atlasSampler(),  &grid.brickTable(), grid.sparseMip0(),
-                environment};
+                grid.atlasSampler(),  &grid.brickTable(), &grid.regionLabels(),
+                grid.sparseMip0(),    grid.usesRegions(), environment};
     }
 
+    // For a pipeline that traces cones (lib/cone_trace.glsl).
     std::vector<uint32_t> specialization(std::vector<uint32_t> first = {}) const {
-        return withSparseMip0(std::move(first), sparseMip0);  // render/voxel_grid.h
+        return withConeVoxels(std::move(first), sparseMip0, voxelRegions);  // render/voxel_grid.h
     }
 
     // Its rows in a pass's table: the mips at binding `mipsBinding`, the atlas and the brick table at theirs
-    // (VCT_BINDING_VOXEL_ATLAS, VCT_BINDING_BRICKS).
+    // (VCT_BINDING_VOXEL_ATLAS, VCT_BINDING_BRICKS), and for a pass that traces cones (`cones`) the region labels
+    // (VCT_BINDING_VOXEL_REGIONS).
     void addRows(std::vector<ResourceRow>& rows, uint32_t mipsBinding,
-                 VkShaderStageFlags stages = VK_SHADER_STAGE_COMPUTE_BIT) const {
+                 VkShaderStageFlags stages = VK_SHADER_STAGE_COMPUTE_BIT, bool cones = true) const {
+        if (cones)
+            rows.push_back({VCT_BINDING_VOXEL_REGIONS, Resource::image("voxelRegions", *regionLabels),
+                            Access::Sampled, stages});
         rows.push_back(
             {mipsBinding, Resource::image("voxels", *radianceMips, sampler), Access::Sampled, stages});
         rows.push_back({VCT_BINDING_VOXEL_ATLAS,

@@ -20,7 +20,7 @@ vk::Image makeOutput(const vk::Context& context, uint32_t width, uint32_t height
 ResourceTable viewResources(VoxelGrid& grid, vk::Image& output) {
     std::vector<ResourceRow> rows{{VCT_BINDING_FRAME, Resource::frameUniforms(), Access::Uniform},
                                   {2, Resource::image("output", output), Access::Write}};
-    VoxelSource::of(grid).addRows(rows, 1);
+    VoxelSource::of(grid).addRows(rows, 1, VK_SHADER_STAGE_COMPUTE_BIT, /*cones=*/false);
     return {"voxel_view", std::move(rows)};
 }
 

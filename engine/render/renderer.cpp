@@ -68,7 +68,8 @@ Renderer::Renderer(const vk::Context& context, const Scene& scene, const RenderS
     if (settings.gi) {
         // The voxel grid and its light (docs/design.md §5.1–5.2); inject reads the shadow map drawn just before.
         const uint32_t n = chooseVoxelResolution(context, settings);
-        voxelGrid_ = std::make_unique<VoxelGrid>(context, scene, n, n >= settings.sparseMip0From);
+        voxelGrid_ = std::make_unique<VoxelGrid>(context, scene, n, n >= settings.sparseMip0From,
+                                                 settings.voxelRegions);
         settings_.voxelResolution = voxelGrid_->resolution();
         // The static voxelization from a file (vct voxelize) instead of computing it; validated here.
         if (!settings.voxelCache.empty()) voxelGrid_->loadStaticCache(settings.voxelCache);

@@ -58,6 +58,12 @@ const SettingSpec kTable[] = {
              "5.11); off: Lambertian voxels of the diffuse albedo, as vct reference --secondary diffuse",
      .value = OnOffValue{&S::voxelGlossy}, .apply = A::Rebuild, .group = G::Gi, .demo = true, .json = true,
      .widget = W::Checkbox, .label = "glossy voxels"},
+    {.name = "voxel-regions", .valueName = "on|off",
+     .help = "end cones where they pass from one closed region of the static voxels into another (a room turned off "
+             "the grid's axes, two rooms side by side: docs/design.md sec. 5.6), where the closure box does not "
+             "close them; off: an opening narrower than a voxel, which the regions seal, passes light again",
+     .value = OnOffValue{&S::voxelRegions}, .apply = A::Rebuild, .group = G::Gi, .demo = true, .json = true,
+     .widget = W::Checkbox, .label = "closed regions"},
     {.name = "voxels", .valueName = "N",
      .help = "voxel grid resolution N (N^3; 32, 64, 128 or 256); default 64 on a CPU device, 128 on a GPU",
      .value = ChoiceValue{&S::voxelResolution, kVoxelResolutions, 0u}, .apply = A::Rebuild, .group = G::Gi,

@@ -77,6 +77,9 @@ struct RenderSettings {
     // §5.11); off: Lambertian voxels of the diffuse albedo, what `vct reference --secondary diffuse` renders, so
     // that the cone tracer's error can be measured apart from the glossy transport's.
     bool voxelGlossy = true;
+    // Cones end where they pass from one closed region of the static grid into another (render/voxel_regions.h),
+    // where the scene needs it (VoxelRegions::needed).
+    bool voxelRegions = true;
     std::string voxelCache;  // OpenVDB file holding the static voxelization (vct voxelize); empty: compute it
     // Diagnostic: run every pass every frame, also those whose output did not change (shadow, voxel grid,
     // G-buffer and direct light of a static scene and camera); the image must be the same as without (the test

@@ -40,34 +40,6 @@ bool bricksAround(glm::vec3 low, glm::vec3 high, int n, int bricksPerAxis, Brick
 // Samples of the animation for moving instances' bounds (as voxelSceneBounds).
 constexpr int kAnimationSamples = 32;
 
-// Calls visit(p0, p1, p2) with each triangle of the static instances at t = 0, in the voxel units of the grid at
-// originSize (origin xyz, voxel size w).
-template <typename Visit>
-void forEachStaticTriangle(const Scene& scene, glm::vec4 originSize, Visit&& visit) {
-    const glm::vec3 origin(originSize);
-    const float voxelSize = originSize.w;
-    for (const Instance& instance : scene.instances(0.0f)) {
-        if (instance.moving || instance.mesh < 0) continue;
-        for (uint32_t primitiveIndex : scene.meshes[size_t(instance.mesh)].primitives) {
-            const Primitive& primitive = scene.primitives[primitiveIndex];
-            for (uint32_t t = 0; t + 2 < primitive.indexCount; t += 3) {
-                glm::vec3 p[3];
-                bool inside = true;  // the loader checks indices; a scene built in code might not
-                for (int k = 0; k < 3; ++k) {
-                    const int64_t v = int64_t(scene.indices[primitive.firstIndex + t + uint32_t(k)]) +
-                                      primitive.vertexOffset;
-                    inside = inside && v >= 0 && size_t(v) < scene.vertices.size();
-                    if (!inside) break;
-                    const glm::vec3 world =
-                        glm::vec3(instance.world * glm::vec4(scene.vertices[size_t(v)].position, 1.0f));
-                    p[k] = (world - origin) / voxelSize;
-                }
-                if (inside) visit(p[0], p[1], p[2]);
-            }
-        }
-    }
-}
-
 }  // namespace
 
 std::vector<uint32_t> BrickLayout::table() const {

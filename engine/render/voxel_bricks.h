@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <type_traits>
 #include <vector>
 
 #include "lib/shared.h"
@@ -46,6 +47,42 @@ BrickLayout allocateBricks(const Scene& scene, glm::vec4 originSize, uint32_t re
 
 // The atlas shape (side, layers) for `count` bricks: the smallest cube-like arrangement.
 glm::uvec2 brickAtlasShape(uint32_t count);
+
+// Calls visit(p0, p1, p2) with each triangle of the static instances at t = 0, in the voxel units of the grid at
+// originSize (origin xyz, voxel size w), not snapped; visit(p0, p1, p2, instance, primitive, v) when it takes them too,
+// v the triangle's three vertex indices into Scene::vertices.
+template <typename Visit>
+void forEachStaticTriangle(const Scene& scene, glm::vec4 originSize, Visit&& visit) {
+    const glm::vec3 origin(originSize);
+    const float voxelSize = originSize.w;
+    for (const Instance& instance : scene.instances(0.0f)) {
+        if (instance.moving || instance.mesh < 0) continue;
+        for (uint32_t primitiveIndex : scene.meshes[size_t(instance.mesh)].primitives) {
+            const Primitive& primitive = scene.primitives[primitiveIndex];
+            for (uint32_t t = 0; t + 2 < primitive.indexCount; t += 3) {
+                glm::vec3 p[3];
+                glm::uvec3 vertex(0u);
+                bool inside = true;  // the loader checks indices; a scene built in code might not
+                for (int k = 0; k < 3; ++k) {
+                    const int64_t v = int64_t(scene.indices[primitive.firstIndex + t + uint32_t(k)]) +
+                                      primitive.vertexOffset;
+                    inside = inside && v >= 0 && size_t(v) < scene.vertices.size();
+                    if (!inside) break;
+                    vertex[k] = uint32_t(v);
+                    const glm::vec3 world =
+                        glm::vec3(instance.world * glm::vec4(scene.vertices[size_t(v)].position, 1.0f));
+                    p[k] = (world - origin) / voxelSize;
+                }
+                if (!inside) continue;
+                if constexpr (std::is_invocable_v<Visit, glm::vec3, glm::vec3, glm::vec3, const Instance&,
+                                                  const Primitive&, glm::uvec3>)
+                    visit(p[0], p[1], p[2], instance, primitive, vertex);
+                else
+                    visit(p[0], p[1], p[2]);
+            }
+        }
+    }
+}
 
 // Where cones close (shaders/lib/cone_trace.glsl's traceCone): a box whose every side is the face of `content` (what
 // was voxelized) where geometry covers that face, as a closed room's floor, walls and ceiling do, and the grid's

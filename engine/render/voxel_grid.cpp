@@ -86,8 +86,13 @@ Aabb voxelSceneBounds(const Scene& scene) {
     return box;
 }
 
-VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution, bool sparseMip0)
-    : context_(context), scene_(scene), resolution_(resolution), sparseMip0_(sparseMip0) {
+VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution, bool sparseMip0,
+                     bool regions)
+    : regionsOn_(regions),
+      context_(context),
+      scene_(scene),
+      resolution_(resolution),
+      sparseMip0_(sparseMip0) {
     mipCount_ = uint32_t(std::countr_zero(resolution)) + 1;
     Aabb bounds = voxelSceneBounds(scene);
     if (bounds.empty()) bounds = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
@@ -97,6 +102,7 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     // Sparse storage (docs/design.md §5.10): which bricks the scene can reach, and the table the shaders read.
     bricks_ = allocateBricks(scene, originSize_, resolution);
     coneClosure_ = coneClosureBox(scene, bricks_, originSize_, contentBounds_);
+    if (regionsOn_) regions_ = labelVoxelRegions(scene, originSize_, resolution, coneClosure_);
     const uint64_t brickCount = std::max<uint64_t>(bricks_.brickCount(), 1);  // no empty buffers or images
     const std::vector<uint32_t> table = bricks_.table();
     brickTable_ = vk::Buffer::withData(context, table.data(), table.size() * sizeof(uint32_t),
@@ -168,9 +174,31 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     for (const Instance& instance : scene.instances(0.0f)) moving |= instance.moving;
     if (moving) dynamicAccum_ = vk::Buffer(context, accumBytes, accumUsage, vk::MemoryUsage::DeviceLocal);
 
+    // The region labels (render/voxel_regions.h), uploaded once: they follow the static geometry only.
+    const glm::uvec3 regionSize = usesRegions() ? glm::uvec3(resolution) : glm::uvec3(1, 1, 2);  // 3D
+    regionLabels_ = volume("region labels", VK_FORMAT_R8_UINT, regionSize, 1,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    {
+        const std::vector<uint8_t> zeros(2, 0);
+        const std::vector<uint8_t>& labels = usesRegions() ? regions_.labels : zeros;
+        vk::Buffer staging(context, labels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                           vk::MemoryUsage::HostVisible);
+        std::memcpy(staging.mapped(), labels.data(), labels.size());
+        context.submitAndWait([&](VkCommandBuffer cmd) {
+            regionLabels_.use(cmd, vk::ImageAccess::TransferDst);
+            VkBufferImageCopy region{};
+            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.imageExtent = {regionSize.x, regionSize.y, regionSize.z};
+            vkCmdCopyBufferToImage(cmd, staging.handle(), regionLabels_.handle(),
+                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            regionLabels_.use(cmd, vk::ImageAccess::Sampled);
+        });
+    }
+
     // For the report: what the grid's images and buffers take, and what dense N³ storage of the same data would
     // (per voxel: each material atlas's texel and the accumulators' words; the radiance's six slabs at every mip).
-    const vk::Image* images[] = {&radianceMips_, &radianceAtlas_, &albedo_, &normal_, &emission_, &bounce_};
+    const vk::Image* images[] = {&radianceMips_, &radianceAtlas_, &albedo_,      &normal_,
+                                 &emission_,     &bounce_,        &regionLabels_};
     memory_.bytes = brickTable_.size() + staticAccum_.size() + dynamicAccum_.size();
     for (const vk::Image* image : images) memory_.bytes += imageBytes(*image);
     const uint64_t voxels = uint64_t(resolution) * resolution * resolution;
@@ -180,6 +208,7 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
                          voxels * kAccumVoxelBytes * (hasMovingInstances() ? 2 : 1);
     for (const vk::Image* image : {&albedo_, &normal_, &emission_, &bounce_})
         memory_.denseBytes += voxels * vk::bytesPerPixel(image->format());
+    memory_.denseBytes += imageBytes(regionLabels_);  // dense either way
 
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = VK_FILTER_LINEAR;

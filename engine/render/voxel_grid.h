@@ -29,6 +29,7 @@
 #include "io/vdb_io.h"
 #include "render/settings.h"
 #include "render/voxel_bricks.h"
+#include "render/voxel_regions.h"
 #include "scene/scene.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
@@ -43,8 +44,15 @@ uint32_t chooseVoxelResolution(const vk::Context& context, const RenderSettings&
 // The specialization of a pipeline reading the radiance's mip 0: the shader's own constants `first`
 // (constant_id 0, 1, ...), then VCT_SPEC_SPARSE_MIP0.
 inline std::vector<uint32_t> withSparseMip0(std::vector<uint32_t> first, bool sparseMip0) {
-    first.resize(VCT_SPEC_SPARSE_MIP0 + 1, 0u);
+    first.resize(std::max<size_t>(first.size(), VCT_SPEC_SPARSE_MIP0 + 1), 0u);
     first[VCT_SPEC_SPARSE_MIP0] = sparseMip0 ? 1u : 0u;
+    return first;
+}
+// The same for a pipeline that traces cones: also VCT_SPEC_VOXEL_REGIONS (render/voxel_regions.h).
+inline std::vector<uint32_t> withConeVoxels(std::vector<uint32_t> first, bool sparseMip0, bool voxelRegions) {
+    first = withSparseMip0(std::move(first), sparseMip0);
+    first.resize(std::max<size_t>(first.size(), VCT_SPEC_VOXEL_REGIONS + 1), 0u);
+    first[VCT_SPEC_VOXEL_REGIONS] = voxelRegions ? 1u : 0u;
     return first;
 }
 
@@ -89,7 +97,9 @@ class VoxelGrid {
   public:
     // `sparseMip0`: the radiance's mip 0 in the brick atlas, else dense in radianceMips() (RenderSettings::
     // sparseMip0From).
-    VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution, bool sparseMip0 = true);
+    // `regions`: label the static grid's closed regions for the cones where the scene needs it (usesRegions()).
+    VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution, bool sparseMip0 = true,
+              bool regions = true);
     ~VoxelGrid();
     VoxelGrid(const VoxelGrid&) = delete;
     VoxelGrid& operator=(const VoxelGrid&) = delete;
@@ -103,6 +113,11 @@ class VoxelGrid {
     const Aabb& contentBounds() const { return contentBounds_; }
     // Where cones close (render/voxel_bricks.h's coneClosureBox).
     const ConeClosureBox& coneClosure() const { return coneClosure_; }
+    // The static grid's closed regions (render/voxel_regions.h), and their labels for the shaders: 3D R8_UINT, N³
+    // when cones use them (VoxelRegions::needed), else a 1×1×2 stand-in of 0 (no region: cones never end at one).
+    const VoxelRegions& regions() const { return regions_; }
+    bool usesRegions() const { return regionsOn_ && regions_.needed(); }
+    vk::Image& regionLabels() { return regionLabels_; }
     uint32_t mipCount() const { return mipCount_; }
 
     // Premultiplied radiance + opacity, 3D RGBA16F (SAMPLED | STORAGE): six direction slabs side by side along x
@@ -111,7 +126,7 @@ class VoxelGrid {
     vk::Image& radianceMips() { return radianceMips_; }
     bool sparseMip0() const { return sparseMip0_; }
     std::vector<uint32_t> specialization(std::vector<uint32_t> first = {}) const {
-        return withSparseMip0(std::move(first), sparseMip0_);
+        return withConeVoxels(std::move(first), sparseMip0_, usesRegions());
     }
     // The image whose level 0 holds mip 0: the atlas or the mips' texture.
     vk::Image& mip0Image() { return sparseMip0_ ? radianceAtlas_ : radianceMips_; }
@@ -198,6 +213,9 @@ class VoxelGrid {
     std::optional<UpdateRegions> updateRegions_;
     Aabb contentBounds_;
     ConeClosureBox coneClosure_;
+    VoxelRegions regions_;
+    bool regionsOn_ = true;
+    vk::Image regionLabels_;
     const vk::Context& context_;
     const Scene& scene_;  // outlives the grid (the Renderer's GpuScene holds it too)
     uint32_t resolution_ = 0;

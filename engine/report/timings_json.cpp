@@ -20,6 +20,9 @@ TimingReport::VoxelStorage voxelStorageReport(Renderer& renderer) {
     storage.brickSlots = uint32_t(grid->bricks().map.size());
     storage.bytes = grid->memory().bytes;
     storage.denseBytes = grid->memory().denseBytes;
+    storage.regions = grid->regions().components;
+    storage.labelledRegions = grid->regions().labelled;
+    storage.regionsUsed = grid->usesRegions();
     return storage;
 }
 
@@ -46,7 +49,10 @@ void writeTimingsJson(const std::filesystem::path& path, const TimingReport& rep
                                  {"bricks", report.voxels.bricks},
                                  {"brick_slots", report.voxels.brickSlots},
                                  {"bytes", report.voxels.bytes},
-                                 {"dense_bytes", report.voxels.denseBytes}};
+                                 {"dense_bytes", report.voxels.denseBytes},
+                                 {"regions", report.voxels.regions},
+                                 {"labelled_regions", report.voxels.labelledRegions},
+                                 {"regions_end_cones", report.voxels.regionsUsed}};
     json["shadow_map"] = {{"texels", report.shadowTexels},
                           {"redrawn_texels_last_frame", report.shadowTexelsRedrawn}};
     json["gbuffer"] = {{"pixels", uint64_t(report.width) * report.height},
@@ -87,6 +93,11 @@ std::string formatTimingTable(const TimingReport& report) {
                       v.resolution, v.bricks, v.brickSlots, 100.0 * v.bricks / v.brickSlots,
                       double(v.bytes) / 1048576.0, double(v.denseBytes) / 1048576.0,
                       100.0 * double(v.bytes) / double(v.denseBytes));
+        table += line;
+        std::snprintf(
+            line, sizeof(line), "regions      %u of empty voxels, %u labelled: %s\n", v.regions,
+            v.labelledRegions,
+            v.regionsUsed ? "cones end where they pass into another" : "the closure box closes them");
         table += line;
     }
     return table;

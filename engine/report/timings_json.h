@@ -26,6 +26,10 @@ struct TimingReport {
         uint32_t resolution = 0;
         uint32_t bricks = 0, brickSlots = 0;  // allocated, and (N / VCT_VOXEL_BRICK)³
         uint64_t bytes = 0, denseBytes = 0;   // device memory, and what dense N³ storage would take
+        // The static grid's closed regions (render/voxel_regions.h): 6-connected components of the empty voxels,
+        // how many got a label, and whether cones end where they pass into another.
+        uint32_t regions = 0, labelledRegions = 0;
+        bool regionsUsed = false;
     } voxels;
     // The shadow map (docs/design.md §5.8): its texels, and how many of them the last frame redrew (all, a
     // rectangle where only instances moved, or 0 when nothing did).

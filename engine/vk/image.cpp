@@ -31,6 +31,7 @@ uint32_t bytesPerPixel(VkFormat format) {
         case VK_FORMAT_R16_SFLOAT:
             return 2;
         case VK_FORMAT_R8_UNORM:
+        case VK_FORMAT_R8_UINT:
             return 1;
         default:
             throw Error("bytesPerPixel: format not handled");

@@ -15,6 +15,21 @@
 // Mip 0 of the radiance: the six slabs' blocks of the allocated bricks (lib/voxel_bricks.glsl), trilinear, no mips.
 layout(set = 0, binding = VCT_BINDING_VOXEL_ATLAS) uniform sampler3D voxelAtlas;
 
+// The static grid's closed regions (render/voxel_regions.h): each empty voxel's label, 0 for a voxel holding a
+// surface or a small pocket. With VOXEL_REGIONS a cone ends where its axis passes from the region it started in into
+// another (traceCone): the walls of a room turned off the grid's axes, or between two rooms, then close it as the
+// closure box's faces close an axis-aligned room's. A constant, so that scenes the box closes alone pay nothing.
+layout(constant_id = VCT_SPEC_VOXEL_REGIONS) const bool VOXEL_REGIONS = false;
+layout(set = 0, binding = VCT_BINDING_VOXEL_REGIONS) uniform usampler3D voxelRegions;
+
+// The region label at world point x (0 outside the grid).
+uint voxelRegionAt(vec3 x) {
+    const ivec3 voxel = ivec3(floor((x - frame.voxels.origin) / frame.voxels.voxelSize));
+    const int n = int(frame.voxels.resolution);
+    const bool inside = all(greaterThanEqual(voxel, ivec3(0))) && all(lessThan(voxel, ivec3(n)));
+    return inside ? texelFetch(voxelRegions, voxel, 0).r : 0u;
+}
+
 // The grid as a cone travelling along unit `dir` sees it at `uvw` and (fractional) `mip`: the three direction
 // slabs facing it (lib/voxel.glsl), combined by voxelSlabsSeen with weights dir² per axis (their largest opacity
 // with `coverage`, for coneCompositeNested; their weighted mean otherwise). Slabs with no weight are not sampled
@@ -195,6 +210,9 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
     // on each axis lies (which face it crossed first).
     const vec3 slabWeights = voxelSlabWeights(dir);
     const vec3 inverseSpeed = 1.0 / max(abs(dir), vec3(1e-6));
+    // The region the cone started in: the first labelled one its axis reaches (VOXEL_REGIONS).
+    uint startRegion = 0u;
+    float previousT = 0.0;  // the last sample's distance (where the axis was still in its region)
     for (int i = 0; i < maxSteps && acc.a < CONE_MAX_OPACITY; ++i) {
         const vec3 x = origin + dir * t;
         const float coneD = coneDiameter(tanHalfAngle, t, v0);
@@ -239,6 +257,17 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             }
         }
         if (outside && !closing && ++stepsPastBox > CONE_STEPS_PAST_GRID) break;
+        // Into another closed region (VOXEL_REGIONS): the cone has passed a wall that its samples covered only in
+        // part. It ends on that wall, read halfway back to the last sample (between the two its axis crossed the
+        // wall), as a cone ends on a closed face where its axis crossed it: read here, beyond the wall, it would take
+        // in what lies there (a lit room next door).
+        bool leavesRegion = false;
+        if (VOXEL_REGIONS && !closing) {
+            const uint region = voxelRegionAt(x);
+            leavesRegion = startRegion != 0u && region != 0u && region != startRegion;
+            startRegion = startRegion == 0u ? region : startRegion;
+            back = leavesRegion ? 0.5 * (t - previousT) : back;
+        }
         // Read where the coarser level of the blend keeps the surface out too, within the grid.
         const float mip = wholeMips ? coneWholeMip(d, v0) : coneMip(d, v0);
         // Read where the cone's axis crossed the closed face, if it has just passed one (`back` is 0 otherwise).
@@ -275,6 +304,14 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             acc = coneCompositeNested(acc, s, coverage, previousCoverage);
             break;
         }
+        if (leavesRegion) {
+            // The rest of the cone sees the wall as that read shows what it covers or, where it covers too little,
+            // what the cone saw so far (as a cone stopped nearly opaque, below): a closed room of uniform radiance
+            // gathers it.
+            const vec3 seen = s.a > 0.05 ? s.rgb / s.a : (acc.a > 0.05 ? acc.rgb / acc.a : vec3(0.0));
+            acc = vec4(acc.rgb + (1.0 - saturate(acc.a)) * seen, 1.0);
+            break;
+        }
         const float dt = coneStep(coneD);
         if (counts) {
             // What the sample's coverage adds to the last one's (coneCompositeNested).
@@ -286,6 +323,7 @@ vec4 traceCone(sampler3D voxels, vec3 p, vec3 n, vec3 origin, vec3 dir, float ta
             // The sample averaged its opacity over voxels of side v0·2^mip (the footprint, up to the top mip).
             acc = coneComposite(acc, s, dt, v0 * exp2(at.mip));
         }
+        previousT = t;
         t += dt;
     }
     // Stopped as nearly opaque: what lies behind the last CONE_MAX_OPACITY would add its share of the cone in

@@ -64,6 +64,10 @@ using glm::vec4;
 // references). A constant: a flag would make lavapipe filter every material texture twice, at level 0 and
 // mip-mapped.
 #define VCT_SPEC_TEXTURE_LOD0 6
+// The cone-tracing passes (lib/cone_trace.glsl): whether cones end where they pass from one closed region of the
+// static grid into another (render/voxel_regions.h). Only scenes whose closure box holds two regions light can come
+// from pay for the label read at every step.
+#define VCT_SPEC_VOXEL_REGIONS 7
 // direct.comp: whether GI is on (RenderSettings::gi). Off, direct adds the environment's light; a uniform flag
 // would make lavapipe pay for those environment reads on every pixel with GI on too (direct 55 → 45 ms measured,
 // cornell 640×360).
@@ -229,6 +233,7 @@ struct SkinPushConstants {
 #define VCT_BINDING_BRICKS 20       // the brick table (map, then coordinates), in every pass reading voxels
 #define VCT_BINDING_VOXEL_ATLAS 21  // mip 0 of the radiance (the radiance atlas), where cones are traced
 #define VCT_BINDING_ENVIRONMENT_CONES 22  // the environment's cone layers, where the environment is read
+#define VCT_BINDING_VOXEL_REGIONS 23      // the static grid's region labels, where cones are traced
 
 // upsample's specialization constants (one pipeline per configuration), after VCT_SPEC_TRACE_SCALE (2 or 4)
 #define VCT_UPSAMPLE_SPEC_WEIGHTS 1      // VCT_WEIGHTS_*
