@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <glm/gtc/quaternion.hpp>
+#include <limits>
 
 #include "render/voxel_grid.h"
 #include "scene/builtin_scenes.h"
@@ -107,6 +108,27 @@ TEST(VoxelRegions, PocketsSmallerThanTheMinimumGetNoLabel) {
     const Labelled large = regionsOf(scene, 128);
     EXPECT_NE(labelAt(large, glm::vec3(0.0f)), 0u) << large.regions.summary();
     EXPECT_NE(labelAt(large, glm::vec3(0.0f)), labelAt(large, glm::vec3(0.5f)));
+}
+
+TEST(VoxelRegions, NonFiniteAndFarAwayTrianglesHoldNoVoxel) {
+    // Three quads in a 2 m grid of 32³: one at 1e29 m (beyond int), one with NaN corners, one degenerate (a point).
+    Scene scene = test::scenes::emptyScene("hostile", test::scenes::diffuseMaterial(0.5f, 0.0f));
+    test::scenes::addQuad(scene, glm::vec3(1e29f), glm::vec3(1e29f, 0, 0), glm::vec3(0, 1e29f, 0), 0);
+    test::scenes::addQuad(scene, glm::vec3(0.0f), glm::vec3(0.5f, 0, 0), glm::vec3(0, 0.5f, 0), 0);
+    for (size_t k = scene.vertices.size() - 4; k < scene.vertices.size(); ++k)
+        scene.vertices[k].position.x = std::numeric_limits<float>::quiet_NaN();
+    test::scenes::addQuad(scene, glm::vec3(0.25f), glm::vec3(0.0f), glm::vec3(0.0f), 0);
+    const glm::vec4 grid(-1.0f, -1.0f, -1.0f, 2.0f / 32.0f);
+    const std::vector<uint8_t> surface = staticSurfaceVoxels(scene, grid, 32);
+    size_t held = 0;
+    for (uint8_t v : surface) held += v;
+    // The point holds the voxels it lies in (at most 8, on a corner: 0.25 m is 20 voxels in); nothing else.
+    EXPECT_GE(held, 1u);
+    EXPECT_LE(held, 8u);
+    const VoxelRegions regions =
+        labelVoxelRegions(scene, grid, 32, ConeClosureBox{glm::vec3(-1.0f), glm::vec3(1.0f)});
+    EXPECT_EQ(regions.labels.size(), size_t(32 * 32 * 32));
+    EXPECT_FALSE(regions.needed()) << regions.summary();
 }
 
 }  // namespace

@@ -12,7 +12,9 @@ namespace {
 
 constexpr int kBrick = VCT_VOXEL_BRICK;
 
-size_t linearIndex(glm::ivec3 v, int n) { return size_t(glsl::voxelLinearIndex(v, n)); }
+size_t linearIndex(glm::ivec3 v, int n) {
+    return size_t(glsl::voxelLinearIndex(v, n));
+}
 
 bool insideGrid(glm::ivec3 v, int n) {
     return glm::all(glm::greaterThanEqual(v, glm::ivec3(0))) && glm::all(glm::lessThan(v, glm::ivec3(n)));
@@ -36,37 +38,43 @@ template <typename Visit>
 void forEachStaticSurfaceVoxel(const Scene& scene, glm::vec4 originSize, int n, Visit&& visit) {
     // A large oblique triangle's bounds hold far more voxels than it does: whole bricks its box misses are skipped.
     const glm::vec3 brickHalf(0.5f * float(kBrick) + 1e-3f);
-    forEachStaticTriangle(scene, originSize,
-                          [&](glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, const Instance& instance,
-                              const Primitive&, glm::uvec3 vertex) {
-        const glm::vec3 a = glsl::voxelSnap(p0), b = glsl::voxelSnap(p1), c = glsl::voxelSnap(p2);
-        const glm::vec3 low = glm::min(a, glm::min(b, c)), high = glm::max(a, glm::max(b, c));
-        const glm::vec3 huge(1e30f);  // also false for NaN
-        if (!glm::all(glm::lessThan(glm::abs(low), huge)) || !glm::all(glm::lessThan(glm::abs(high), huge)))
-            return;
-        const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(glm::max(low, glm::vec3(-1.0f)))), 0);
-        const glm::ivec3 hi =
-            glm::min(glm::ivec3(glm::floor(glm::min(high, glm::vec3(float(n))))), glm::ivec3(n - 1));
-        if (glm::any(glm::greaterThan(lo, hi))) return;
-        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.world)));
-        glm::vec3 m = normalMatrix * (scene.vertices[vertex.x].normal + scene.vertices[vertex.y].normal +
-                                      scene.vertices[vertex.z].normal);
-        const float length = glm::length(m);
-        m = length > 0.0f && std::isfinite(length) ? m / length : glm::vec3(0.0f);
-        for (int bz = lo.z / kBrick; bz <= hi.z / kBrick; ++bz)
-            for (int by = lo.y / kBrick; by <= hi.y / kBrick; ++by)
-                for (int bx = lo.x / kBrick; bx <= hi.x / kBrick; ++bx) {
-                    const glm::ivec3 first = glm::ivec3(bx, by, bz) * kBrick;
-                    if (!glsl::triangleBoxOverlap(glm::vec3(first) + 0.5f * float(kBrick), brickHalf, a, b, c))
-                        continue;
-                    const glm::ivec3 from = glm::max(first, lo), to = glm::min(first + kBrick - 1, hi);
-                    for (int z = from.z; z <= to.z; ++z)
-                        for (int y = from.y; y <= to.y; ++y)
-                            for (int x = from.x; x <= to.x; ++x)
-                                if (glsl::voxelHoldsTriangle(glm::vec3(x, y, z) + 0.5f, a, b, c))
-                                    visit(glm::ivec3(x, y, z), m);
-                }
-    });
+    forEachStaticTriangle(
+        scene, originSize,
+        [&](glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, const Instance& instance, const Primitive&,
+            glm::uvec3 vertex) {
+            const glm::vec3 a = glsl::voxelSnap(p0), b = glsl::voxelSnap(p1), c = glsl::voxelSnap(p2);
+            const glm::vec3 low = glm::min(a, glm::min(b, c)), high = glm::max(a, glm::max(b, c));
+            const glm::vec3 huge(1e30f);  // also false for NaN
+            if (!glm::all(glm::lessThan(glm::abs(low), huge)) ||
+                !glm::all(glm::lessThan(glm::abs(high), huge)))
+                return;
+            // Clamped before the conversion to int: a far-away vertex (below 1e30) would overflow it.
+            const glm::vec3 edge = glm::vec3(float(n));
+            const glm::ivec3 lo =
+                glm::max(glm::ivec3(glm::floor(glm::clamp(low, glm::vec3(-1.0f), edge))), 0);
+            const glm::ivec3 hi =
+                glm::min(glm::ivec3(glm::floor(glm::clamp(high, glm::vec3(-1.0f), edge))), glm::ivec3(n - 1));
+            if (glm::any(glm::greaterThan(lo, hi))) return;
+            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.world)));
+            glm::vec3 m = normalMatrix * (scene.vertices[vertex.x].normal + scene.vertices[vertex.y].normal +
+                                          scene.vertices[vertex.z].normal);
+            const float length = glm::length(m);
+            m = length > 0.0f && std::isfinite(length) ? m / length : glm::vec3(0.0f);
+            for (int bz = lo.z / kBrick; bz <= hi.z / kBrick; ++bz)
+                for (int by = lo.y / kBrick; by <= hi.y / kBrick; ++by)
+                    for (int bx = lo.x / kBrick; bx <= hi.x / kBrick; ++bx) {
+                        const glm::ivec3 first = glm::ivec3(bx, by, bz) * kBrick;
+                        if (!glsl::triangleBoxOverlap(glm::vec3(first) + 0.5f * float(kBrick), brickHalf, a,
+                                                      b, c))
+                            continue;
+                        const glm::ivec3 from = glm::max(first, lo), to = glm::min(first + kBrick - 1, hi);
+                        for (int z = from.z; z <= to.z; ++z)
+                            for (int y = from.y; y <= to.y; ++y)
+                                for (int x = from.x; x <= to.x; ++x)
+                                    if (glsl::voxelHoldsTriangle(glm::vec3(x, y, z) + 0.5f, a, b, c))
+                                        visit(glm::ivec3(x, y, z), m);
+                    }
+        });
 }
 
 }  // namespace
@@ -160,10 +168,14 @@ VoxelRegions labelVoxelRegions(const Scene& scene, glm::vec4 originSize, uint32_
 
     // Inside the closure box: a voxel centre within it, in the grid's voxel units.
     const glm::vec3 origin(originSize);
-    const glm::vec3 boxMin = (closure.min - origin) / originSize.w, boxMax = (closure.max - origin) / originSize.w;
+    const glm::vec3 boxMin = (closure.min - origin) / originSize.w,
+                    boxMax = (closure.max - origin) / originSize.w;
     std::vector<uint8_t> inClosure(components, 0);
-    const glm::ivec3 lo = glm::clamp(glm::ivec3(glm::floor(boxMin)), 0, n - 1);
-    const glm::ivec3 hi = glm::clamp(glm::ivec3(glm::floor(boxMax)), 0, n - 1);
+    const glm::vec3 edge = glm::vec3(float(n));
+    const glm::ivec3 lo =
+        glm::clamp(glm::ivec3(glm::floor(glm::clamp(boxMin, glm::vec3(0.0f), edge))), 0, n - 1);
+    const glm::ivec3 hi =
+        glm::clamp(glm::ivec3(glm::floor(glm::clamp(boxMax, glm::vec3(0.0f), edge))), 0, n - 1);
     for (int z = lo.z; z <= hi.z; ++z)
         for (int y = lo.y; y <= hi.y; ++y)
             for (int x = lo.x; x <= hi.x; ++x) {
