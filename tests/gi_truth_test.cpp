@@ -551,7 +551,8 @@ TEST(VoxelGi, TurnedEmissiveFurnaceGathersMostOfItsRadiance) {
         const std::string file = sceneFile(tag, room, q * glm::vec3(0.2f, -0.1f, 0.6f),
                                            q * glm::angleAxis(0.4f, glm::vec3(0, 1, 0)), 1.2f);
         for (const auto& [voxels, bound] : bounds) {
-            const fs::path dir = renderVct(tag + "_" + voxels, file, {"--voxels", voxels});
+            // Validated: the region labels' volume and binding (render/voxel_grid.h) with the layer on.
+            const fs::path dir = renderVct(tag + "_" + voxels, file, {"--voxels", voxels, "--validate"});
             const double diffuse = meanLuminance(vct::readExr(dir / "diffuse_indirect.exr"));
             std::printf("emissive furnace turned %s at %s^3: diffuse indirect %.4f (exact 1)\n",
                         kRoomTurns[turn].name, voxels, diffuse);

@@ -20,16 +20,6 @@ bool insideGrid(glm::ivec3 v, int n) {
     return glm::all(glm::greaterThanEqual(v, glm::ivec3(0))) && glm::all(glm::lessThan(v, glm::ivec3(n)));
 }
 
-}  // namespace
-
-std::string VoxelRegions::summary() const {
-    return std::to_string(components) + " regions of empty voxels, " + std::to_string(labelled) +
-           " labelled, " + std::to_string(lightRegionsInClosure) + " open or lit inside the closure box: " +
-           (needed() ? "cones end where they pass into another region" : "not needed");
-}
-
-namespace {
-
 // Calls visit(voxel, m) for every voxel that holds a static triangle of the scene, as the voxelizer decides it
 // (shaders/voxelize.comp: snapped vertices, voxelHoldsTriangle over the voxels of the triangle's bounds), once per
 // triangle it holds: m the unit direction the triangle faces (its shading normals, transformed as normals are: the
@@ -78,6 +68,12 @@ void forEachStaticSurfaceVoxel(const Scene& scene, glm::vec4 originSize, int n, 
 }
 
 }  // namespace
+
+std::string VoxelRegions::summary() const {
+    return std::to_string(components) + " regions of empty voxels, " + std::to_string(labelled) +
+           " labelled, " + std::to_string(lightRegionsInClosure) + " open or lit inside the closure box: " +
+           (needed() ? "cones end where they pass into another region" : "not needed");
+}
 
 std::vector<uint8_t> staticSurfaceVoxels(const Scene& scene, glm::vec4 originSize, uint32_t resolution) {
     const int n = int(resolution);
