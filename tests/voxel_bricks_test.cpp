@@ -48,32 +48,19 @@ TEST(BrickAtlas, ShapeHoldsEveryBrickInTheSmallestCube) {
 // voxel comes once per triangle it holds.
 template <typename Visit>
 void forEachStaticTriangleVoxel(const Scene& scene, glm::vec4 grid, uint32_t n, Visit&& visit) {
-    for (const Instance& instance : scene.instances(0.0f)) {
-        if (instance.moving || instance.mesh < 0) continue;
-        for (uint32_t p : scene.meshes[size_t(instance.mesh)].primitives) {
-            const Primitive& primitive = scene.primitives[p];
-            for (uint32_t t = 0; t + 2 < primitive.indexCount; t += 3) {
-                glm::vec3 v[3];
-                for (int k = 0; k < 3; ++k) {
-                    const uint32_t index = scene.indices[primitive.firstIndex + t + uint32_t(k)];
-                    const glm::vec3 world = glm::vec3(
-                        instance.world *
-                        glm::vec4(scene.vertices[size_t(int64_t(index) + primitive.vertexOffset)].position,
-                                  1.0f));
-                    v[k] = g::voxelSnap(g::voxelFromWorld(world, grid));
-                }
-                const glm::ivec3 lo =
-                    glm::max(glm::ivec3(glm::floor(glm::min(v[0], glm::min(v[1], v[2])))), 0);
-                const glm::ivec3 hi =
-                    glm::min(glm::ivec3(glm::floor(glm::max(v[0], glm::max(v[1], v[2])))), int(n) - 1);
-                for (int z = lo.z; z <= hi.z; ++z)
-                    for (int y = lo.y; y <= hi.y; ++y)
-                        for (int x = lo.x; x <= hi.x; ++x)
-                            if (g::voxelHoldsTriangle(glm::vec3(x, y, z) + 0.5f, v[0], v[1], v[2]))
-                                visit(glm::ivec3(x, y, z));
-            }
-        }
-    }
+    // The triangles as the engine walks them (render/voxel_bricks.h); the voxels over each one's whole bounds, as
+    // the shader does, without the bricks render/voxel_regions.cpp skips.
+    forEachStaticTriangle(scene, grid, [&](glm::vec3 p0, glm::vec3 p1, glm::vec3 p2) {
+        const glm::vec3 v[3] = {g::voxelSnap(p0), g::voxelSnap(p1), g::voxelSnap(p2)};
+        const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(glm::min(v[0], glm::min(v[1], v[2])))), 0);
+        const glm::ivec3 hi =
+            glm::min(glm::ivec3(glm::floor(glm::max(v[0], glm::max(v[1], v[2])))), int(n) - 1);
+        for (int z = lo.z; z <= hi.z; ++z)
+            for (int y = lo.y; y <= hi.y; ++y)
+                for (int x = lo.x; x <= hi.x; ++x)
+                    if (g::voxelHoldsTriangle(glm::vec3(x, y, z) + 0.5f, v[0], v[1], v[2]))
+                        visit(glm::ivec3(x, y, z));
+    });
 }
 
 // Every voxel the voxelizer can write (shaders/voxelize.comp's loop: the voxels of a triangle's bounds that its
