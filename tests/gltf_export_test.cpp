@@ -264,7 +264,9 @@ std::vector<uint8_t> readBytes(const fs::path& path) {
 }
 
 std::string builtinName(const ::testing::TestParamInfo<std::string>& info) {
-    return info.param;
+    std::string name = info.param;  // a test name takes letters, digits and '_' only (cornell-turned)
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
 }
 
 // ---- built-in scenes ----

@@ -85,6 +85,12 @@ TEST(VoxelRegions, ATurnedRoomIsARegionApartFromWhatLiesOutside) {
                 EXPECT_EQ(labelAt(room, q * (axis * (1.0f + 1.5f * voxel))), outside) << n;
             }
         }
+    // The built-in cornell-turned: the room and the outside.
+    for (uint32_t n : {32u, 64u, 128u}) {
+        const Labelled room = regionsOf(*makeBuiltinScene("cornell-turned"), n);
+        EXPECT_TRUE(room.regions.needed()) << n << ": " << room.regions.summary();
+        EXPECT_EQ(room.regions.lightRegionsInClosure, 2u) << n;
+    }
     // Two rooms side by side sharing a wall of no thickness, turned: two lit rooms and the outside.
     for (uint32_t n : {32u, 64u}) {
         const Labelled rooms = regionsOf(turned(test::scenes::twoRooms(0.5f), turns[0]), n);
