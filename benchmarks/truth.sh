@@ -7,7 +7,7 @@
 # --voxel-glossy off. benchmarks/plot_truth.py then writes truth.md,
 # truth_ratios.png and truth_error_vs_voxels.png and copies the ratio maps.
 # Writes benchmarks/results/<device>-truth/ (TRUTH_QUICK=1: <device>-truth-quick/; the directory is replaced).
-# Usage: benchmarks/truth.sh [SCENE...]   (build first; default scenes: cornell plane courtyard, and
+# Usage: benchmarks/truth.sh [SCENE...]   (build first; default scenes: cornell plane courtyard cornell-turned, and
 #        ../shared/scenes/{DamagedHelmet,BoxVertexColors}/glTF/*.gltf when present)
 # Environment (defaults in brackets):
 #   TRUTH_SIZE [320x180]  TRUTH_SPP [256]  TRUTH_FRAMES [64]  TRUTH_VOXELS ["32 64 128"]  TRUTH_SCALES ["1 4"]
@@ -48,8 +48,9 @@ mkdir -p "$work/json" "$work/maps"
 [ -x "$vct" ] || { echo "truth.sh: $vct not found: build first (cmake --build build)" >&2; exit 1; }
 
 if [ "${#scenes[@]}" -eq 0 ]; then
-    # courtyard: the open scene, lit mostly by the sun and the procedural sky (docs/design.md §5.9).
-    scenes=(cornell plane courtyard)
+    # courtyard: the open scene, lit mostly by the sun and the procedural sky (docs/design.md §5.9); cornell-turned:
+    # a closed room off the grid's axes (§5.6).
+    scenes=(cornell plane courtyard cornell-turned)
     # From ../shared/scenes when present: a textured model, and a lone cube under the sky, whose faces lie in the
     # grid's edge layer (docs/design.md §5.3: a cone leaving them outwards once read its own face there).
     for model in DamagedHelmet BoxVertexColors; do
