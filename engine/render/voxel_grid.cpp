@@ -88,11 +88,7 @@ Aabb voxelSceneBounds(const Scene& scene) {
 
 VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t resolution, bool sparseMip0,
                      bool regions)
-    : regionsOn_(regions),
-      context_(context),
-      scene_(scene),
-      resolution_(resolution),
-      sparseMip0_(sparseMip0) {
+    : context_(context), scene_(scene), resolution_(resolution), sparseMip0_(sparseMip0) {
     mipCount_ = uint32_t(std::countr_zero(resolution)) + 1;
     Aabb bounds = voxelSceneBounds(scene);
     if (bounds.empty()) bounds = Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)};
@@ -102,7 +98,8 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
     // Sparse storage (docs/design.md §5.10): which bricks the scene can reach, and the table the shaders read.
     bricks_ = allocateBricks(scene, originSize_, resolution);
     coneClosure_ = coneClosureBox(scene, bricks_, originSize_, contentBounds_);
-    if (regionsOn_) regions_ = labelVoxelRegions(scene, originSize_, resolution, coneClosure_);
+    // Off, no regions: none needed (usesRegions() false), and no labelling at start-up.
+    if (regions) regions_ = labelVoxelRegions(scene, originSize_, resolution, coneClosure_);
     const uint64_t brickCount = std::max<uint64_t>(bricks_.brickCount(), 1);  // no empty buffers or images
     const std::vector<uint32_t> table = bricks_.table();
     brickTable_ = vk::Buffer::withData(context, table.data(), table.size() * sizeof(uint32_t),
@@ -193,6 +190,7 @@ VoxelGrid::VoxelGrid(const vk::Context& context, const Scene& scene, uint32_t re
                                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
             regionLabels_.use(cmd, vk::ImageAccess::Sampled);
         });
+        regions_.labels = {};  // on the device now (N³ bytes; 16 MiB at 256³): the grid keeps the counts only
     }
 
     // For the report: what the grid's images and buffers take, and what dense N³ storage of the same data would

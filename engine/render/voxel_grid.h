@@ -113,10 +113,11 @@ class VoxelGrid {
     const Aabb& contentBounds() const { return contentBounds_; }
     // Where cones close (render/voxel_bricks.h's coneClosureBox).
     const ConeClosureBox& coneClosure() const { return coneClosure_; }
-    // The static grid's closed regions (render/voxel_regions.h), and their labels for the shaders: 3D R8_UINT, N³
-    // when cones use them (VoxelRegions::needed), else a 1×1×2 stand-in of 0 (no region: cones never end at one).
+    // The static grid's closed regions (render/voxel_regions.h), without their labels (released once uploaded), and
+    // the labels for the shaders: 3D R8_UINT, N³ when cones use them (VoxelRegions::needed), else a 1×1×2 stand-in of
+    // 0 (no region: cones never end at one).
     const VoxelRegions& regions() const { return regions_; }
-    bool usesRegions() const { return regionsOn_ && regions_.needed(); }
+    bool usesRegions() const { return regions_.needed(); }
     vk::Image& regionLabels() { return regionLabels_; }
     uint32_t mipCount() const { return mipCount_; }
 
@@ -213,8 +214,7 @@ class VoxelGrid {
     std::optional<UpdateRegions> updateRegions_;
     Aabb contentBounds_;
     ConeClosureBox coneClosure_;
-    VoxelRegions regions_;
-    bool regionsOn_ = true;
+    VoxelRegions regions_;  // empty with `regions` off
     vk::Image regionLabels_;
     const vk::Context& context_;
     const Scene& scene_;  // outlives the grid (the Renderer's GpuScene holds it too)
